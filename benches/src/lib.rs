@@ -1,0 +1,1 @@
+//! Benchmarks of tracker-core (see benches/).

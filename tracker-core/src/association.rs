@@ -1,0 +1,226 @@
+//! The data association matrix of one parent hypothesis and one birth/death event (digest §4.4).
+//!
+//! Rows are the scan's measurements z₁..z_m; columns are the objects that can be detected in the child
+//! (the parent's objects in the field of view, minus a dead one, plus a born one); clutter is implicit and
+//! may take any number of rows. An association σ assigns each row a column or clutter, no column twice.
+//!
+//! Entries are log ratios to the all-clutter, all-missed child, so a child's log-weight is a sum:
+//!
+//! ```text
+//! ln w̃(σ) = baseline + Σ_{(z,o) ∈ σ} δ_{z,o}
+//! baseline = ln w_i + ln P(e) + N'_F ln(1 − p_D) + m ln λ_C
+//! δ_{z,o}  = ln( p_D ĝ_{z,o} / ((1 − p_D) λ_C) )
+//! ```
+//!
+//! which is digest §4.4's boxed update `w̃ = w_i P(e) (1−p_D)^{N'_F} λ_C^m Π p_D ĝ / ((1−p_D) λ_C)`.
+//! An impossible entry (outside a gate, or a column that cannot be assigned) is `-inf`. When p_D = 1 the
+//! ratio is undefined: the missed factor is dropped from the baseline and the entry, and every such column
+//! is *required* instead (a child that leaves it unassigned has weight 0). A birth that must be detected
+//! (paper 000's "all births detected") is a required column too.
+
+use crate::real::Real;
+
+/// The assignment value of a measurement taken by clutter.
+pub const CLUTTER: u16 = u16::MAX;
+
+/// The data association matrix of one (parent, event) pair: at most `Z` rows and `N` columns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AssociationMatrix<T, const N: usize, const Z: usize> {
+    rows: usize,
+    columns: usize,
+    entries: [[T; N]; Z],
+    required: [bool; N],
+    required_count: usize,
+    baseline: T,
+}
+
+impl<T: Real, const N: usize, const Z: usize> Default for AssociationMatrix<T, N, Z> {
+    fn default() -> Self {
+        Self::new(0, 0, T::zero())
+    }
+}
+
+impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
+    /// An empty `rows × columns` matrix: every entry impossible, no column required.
+    ///
+    /// # Panics
+    /// If `rows > Z` or `columns > N`.
+    pub fn new(rows: usize, columns: usize, baseline: T) -> Self {
+        assert!(rows <= Z && columns <= N, "association matrix larger than its capacity");
+        Self { rows, columns, entries: [[T::NEG_INFINITY; N]; Z], required: [false; N], required_count: 0, baseline }
+    }
+
+    /// Builds a matrix from plain likelihood products, as printed in paper 004's Fig. 4: the weight of an
+    /// association is the product of its selected entries, with `clutter[j]` the entry of row `j`'s clutter
+    /// column (reusable by every row). A zero entry is impossible.
+    ///
+    /// # Panics
+    /// If the table is larger than the capacity or ragged.
+    pub fn from_likelihoods(table: &[&[T]], clutter: &[T]) -> Self {
+        let columns = table.first().map_or(0, |row| row.len());
+        let mut matrix = Self::new(table.len(), columns, T::zero());
+        for (j, row) in table.iter().enumerate() {
+            assert_eq!(row.len(), columns, "ragged likelihood table");
+            let ln_clutter = crate::real::ln(clutter[j]);
+            matrix.baseline += ln_clutter;
+            for (o, &value) in row.iter().enumerate() {
+                matrix.entries[j][o] = crate::real::ln(value) - ln_clutter;
+            }
+        }
+        matrix
+    }
+
+    /// Number of rows (measurements).
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of columns (detectable objects).
+    pub fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// The log-weight of the child in which every row is clutter and every column missed.
+    pub fn baseline(&self) -> T {
+        self.baseline
+    }
+
+    /// Sets the baseline.
+    pub fn set_baseline(&mut self, baseline: T) {
+        self.baseline = baseline;
+    }
+
+    /// The entry δ of row `row`, column `column` (`-inf` when impossible).
+    #[inline]
+    pub fn entry(&self, row: usize, column: usize) -> T {
+        self.entries[row][column]
+    }
+
+    /// Whether `column` must be assigned in every child with non-zero weight.
+    #[inline]
+    pub fn is_required(&self, column: usize) -> bool {
+        self.required[column]
+    }
+
+    /// Number of required columns.
+    pub fn required_count(&self) -> usize {
+        self.required_count
+    }
+
+    /// Writes column `column` from `entries` (one per row) and its required flag.
+    pub fn set_column(&mut self, column: usize, entries: &[T], required: bool) {
+        for (row, &value) in entries.iter().enumerate().take(self.rows) {
+            self.entries[row][column] = value;
+        }
+        self.set_required(column, required);
+    }
+
+    /// Marks `column` required or not.
+    pub fn set_required(&mut self, column: usize, required: bool) {
+        if self.required[column] != required {
+            self.required[column] = required;
+            if required {
+                self.required_count += 1;
+            } else {
+                self.required_count -= 1;
+            }
+        }
+    }
+
+    /// Appends a column (for a born object) and returns its index, or `None` when the matrix is full.
+    pub fn push_column(&mut self, entries: &[T], required: bool) -> Option<usize> {
+        if self.columns == N {
+            return None;
+        }
+        let column = self.columns;
+        self.columns += 1;
+        self.set_column(column, entries, required);
+        Some(column)
+    }
+
+    /// Removes the last column.
+    pub fn pop_column(&mut self) {
+        if self.columns > 0 {
+            self.columns -= 1;
+            self.set_required(self.columns, false);
+        }
+    }
+
+    /// Copies column `column` into `out` (one entry per row).
+    pub fn column(&self, column: usize, out: &mut [T; Z]) {
+        for (row, slot) in out.iter_mut().enumerate().take(self.rows) {
+            *slot = self.entries[row][column];
+        }
+    }
+
+    /// The log-weight of `assignment` (one column or [`CLUTTER`] per row), `-inf` when it is impossible,
+    /// assigns a column twice, or leaves a required column unassigned.
+    pub fn score(&self, assignment: &[u16]) -> T {
+        let mut used = [false; N];
+        let mut total = self.baseline;
+        let mut required_assigned = 0;
+        for (row, &column) in assignment.iter().enumerate().take(self.rows) {
+            if column == CLUTTER {
+                continue;
+            }
+            let column = column as usize;
+            if column >= self.columns || used[column] {
+                return T::NEG_INFINITY;
+            }
+            used[column] = true;
+            if self.required[column] {
+                required_assigned += 1;
+            }
+            total += self.entries[row][column];
+        }
+        if required_assigned < self.required_count || assignment.len() < self.rows { T::NEG_INFINITY } else { total }
+    }
+}
+
+/// A_N(m) = Σ_{n=0}^{min(m,N)} C(N,n) C(m,n) n!: the number of associations of `measurements` measurements
+/// with `objects` objects ([003] (4), digest §0), saturating at `u128::MAX`.
+///
+/// # Examples
+/// ```
+/// assert_eq!(tracker_core::association::association_count(10, 5), 63_591);
+/// ```
+pub fn association_count(objects: u32, measurements: u32) -> u128 {
+    let mut total: u128 = 0;
+    // term(n) = C(N,n) C(m,n) n! ; term(n+1) = term(n) (N−n)(m−n)/(n+1)
+    let mut term: u128 = 1;
+    for n in 0..=objects.min(measurements) {
+        total = total.saturating_add(term);
+        let numerator = term.saturating_mul(u128::from(objects - n)).saturating_mul(u128::from(measurements - n));
+        term = if numerator == u128::MAX { u128::MAX } else { numerator / u128::from(n + 1) };
+    }
+    total
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn association_count_table() {
+        // Digest §2.3 (3): A_N(m) for m = 0..4 (rows) and N = 0..5 (columns).
+        let table = [[1, 1, 1, 1, 1, 1], [1, 2, 3, 4, 5, 6], [1, 3, 7, 13, 21, 31], [1, 4, 13, 34, 73, 136], [1, 5, 21, 73, 209, 501]];
+        for (m, row) in table.iter().enumerate() {
+            for (n, &expected) in row.iter().enumerate() {
+                assert_eq!(association_count(n as u32, m as u32), expected, "A_{n}({m})");
+            }
+        }
+        assert_eq!(association_count(11, 5), 106_096);
+        assert_eq!(association_count(9, 5), 36_046);
+    }
+
+    #[test]
+    fn score_rejects_double_assignment_and_missing_required() {
+        let mut m = AssociationMatrix::<f64, 3, 2>::new(2, 2, 1.0);
+        m.set_column(0, &[0.5, 0.25], false);
+        m.set_column(1, &[2.0, 3.0], true);
+        assert_eq!(m.score(&[0, 1]), 1.0 + 0.5 + 3.0);
+        assert_eq!(m.score(&[1, 1]), f64::NEG_INFINITY);
+        assert_eq!(m.score(&[0, CLUTTER]), f64::NEG_INFINITY);
+        assert_eq!(m.score(&[CLUTTER, 1]), 4.0);
+    }
+}

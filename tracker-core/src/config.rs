@@ -1,0 +1,95 @@
+//! Tracker configuration: models, sensor, birth/death model, child generation and overflow policy.
+//!
+//! Every field is checked when a tracker is built ([`crate::Tracker::new`]); a bad value is a
+//! [`crate::ConfigError`], never a later surprise.
+
+use crate::ekf::Gaussian;
+use crate::real::Real;
+use crate::sensor::Sensor;
+
+/// Whether a born object may go undetected in the scan it is born (digest §1.1, [000] (34)–(43)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BirthDetection {
+    /// Paper 000's "all births detected" heuristic: a birth child must assign a measurement to the born
+    /// object. **The default.** Every child with an undetected birth weighs at most (1 − p_D) α / P(no
+    /// event) of its companion without that birth ([000] (39)), and its track would carry only the broad
+    /// birth pdf; dropping those children keeps H∞ for hypotheses that explain measurements. The mass
+    /// discarded per scan is about (1 − p_D) M_b α (digest §1.3 (5)).
+    #[default]
+    AllDetected,
+    /// The exact first-order model: a born object is detected with p_D like any other, so undetected
+    /// births are children too.
+    AllowUndetected,
+}
+
+/// R-FISST's first-order birth model: per scan at most one birth, in one of the cells, each with
+/// probability α ([003] §II-C; digest §4.4 "Event probabilities").
+#[derive(Debug, Clone, PartialEq)]
+pub struct BirthModel<T: Real, const S: usize, const B: usize> {
+    /// α: probability of a birth in each cell per scan.
+    pub probability: T,
+    /// The birth pdf of each cell (at most `B` cells; M_b = `cells.len()`).
+    pub cells: heapless::Vec<Gaussian<T, S>, B>,
+    /// Whether births must be detected at birth.
+    pub detection: BirthDetection,
+}
+
+impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
+    /// No births.
+    pub fn none() -> Self {
+        Self { probability: T::zero(), cells: heapless::Vec::new(), detection: BirthDetection::AllDetected }
+    }
+}
+
+/// How the children of each parent are produced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ChildGeneration {
+    /// Every child with non-zero weight (HOMHT-style), at most `max_children_per_scan` leaves of the
+    /// enumeration per scan; more is [`crate::StepError::ChildBudgetExceeded`].
+    Exhaustive {
+        /// Bound on the enumeration's leaves per scan.
+        max_children_per_scan: u64,
+    },
+}
+
+impl Default for ChildGeneration {
+    fn default() -> Self {
+        ChildGeneration::Exhaustive { max_children_per_scan: 1_000_000 }
+    }
+}
+
+/// What to do when the kept children need more distinct tracks than the track store holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StoreOverflow {
+    /// Drop the lowest-weight children that do not fit (like H∞ pruning) and report how many in
+    /// [`crate::StepReport::children_dropped_for_store`]. The best child always fits (the store holds at
+    /// least `N` tracks). **The default.**
+    #[default]
+    PruneChildren,
+    /// Fail the scan with [`crate::StepError::TrackStoreFull`]; the tracker is left unchanged.
+    Error,
+}
+
+/// The complete configuration of a tracker.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
+    /// How objects move.
+    pub motion: M,
+    /// How the sensor measures an object.
+    pub measurement: G,
+    /// Detection, clutter and field of view.
+    pub sensor: Sensor<T>,
+    /// Births.
+    pub birth: BirthModel<T, S, B>,
+    /// β: probability that a given object in the field of view dies before a scan.
+    pub death_probability: T,
+    /// Gate on the squared Mahalanobis distance νᵀS⁻¹ν: an association beyond it is impossible.
+    /// `None` disables gating (the exact recursion).
+    pub gate: Option<T>,
+    /// Child generation.
+    pub children: ChildGeneration,
+    /// Track-store overflow policy.
+    pub store_overflow: StoreOverflow,
+    /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
+    pub seed: u64,
+}

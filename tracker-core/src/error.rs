@@ -1,0 +1,165 @@
+//! Errors: one small `Copy` enum per operation family.
+//!
+//! [`ConfigError`] is returned when a tracker is built; [`StepError`] by [`crate::Tracker::step`], after
+//! which the tracker is exactly as it was before the call.
+
+use crate::ekf::NumericalError;
+use crate::store::TrackLabel;
+
+/// A configuration or prior that cannot be used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConfigError {
+    /// The motion model rejected its parameters.
+    Motion(&'static str),
+    /// The sensor is invalid (detection probability, clutter rate or field of view).
+    Sensor(&'static str),
+    /// The measurement noise covariance R is not symmetric positive definite.
+    MeasurementNoise,
+    /// α is not in [0, 1].
+    BirthProbability,
+    /// A birth cell's Gaussian is not finite with a symmetric positive definite covariance.
+    BirthCell {
+        /// The cell.
+        cell: usize,
+    },
+    /// β is not in [0, 1].
+    DeathProbability,
+    /// M_b α + N β ≥ 1, so "no event" would have no probability (N is the object capacity).
+    EventProbabilities,
+    /// The gate is not finite and positive.
+    Gate,
+    /// The child budget is zero.
+    ChildBudget,
+    /// The prior has no hypothesis.
+    PriorEmpty,
+    /// The prior has more hypotheses than the capacity `H`.
+    PriorTooManyHypotheses,
+    /// A prior weight is negative or not finite, or all are zero.
+    PriorWeight {
+        /// The hypothesis.
+        hypothesis: usize,
+    },
+    /// A prior hypothesis has more objects than the capacity `N`.
+    PriorTooManyObjects {
+        /// The hypothesis.
+        hypothesis: usize,
+    },
+    /// A prior object is not finite or its covariance not symmetric positive definite.
+    PriorObject {
+        /// The hypothesis.
+        hypothesis: usize,
+        /// The object's position in it.
+        object: usize,
+    },
+    /// A label appears twice in one prior hypothesis.
+    PriorDuplicateLabel {
+        /// The hypothesis.
+        hypothesis: usize,
+    },
+    /// The prior's distinct tracks exceed the track store capacity `K`.
+    PriorTrackStoreFull,
+    /// The prior's time is not finite.
+    PriorTime,
+    /// Every birth cell's innovation covariance must factor; this one did not.
+    BirthInnovation {
+        /// The cell.
+        cell: usize,
+    },
+}
+
+impl core::fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ConfigError::Motion(why) | ConfigError::Sensor(why) => f.write_str(why),
+            ConfigError::MeasurementNoise => f.write_str("measurement noise covariance R is not symmetric positive definite"),
+            ConfigError::BirthProbability => f.write_str("birth probability alpha must be in [0, 1]"),
+            ConfigError::BirthCell { cell } => write!(f, "birth cell {cell}: mean and covariance must be finite, covariance symmetric positive definite"),
+            ConfigError::DeathProbability => f.write_str("death probability beta must be in [0, 1]"),
+            ConfigError::EventProbabilities => f.write_str("M_b alpha + N beta must be < 1 (N = object capacity)"),
+            ConfigError::Gate => f.write_str("gate must be finite and > 0"),
+            ConfigError::ChildBudget => f.write_str("child budget must be > 0"),
+            ConfigError::PriorEmpty => f.write_str("prior has no hypothesis"),
+            ConfigError::PriorTooManyHypotheses => f.write_str("prior has more hypotheses than the capacity H"),
+            ConfigError::PriorWeight { hypothesis } => write!(f, "prior hypothesis {hypothesis}: weight must be finite and >= 0, and not all zero"),
+            ConfigError::PriorTooManyObjects { hypothesis } => write!(f, "prior hypothesis {hypothesis}: more objects than the capacity N"),
+            ConfigError::PriorObject { hypothesis, object } => {
+                write!(f, "prior hypothesis {hypothesis}, object {object}: mean and covariance must be finite, covariance symmetric positive definite")
+            }
+            ConfigError::PriorDuplicateLabel { hypothesis } => write!(f, "prior hypothesis {hypothesis}: a label appears twice"),
+            ConfigError::PriorTrackStoreFull => f.write_str("prior needs more distinct tracks than the store capacity K"),
+            ConfigError::PriorTime => f.write_str("prior time must be finite"),
+            ConfigError::BirthInnovation { cell } => write!(f, "birth cell {cell}: innovation covariance is not positive definite"),
+        }
+    }
+}
+
+impl core::error::Error for ConfigError {}
+
+/// Why a scan was rejected. The tracker is unchanged after any of these.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepError {
+    /// More measurements than the capacity `Z`.
+    TooManyMeasurements {
+        /// Measurements given.
+        received: usize,
+        /// The capacity Z.
+        capacity: usize,
+    },
+    /// A measurement has a NaN or infinite component.
+    NonFiniteMeasurement {
+        /// Its index in the scan.
+        index: usize,
+    },
+    /// A measurement lies outside the sensor's field of view, where neither clutter nor a detectable
+    /// object can produce it.
+    MeasurementOutsideFieldOfView {
+        /// Its index in the scan.
+        index: usize,
+    },
+    /// The scan time is NaN or infinite.
+    NonFiniteTime,
+    /// The scan time is not after the previous scan (or the prior).
+    TimeNotAfterLastScan,
+    /// An EKF operation failed for a track.
+    Numerical {
+        /// The object's label.
+        label: TrackLabel,
+        /// What failed.
+        error: NumericalError,
+    },
+    /// Exhaustive enumeration reached its budget of children per scan.
+    ChildBudgetExceeded {
+        /// The budget.
+        budget: u64,
+    },
+    /// The kept children need more distinct tracks than the store holds (with
+    /// [`crate::StoreOverflow::Error`]).
+    TrackStoreFull {
+        /// The capacity K.
+        capacity: usize,
+    },
+    /// Every child has zero weight: the scan cannot be explained by the model (for example p_D = 1
+    /// and an object in the field of view with no measurement it could have produced).
+    NoViableChild,
+    /// 2³² labels have been handed out.
+    LabelsExhausted,
+}
+
+impl core::fmt::Display for StepError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            StepError::TooManyMeasurements { received, capacity } => write!(f, "{received} measurements exceed the capacity of {capacity}"),
+            StepError::NonFiniteMeasurement { index } => write!(f, "measurement {index} is not finite"),
+            StepError::MeasurementOutsideFieldOfView { index } => write!(f, "measurement {index} is outside the field of view"),
+            StepError::NonFiniteTime => f.write_str("scan time is not finite"),
+            StepError::TimeNotAfterLastScan => f.write_str("scan time is not after the previous scan"),
+            StepError::Numerical { label, error } => write!(f, "track {label}: {error}"),
+            StepError::ChildBudgetExceeded { budget } => write!(f, "more than {budget} children in one scan"),
+            StepError::TrackStoreFull { capacity } => write!(f, "kept children need more than {capacity} tracks"),
+            StepError::NoViableChild => f.write_str("every child has zero weight"),
+            StepError::LabelsExhausted => f.write_str("track labels exhausted"),
+        }
+    }
+}
+
+impl core::error::Error for StepError {}

@@ -1,0 +1,100 @@
+//! # tracker-core: hypothesis-level FISST (R-FISST) in fixed memory
+//!
+//! A multi-object tracker that keeps many data association hypotheses at once, with birth and death, in
+//! memory fixed at compile time and with a bounded cost per scan. `#![no_std]`, no `alloc`, no `unsafe`.
+//! The maths follows `shared/docs/seed-digest.md`; equation numbers in comments refer to it and to the
+//! papers it covers ([000] = Chakravorty et al., the FISST form used here).
+//!
+//! ## Layers
+//!
+//! - **Estimation** ([`model`], [`ekf`]): each object under each hypothesis is a Gaussian, predicted and
+//!   updated by an EKF (Joseph form, Cholesky-factored innovation covariance).
+//! - **Sensor** ([`sensor`]): a field of view (p_D inside, 0 outside) and Poisson clutter of intensity
+//!   λ_C over it.
+//! - **Association** ([`association`], [`children`], [`selection`]): for each parent hypothesis and
+//!   birth/death event, a data association matrix of log ratios δ_{z,o}; a child generator offers the
+//!   children (association vectors) with their exact log-weights; the best H∞ are kept and the global
+//!   log-sum-exp normalises them.
+//! - **Hypotheses** ([`store`], [`hypothesis`], [`tracker`]): hypotheses hold indices into one track
+//!   store shared by all of them, so a track with one history is stored, predicted and scored once.
+//!
+//! ## The weight (digest §4.4, [000]'s FISST form)
+//!
+//! ```text
+//! w̃_ij = w_i P(e) (1 − p_D)^{N'_F} λ_C^m Π_{(z,o)∈σ} p_D ĝ_{z,o} / ((1 − p_D) λ_C)
+//! ```
+//!
+//! normalised by one log-sum-exp over all parents and all their children. P(e) is R-FISST's first-order
+//! birth/death model: no event 1 − M_b α − M_d β, a birth in one of M_b cells α each, the death of one of
+//! the M_d objects in the field of view β each. No 1/A_N(m) or (m choose k) k! factor is applied (digest
+//! §4.3 shows they are not normalised across cardinalities).
+//!
+//! ## Determinism
+//!
+//! The caller supplies time and the seed; the core reads no clock. Every transcendental function goes
+//! through `libm` ([`real`]), so the host and a bare-metal target give the same bits.
+#![cfg_attr(not(test), no_std)]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod association;
+pub mod children;
+pub mod config;
+pub mod ekf;
+pub mod error;
+pub mod hypothesis;
+pub mod model;
+pub mod real;
+pub mod report;
+pub mod selection;
+pub mod sensor;
+pub mod store;
+pub mod tracker;
+
+pub use config::{BirthDetection, BirthModel, ChildGeneration, Config, StoreOverflow};
+pub use ekf::{Gaussian, NumericalError};
+pub use error::{ConfigError, StepError};
+pub use model::{ConstantVelocity, MeasurementModel, MotionModel, PositionMeasurement, TwoBody};
+pub use real::Real;
+pub use report::StepReport;
+pub use sensor::{Region, Sensor};
+pub use store::{Track, TrackLabel};
+pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, Tracker};
+
+/// Capacities of the default SSA (embedded) configuration: the 50-object scenario of paper 003 §IV.
+pub mod ssa_caps {
+    /// H∞: hypotheses kept per scan.
+    pub const HYPOTHESES: usize = 32;
+    /// N: objects per hypothesis (50 objects with room for births).
+    pub const OBJECTS: usize = 64;
+    /// Z: measurements per scan.
+    pub const MEASUREMENTS: usize = 16;
+    /// K: tracks in the shared store.
+    pub const TRACKS: usize = 256;
+    /// B: birth cells.
+    pub const BIRTH_CELLS: usize = 8;
+}
+
+/// The default SSA tracker: planar two-body motion, position measurements, [`ssa_caps`] capacities.
+pub type SsaTracker<T> = Tracker<
+    T,
+    TwoBody<T>,
+    PositionMeasurement<T>,
+    4,
+    2,
+    { ssa_caps::HYPOTHESES },
+    { ssa_caps::OBJECTS },
+    { ssa_caps::MEASUREMENTS },
+    { ssa_caps::TRACKS },
+    { ssa_caps::BIRTH_CELLS },
+>;
+
+/// The configuration type of [`SsaTracker`].
+pub type SsaConfig<T> = Config<T, TwoBody<T>, PositionMeasurement<T>, 4, { ssa_caps::BIRTH_CELLS }>;
+
+/// A constant-velocity tracker with position measurements and caller-chosen capacities.
+pub type LinearTracker<T, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<T, ConstantVelocity<T>, PositionMeasurement<T>, 4, 2, H, N, Z, K, B>;
+
+/// The configuration type of [`LinearTracker`].
+pub type LinearConfig<T, const B: usize> = Config<T, ConstantVelocity<T>, PositionMeasurement<T>, 4, B>;

@@ -1,0 +1,105 @@
+//! Motion and measurement models: what the EKF needs to know about how one object moves and how the
+//! sensor sees it.
+//!
+//! A [`MotionModel`] propagates a state over a time step and returns the state transition matrix (the
+//! Jacobian of the propagation, Φ) and the process noise Q. A [`MeasurementModel`] gives the predicted
+//! measurement h(x), its Jacobian H and the noise covariance R. Both are pure: the same inputs give the
+//! same bits, and a failure is a [`ModelError`] value.
+//!
+//! Built in:
+//! - [`ConstantVelocity`]: 2-D constant velocity, linear, for exactness tests and cross-checks.
+//! - [`TwoBody`]: planar Keplerian gravity, state and transition matrix integrated together by a
+//!   fixed-step RK4 with a bounded number of sub-steps.
+//! - [`PositionMeasurement`]: the position (x, y) of a planar state with Gaussian noise.
+
+mod constant_velocity;
+mod position;
+mod two_body;
+
+pub use constant_velocity::ConstantVelocity;
+pub use position::PositionMeasurement;
+pub use two_body::TwoBody;
+
+use crate::real::Real;
+use nalgebra::{SMatrix, SVector};
+
+/// Why a model could not produce a prediction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelError {
+    /// The time step needs more integrator sub-steps than the model allows.
+    TimeStepTooLarge,
+    /// The state is at a singularity of the model (for example at the centre of attraction).
+    Singular,
+    /// The propagation produced a NaN or an infinity.
+    NonFinite,
+}
+
+impl core::fmt::Display for ModelError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ModelError::TimeStepTooLarge => f.write_str("time step needs more integrator sub-steps than allowed"),
+            ModelError::Singular => f.write_str("state at a singularity of the motion model"),
+            ModelError::NonFinite => f.write_str("propagation produced a non-finite value"),
+        }
+    }
+}
+
+impl core::error::Error for ModelError {}
+
+/// A propagated mean and the state transition matrix Φ = ∂x(t+dt)/∂x(t) at the prior mean.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Propagation<T: Real, const S: usize> {
+    /// The propagated state.
+    pub state: SVector<T, S>,
+    /// The state transition matrix Φ, used for P⁻ = Φ P Φᵀ + Q.
+    pub transition: SMatrix<T, S, S>,
+}
+
+/// How one object's state evolves between scans.
+pub trait MotionModel<T: Real, const S: usize> {
+    /// Propagates `state` forward by `dt` seconds (`dt > 0`) and returns the new state with the
+    /// transition matrix Φ.
+    ///
+    /// # Errors
+    /// A [`ModelError`] when the propagation cannot be done within the model's bounds.
+    fn propagate(&self, state: &SVector<T, S>, dt: T) -> Result<Propagation<T, S>, ModelError>;
+
+    /// The process noise covariance Q accumulated over `dt` seconds from `state`.
+    fn process_noise(&self, state: &SVector<T, S>, dt: T) -> SMatrix<T, S, S>;
+
+    /// Checks the model's parameters; called once when a tracker is built.
+    ///
+    /// # Errors
+    /// A static description of the first invalid parameter.
+    fn validate(&self) -> Result<(), &'static str>;
+}
+
+/// How the sensor measures one object.
+pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
+    /// The noise-free measurement h(x).
+    fn measure(&self, state: &SVector<T, S>) -> SVector<T, D>;
+
+    /// The Jacobian H = ∂h/∂x at `state`.
+    fn jacobian(&self, state: &SVector<T, S>) -> SMatrix<T, D, S>;
+
+    /// The measurement noise covariance R (symmetric positive definite).
+    fn noise_covariance(&self) -> SMatrix<T, D, D>;
+}
+
+/// The covariance of white acceleration noise of spectral density `q` over `dt` for a planar
+/// position-velocity state (x, y, vx, vy):
+/// Q = q [[dt³/3 I, dt²/2 I], [dt²/2 I, dt I]].
+pub(crate) fn white_acceleration_noise<T: Real>(q: T, dt: T) -> SMatrix<T, 4, 4> {
+    let dt2 = dt * dt;
+    let pp = q * dt2 * dt / crate::real::c(3.0);
+    let pv = q * dt2 / crate::real::c(2.0);
+    let vv = q * dt;
+    let mut noise = SMatrix::<T, 4, 4>::zeros();
+    for axis in 0..2 {
+        noise[(axis, axis)] = pp;
+        noise[(axis, axis + 2)] = pv;
+        noise[(axis + 2, axis)] = pv;
+        noise[(axis + 2, axis + 2)] = vv;
+    }
+    noise
+}

@@ -1,0 +1,45 @@
+//! Position measurement of a planar state: z = (x, y) + v, v ~ N(0, R). Linear: H = [I 0].
+
+use super::MeasurementModel;
+use crate::real::Real;
+use nalgebra::{SMatrix, SVector};
+
+/// Measures the position (x, y) of a state (x, y, vx, vy) with Gaussian noise of covariance R.
+///
+/// # Examples
+/// ```
+/// use tracker_core::model::{MeasurementModel, PositionMeasurement};
+/// use nalgebra::{SMatrix, SVector};
+/// let sensor = PositionMeasurement::isotropic(0.5_f64);
+/// assert_eq!(sensor.measure(&SVector::from([1.0, 2.0, 3.0, 4.0])), SVector::from([1.0, 2.0]));
+/// assert_eq!(sensor.noise_covariance(), SMatrix::<f64, 2, 2>::identity() * 0.25);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PositionMeasurement<T: Real> {
+    /// Measurement noise covariance R (symmetric positive definite).
+    pub noise: SMatrix<T, 2, 2>,
+}
+
+impl<T: Real> PositionMeasurement<T> {
+    /// Independent noise of standard deviation `sigma` on each axis.
+    pub fn isotropic(sigma: T) -> Self {
+        Self { noise: SMatrix::<T, 2, 2>::identity() * (sigma * sigma) }
+    }
+}
+
+impl<T: Real> MeasurementModel<T, 4, 2> for PositionMeasurement<T> {
+    fn measure(&self, state: &SVector<T, 4>) -> SVector<T, 2> {
+        SVector::from([state[0], state[1]])
+    }
+
+    fn jacobian(&self, _state: &SVector<T, 4>) -> SMatrix<T, 2, 4> {
+        let mut h = SMatrix::<T, 2, 4>::zeros();
+        h[(0, 0)] = T::one();
+        h[(1, 1)] = T::one();
+        h
+    }
+
+    fn noise_covariance(&self) -> SMatrix<T, 2, 2> {
+        self.noise
+    }
+}

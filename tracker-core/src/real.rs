@@ -1,0 +1,222 @@
+//! The scalar type of the tracker: `f32` (the on-board default on a single-precision FPU) or `f64` (the
+//! host reference).
+//!
+//! Every transcendental function the core calls goes through this module to `libm`, never to the
+//! platform's own `std` math, so the host and a bare-metal target compute the same bits for the same
+//! inputs. The free functions ([`ln`], [`exp`], [`sqrt`], ...) read like the maths and avoid clashing with
+//! nalgebra's `ComplexField` methods of the same name.
+
+use nalgebra::RealField;
+
+/// A floating-point scalar the tracker can run on.
+///
+/// Implemented for `f32` and `f64`. The methods are named after `libm` so that call sites cannot pick up
+/// a `std` implementation by accident; use the free functions of this module in code.
+pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Display + 'static {
+    /// Positive infinity.
+    const INFINITY: Self;
+    /// Negative infinity: the log-weight of an impossible event.
+    const NEG_INFINITY: Self;
+    /// Converts from `f64`, rounding to nearest.
+    fn of_f64(value: f64) -> Self;
+    /// Converts to `f64` exactly.
+    fn as_f64(self) -> f64;
+    /// `true` unless the value is NaN or infinite.
+    fn is_finite_value(self) -> bool;
+    /// Natural logarithm (`libm::log` / `logf`).
+    fn libm_ln(self) -> Self;
+    /// Exponential (`libm::exp` / `expf`).
+    fn libm_exp(self) -> Self;
+    /// Square root (`libm::sqrt` / `sqrtf`).
+    fn libm_sqrt(self) -> Self;
+    /// Sine (`libm::sin` / `sinf`).
+    fn libm_sin(self) -> Self;
+    /// Cosine (`libm::cos` / `cosf`).
+    fn libm_cos(self) -> Self;
+    /// Four-quadrant arctangent of `self / x` (`libm::atan2` / `atan2f`).
+    fn libm_atan2(self, x: Self) -> Self;
+    /// Largest integer not greater than the value (`libm::floor` / `floorf`).
+    fn libm_floor(self) -> Self;
+}
+
+macro_rules! impl_real {
+    ($t:ty, $ln:path, $exp:path, $sqrt:path, $sin:path, $cos:path, $atan2:path, $floor:path) => {
+        impl Real for $t {
+            const INFINITY: Self = <$t>::INFINITY;
+            const NEG_INFINITY: Self = <$t>::NEG_INFINITY;
+            #[inline]
+            fn of_f64(value: f64) -> Self {
+                value as $t
+            }
+            #[inline]
+            fn as_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline]
+            fn is_finite_value(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            #[inline]
+            fn libm_ln(self) -> Self {
+                $ln(self)
+            }
+            #[inline]
+            fn libm_exp(self) -> Self {
+                $exp(self)
+            }
+            #[inline]
+            fn libm_sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline]
+            fn libm_sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline]
+            fn libm_cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline]
+            fn libm_atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline]
+            fn libm_floor(self) -> Self {
+                $floor(self)
+            }
+        }
+    };
+}
+
+impl_real!(f64, libm::log, libm::exp, libm::sqrt, libm::sin, libm::cos, libm::atan2, libm::floor);
+impl_real!(f32, libm::logf, libm::expf, libm::sqrtf, libm::sinf, libm::cosf, libm::atan2f, libm::floorf);
+
+/// Natural logarithm; `ln(0) = -inf`.
+#[inline]
+pub fn ln<T: Real>(x: T) -> T {
+    x.libm_ln()
+}
+
+/// Exponential.
+#[inline]
+pub fn exp<T: Real>(x: T) -> T {
+    x.libm_exp()
+}
+
+/// Square root.
+#[inline]
+pub fn sqrt<T: Real>(x: T) -> T {
+    x.libm_sqrt()
+}
+
+/// Sine.
+#[inline]
+pub fn sin<T: Real>(x: T) -> T {
+    x.libm_sin()
+}
+
+/// Cosine.
+#[inline]
+pub fn cos<T: Real>(x: T) -> T {
+    x.libm_cos()
+}
+
+/// Four-quadrant arctangent of `y / x`.
+#[inline]
+pub fn atan2<T: Real>(y: T, x: T) -> T {
+    y.libm_atan2(x)
+}
+
+/// Largest integer not greater than `x`.
+#[inline]
+pub fn floor<T: Real>(x: T) -> T {
+    x.libm_floor()
+}
+
+/// The constant `value` in the scalar type `T`.
+#[inline]
+pub fn c<T: Real>(value: f64) -> T {
+    T::of_f64(value)
+}
+
+/// `ln(exp(a) + exp(b))` without overflow; exact when either side is `-inf`.
+#[inline]
+pub fn log_add<T: Real>(a: T, b: T) -> T {
+    if a == T::NEG_INFINITY {
+        return b;
+    }
+    if b == T::NEG_INFINITY {
+        return a;
+    }
+    let (hi, lo) = if a >= b { (a, b) } else { (b, a) };
+    hi + ln(T::one() + exp(lo - hi))
+}
+
+/// A running log-sum-exp: the log of the sum of `exp` of every value added, kept as a maximum and a sum
+/// scaled by it, so that one `exp` is evaluated per value and nothing overflows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LogSumExp<T> {
+    max: T,
+    scaled_sum: T,
+}
+
+impl<T: Real> Default for LogSumExp<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Real> LogSumExp<T> {
+    /// The empty sum (`ln 0 = -inf`).
+    pub fn new() -> Self {
+        Self { max: T::NEG_INFINITY, scaled_sum: T::zero() }
+    }
+
+    /// Adds `exp(value)` to the sum. `-inf` adds nothing.
+    #[inline]
+    pub fn add(&mut self, value: T) {
+        if value == T::NEG_INFINITY {
+            return;
+        }
+        if value > self.max {
+            // Rescale the sum to the new maximum: s·e^(m−v) + 1.
+            self.scaled_sum = self.scaled_sum * exp(self.max - value) + T::one();
+            self.max = value;
+        } else {
+            self.scaled_sum += exp(value - self.max);
+        }
+    }
+
+    /// The log of the sum so far; `-inf` when nothing finite was added.
+    pub fn value(&self) -> T {
+        if self.max == T::NEG_INFINITY { T::NEG_INFINITY } else { self.max + ln(self.scaled_sum) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn log_sum_exp_matches_direct_sum() {
+        let values = [-3.0f64, 0.5, -700.0, 2.0, f64::NEG_INFINITY];
+        let mut acc = LogSumExp::new();
+        for v in values {
+            acc.add(v);
+        }
+        let direct: f64 = values.iter().map(|v| v.exp()).sum::<f64>().ln();
+        assert!((acc.value() - direct).abs() < 1e-14);
+    }
+
+    #[test]
+    fn empty_log_sum_exp_is_negative_infinity() {
+        let acc = LogSumExp::<f32>::new();
+        assert_eq!(acc.value(), f32::NEG_INFINITY);
+    }
+
+    #[test]
+    fn log_add_handles_infinities() {
+        assert_eq!(log_add(f64::NEG_INFINITY, 1.5), 1.5);
+        assert!((log_add(0.0f64, 0.0) - 2f64.ln()).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,27 @@
+//! What one scan did, in a small `Copy` value returned by [`crate::Tracker::step`].
+
+/// Summary of one processed scan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport<T> {
+    /// Number of scans processed so far, this one included.
+    pub scan: u64,
+    /// Measurements in the scan.
+    pub measurements: usize,
+    /// Hypotheses kept (≤ H).
+    pub hypotheses: usize,
+    /// Distinct tracks in the store (≤ K).
+    pub tracks: usize,
+    /// Children with non-zero weight offered by the child generator, over all parents and events.
+    pub children: u64,
+    /// Fraction of the scan's total child weight held by the kept hypotheses: 1 when nothing was pruned.
+    pub captured_mass: T,
+    /// Kept children that held exactly the same tracks as a better one and were merged into it.
+    pub merged_children: usize,
+    /// Kept children dropped because their tracks did not fit the store
+    /// ([`crate::StoreOverflow::PruneChildren`]).
+    pub children_dropped_for_store: usize,
+    /// Birth events not generated because their parent already held `N` objects.
+    pub births_beyond_object_capacity: u64,
+    /// Expected number of objects after the scan.
+    pub expected_cardinality: T,
+}

@@ -1,0 +1,217 @@
+//! Selection of the H∞ best children of a scan, and the scan's normaliser.
+//!
+//! [`TopChildren`] is the [`ChildSink`] of a scan. It keeps the `H` children of largest log-weight in a
+//! fixed-size binary min-heap (the worst kept child at the root) and accumulates the log-sum-exp of
+//! **every** child offered, over all parents and events: the one global normaliser of digest §4.4.
+//! Equal weights are ordered by arrival (the generator's deterministic enumeration order), so the
+//! selection is a total order and the same inputs always keep the same children.
+
+use crate::children::ChildSink;
+use crate::real::{LogSumExp, Real};
+use core::cmp::Ordering;
+
+/// The birth/death event of a child (digest §4.4, [003]'s first-order model).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Event {
+    /// No birth and no death: probability 1 − M_b α − M_d β.
+    #[default]
+    None,
+    /// One object born in birth cell `cell`: probability α.
+    Birth {
+        /// Index of the birth cell.
+        cell: u16,
+    },
+    /// The object at position `object` of the parent dies: probability β.
+    Death {
+        /// Position of the dying object in the parent hypothesis.
+        object: u16,
+    },
+}
+
+/// One kept child: where it comes from and how it associates the scan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate<T, const Z: usize> {
+    /// Unnormalised log-weight ln w̃.
+    pub log_weight: T,
+    /// Arrival index within the scan (the tie-break: earlier wins).
+    pub sequence: u64,
+    /// Index of the parent hypothesis.
+    pub parent: u16,
+    /// The birth/death event.
+    pub event: Event,
+    /// Per measurement, the association-matrix column it takes or [`crate::association::CLUTTER`].
+    pub assignment: [u16; Z],
+}
+
+impl<T: Real, const Z: usize> Default for Candidate<T, Z> {
+    fn default() -> Self {
+        Self { log_weight: T::NEG_INFINITY, sequence: 0, parent: 0, event: Event::None, assignment: [0; Z] }
+    }
+}
+
+impl<T: Real, const Z: usize> Candidate<T, Z> {
+    /// Total order "better than": larger weight, then earlier arrival.
+    fn better_than(&self, other: &Self) -> bool {
+        match self.log_weight.partial_cmp(&other.log_weight) {
+            Some(Ordering::Greater) => true,
+            Some(Ordering::Less) => false,
+            _ => self.sequence < other.sequence,
+        }
+    }
+}
+
+/// The best `H` children of a scan and the log-sum-exp of all children.
+#[derive(Debug, Clone)]
+pub struct TopChildren<T, const H: usize, const Z: usize> {
+    items: [Candidate<T, Z>; H],
+    /// Min-heap of indices into `items` by "better than": the root is the worst kept child.
+    heap: [u16; H],
+    len: usize,
+    offered: u64,
+    total: LogSumExp<T>,
+    parent: u16,
+    event: Event,
+}
+
+impl<T: Real, const H: usize, const Z: usize> Default for TopChildren<T, H, Z> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
+    /// An empty selection.
+    pub fn new() -> Self {
+        Self { items: [Candidate::default(); H], heap: [0; H], len: 0, offered: 0, total: LogSumExp::new(), parent: 0, event: Event::None }
+    }
+
+    /// Empties the selection for a new scan.
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.offered = 0;
+        self.total = LogSumExp::new();
+    }
+
+    /// Sets the parent and event of the children offered next.
+    pub fn set_context(&mut self, parent: u16, event: Event) {
+        self.parent = parent;
+        self.event = event;
+    }
+
+    /// Number of children kept.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no child is kept.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Number of children offered (with non-zero weight).
+    pub fn offered(&self) -> u64 {
+        self.offered
+    }
+
+    /// ln Σ w̃ over every child offered.
+    pub fn log_total(&self) -> T {
+        self.total.value()
+    }
+
+    /// The kept children, in no particular order.
+    pub fn kept(&self) -> &[Candidate<T, Z>] {
+        &self.items[..self.len]
+    }
+
+    /// Writes the indices of the kept children into `order`, best first, and returns how many.
+    pub fn best_first(&self, order: &mut [u16; H]) -> usize {
+        for (slot, index) in order.iter_mut().zip(0u16..).take(self.len) {
+            *slot = index;
+        }
+        order[..self.len].sort_unstable_by(|&a, &b| {
+            let (a, b) = (&self.items[a as usize], &self.items[b as usize]);
+            if a.better_than(b) { Ordering::Less } else { Ordering::Greater }
+        });
+        self.len
+    }
+
+    fn worse(&self, a: u16, b: u16) -> bool {
+        self.items[b as usize].better_than(&self.items[a as usize])
+    }
+
+    fn sift_up(&mut self, mut at: usize) {
+        while at > 0 {
+            let parent = (at - 1) / 2;
+            if self.worse(self.heap[at], self.heap[parent]) {
+                self.heap.swap(at, parent);
+                at = parent;
+            } else {
+                break;
+            }
+        }
+    }
+
+    fn sift_down(&mut self, mut at: usize) {
+        loop {
+            let (left, right) = (2 * at + 1, 2 * at + 2);
+            let mut worst = at;
+            if left < self.len && self.worse(self.heap[left], self.heap[worst]) {
+                worst = left;
+            }
+            if right < self.len && self.worse(self.heap[right], self.heap[worst]) {
+                worst = right;
+            }
+            if worst == at {
+                break;
+            }
+            self.heap.swap(at, worst);
+            at = worst;
+        }
+    }
+}
+
+impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H, Z> {
+    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+        if log_weight == T::NEG_INFINITY {
+            return;
+        }
+        self.total.add(log_weight);
+        let mut candidate = Candidate { log_weight, sequence: self.offered, parent: self.parent, event: self.event, assignment: [0; Z] };
+        self.offered += 1;
+        if self.len == H {
+            let worst = self.heap[0] as usize;
+            if !candidate.better_than(&self.items[worst]) {
+                return;
+            }
+            candidate.assignment[..assignment.len()].copy_from_slice(assignment);
+            self.items[worst] = candidate;
+            self.sift_down(0);
+        } else {
+            candidate.assignment[..assignment.len()].copy_from_slice(assignment);
+            self.items[self.len] = candidate;
+            self.heap[self.len] = self.len as u16;
+            self.len += 1;
+            self.sift_up(self.len - 1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_the_best_h_with_earlier_arrival_winning_ties() {
+        let mut top = TopChildren::<f64, 3, 1>::new();
+        for (i, w) in [1.0, 5.0, 3.0, 5.0, 0.0, 4.0, 3.0].iter().enumerate() {
+            top.offer(*w, &[i as u16]);
+        }
+        let mut order = [0u16; 3];
+        let n = top.best_first(&mut order);
+        let kept: std::vec::Vec<_> = order[..n].iter().map(|&i| (top.kept()[i as usize].log_weight, top.kept()[i as usize].assignment[0])).collect();
+        assert_eq!(kept, vec![(5.0, 1), (5.0, 3), (4.0, 5)]);
+        let direct = [1.0f64, 5.0, 3.0, 5.0, 0.0, 4.0, 3.0].iter().map(|w| w.exp()).sum::<f64>().ln();
+        assert!((top.log_total() - direct).abs() < 1e-14);
+        assert_eq!(top.offered(), 7);
+    }
+}

@@ -1,0 +1,85 @@
+//! The track store shared by all hypotheses.
+//!
+//! A track is one object's Gaussian under one association history. Hypotheses hold indices into the store,
+//! so a track held by many hypotheses is stored, predicted and scored once. The store is rebuilt every
+//! scan from the kept children: a new track is keyed by (source track or birth cell, measurement or
+//! missed), so two children that extend the same track with the same measurement share the result.
+
+use crate::ekf::Gaussian;
+use crate::real::Real;
+
+/// The identity of an object: the same across scans and across hypotheses. Prior objects carry the
+/// labels the caller gives them; every birth gets a fresh label.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct TrackLabel(pub u32);
+
+impl core::fmt::Display for TrackLabel {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}
+
+/// One track: a labelled Gaussian and the total weight of the hypotheses that hold it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Track<T: Real, const S: usize> {
+    /// The object's label.
+    pub label: TrackLabel,
+    /// The object's posterior Gaussian under this track's association history.
+    pub state: Gaussian<T, S>,
+    /// Existence probability of this track: the total weight of the hypotheses that hold it.
+    pub existence: T,
+}
+
+impl<T: Real, const S: usize> Default for Track<T, S> {
+    fn default() -> Self {
+        Self { label: TrackLabel(0), state: Gaussian::default(), existence: T::zero() }
+    }
+}
+
+/// A fixed-capacity array of tracks; slots `0..len` are live.
+#[derive(Debug, Clone)]
+pub struct TrackStore<T: Real, const S: usize, const K: usize> {
+    tracks: [Track<T, S>; K],
+    len: usize,
+}
+
+impl<T: Real, const S: usize, const K: usize> Default for TrackStore<T, S, K> {
+    fn default() -> Self {
+        Self { tracks: [Track::default(); K], len: 0 }
+    }
+}
+
+impl<T: Real, const S: usize, const K: usize> TrackStore<T, S, K> {
+    /// The live tracks.
+    pub fn as_slice(&self) -> &[Track<T, S>] {
+        &self.tracks[..self.len]
+    }
+
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [Track<T, S>] {
+        &mut self.tracks[..self.len]
+    }
+
+    /// Number of live tracks.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no track is live.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Appends a track and returns its slot, or hands it back when the store is full.
+    pub(crate) fn push(&mut self, track: Track<T, S>) -> Result<u16, Track<T, S>> {
+        if self.len == K {
+            return Err(track);
+        }
+        self.tracks[self.len] = track;
+        self.len += 1;
+        Ok((self.len - 1) as u16)
+    }
+}

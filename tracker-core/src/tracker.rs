@@ -1,0 +1,806 @@
+//! The tracker: one scan of the hypothesis-level FISST recursion with birth and death.
+//!
+//! [`Tracker::step`] does, for a scan at time t with measurements z₁..z_m:
+//!
+//! 1. **Predict** every track of the shared store once (EKF), factor its innovation covariance, decide
+//!    whether it is in the field of view, and score it against every measurement once: the entry
+//!    δ_{z,o} of digest §4.4 for each (track, measurement) pair, `-inf` outside the gate or the field of
+//!    view. Birth cells are scored the same way.
+//! 2. **Generate children.** For each parent and each event (no event, a birth in each cell, the death of
+//!    each object in the field of view) gather the parent's columns into an [`AssociationMatrix`] and let
+//!    the child generator offer every child to a [`TopChildren`] sink, which keeps the H best and the
+//!    global log-sum-exp.
+//! 3. **Materialise** only the kept children, best first: each child's tracks are keyed by (source track
+//!    or birth cell, measurement or missed); a key seen before reuses its track, a new key gets one EKF
+//!    update. Children that hold exactly the same tracks are merged (their weights add). Weights are
+//!    normalised over the kept hypotheses; the mass of the rest is reported as `1 − captured_mass`.
+//! 4. **Commit.** Everything above writes into the inactive half of double-buffered store and
+//!    hypotheses and into scratch space; only a scan that succeeds swaps them in. A failed `step` leaves
+//!    the tracker bit-for-bit as it was.
+//!
+//! # Panics
+//! `step` is designed not to panic on any input: capacity, finiteness and time are checked first, and
+//! numerical failure is returned as [`StepError::Numerical`].
+
+use crate::association::{AssociationMatrix, CLUTTER};
+use crate::children::{ChildGenerator, ExhaustiveChildren, GenerateError};
+use crate::config::{BirthDetection, ChildGeneration, Config, StoreOverflow};
+use crate::ekf::{self, Gaussian, Innovation};
+use crate::error::{ConfigError, StepError};
+use crate::hypothesis::{Hypothesis, HypothesisSet};
+use crate::model::{MeasurementModel, MotionModel};
+use crate::real::{LogSumExp, Real, exp, ln, log_add};
+use crate::report::StepReport;
+use crate::selection::{Event, TopChildren};
+use crate::sensor::SensorLogTerms;
+use crate::store::{Track, TrackLabel, TrackStore};
+use nalgebra::SVector;
+
+/// "No slot" / "missed" marker in the materialisation tables.
+const NONE: u16 = u16::MAX;
+
+/// One object of a prior hypothesis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PriorObject<T: Real, const S: usize> {
+    /// The object's label; the same object in several prior hypotheses carries the same label.
+    pub label: TrackLabel,
+    /// Its Gaussian at the prior time.
+    pub state: Gaussian<T, S>,
+}
+
+/// One hypothesis of the prior: a weight (normalised over the prior by the tracker) and its objects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PriorHypothesis<'a, T: Real, const S: usize> {
+    /// Relative weight (≥ 0).
+    pub weight: T,
+    /// The objects.
+    pub objects: &'a [PriorObject<T, S>],
+}
+
+/// A track after prediction to the current scan.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Predicted<T: Real, const S: usize, const D: usize> {
+    state: Gaussian<T, S>,
+    innovation: Innovation<T, D>,
+    in_field_of_view: bool,
+}
+
+/// Scratch space of one scan. Its contents never outlive a `step` call.
+#[derive(Debug, Clone)]
+struct Workspace<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+    predicted: [Predicted<T, S, D>; K],
+    /// δ of digest §4.4 for every (track slot, measurement).
+    entries: [[T; Z]; K],
+    /// δ for every (birth cell, measurement).
+    birth_entries: [[T; Z]; B],
+    matrix: AssociationMatrix<T, N, Z>,
+    saved_column: [T; Z],
+    top: TopChildren<T, H, Z>,
+    order: [u16; H],
+    /// First new slot made from each old slot / birth cell, and the chain of new slots per source.
+    source_head: [u16; K],
+    birth_head: [u16; B],
+    next_same_source: [u16; K],
+    /// The measurement each new slot took, or `NONE` when missed.
+    new_slot_measurement: [u16; K],
+    row_of_column: [u16; N],
+    child_sources: [(Source, u16); N],
+    child_slots: [u16; N],
+    hashes: [u64; H],
+}
+
+impl<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Default
+    for Workspace<T, S, D, H, N, Z, K, B>
+{
+    fn default() -> Self {
+        Self {
+            predicted: [Predicted::default(); K],
+            entries: [[T::NEG_INFINITY; Z]; K],
+            birth_entries: [[T::NEG_INFINITY; Z]; B],
+            matrix: AssociationMatrix::default(),
+            saved_column: [T::NEG_INFINITY; Z],
+            top: TopChildren::new(),
+            order: [0; H],
+            source_head: [NONE; K],
+            birth_head: [NONE; B],
+            next_same_source: [NONE; K],
+            new_slot_measurement: [NONE; K],
+            row_of_column: [NONE; N],
+            child_sources: [(Source::Track(0), NONE); N],
+            child_slots: [0; N],
+            hashes: [0; H],
+        }
+    }
+}
+
+/// Where a child's track comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// A predicted track of the previous store.
+    Track(u16),
+    /// A birth cell.
+    Birth(u16),
+}
+
+/// The R-FISST / hypothesis-level FISST tracker with fixed capacities.
+///
+/// - `T`: scalar (`f32` or `f64`); `M`: [`MotionModel`]; `G`: [`MeasurementModel`].
+/// - `S`, `D`: state and measurement dimensions.
+/// - `H`: hypotheses kept per scan (H∞); `N`: objects per hypothesis; `Z`: measurements per scan;
+///   `K`: tracks in the shared store (≥ N); `B`: birth cells.
+///
+/// All memory is inside the value; `step` allocates nothing. The capacities are checked at compile time.
+///
+/// # Examples
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{Config, ConstantVelocity, PositionMeasurement, Region, Sensor, Tracker, BirthModel, Gaussian};
+/// use tracker_core::config::{ChildGeneration, StoreOverflow};
+///
+/// let config = Config {
+///     motion: ConstantVelocity { acceleration_noise: 0.01 },
+///     measurement: PositionMeasurement::isotropic(0.5),
+///     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] } },
+///     birth: BirthModel::none(),
+///     death_probability: 0.0,
+///     gate: None,
+///     children: ChildGeneration::default(),
+///     store_overflow: StoreOverflow::default(),
+///     seed: 1,
+/// };
+/// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// let mut tracker: Tracker<f64, _, _, 4, 2, 8, 4, 4, 16, 1> = Tracker::with_objects(config, &[object], 0.0).unwrap();
+/// let report = tracker.step(1.0, &[SVector::from([1.1, 0.05])]).unwrap();
+/// assert_eq!(report.hypotheses, 2); // z from the object, or clutter and the object missed
+/// assert!(tracker.map_hypothesis().weight() > 0.9);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Tracker<
+    T: Real,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> {
+    config: Config<T, M, G, S, B>,
+    log_terms: SensorLogTerms<T>,
+    birth_innovations: [Innovation<T, D>; B],
+    birth_in_field_of_view: [bool; B],
+    stores: [TrackStore<T, S, K>; 2],
+    hypotheses: [HypothesisSet<T, N, H>; 2],
+    active: usize,
+    time: f64,
+    scans: u64,
+    next_label: u32,
+    work: Workspace<T, S, D, H, N, Z, K, B>,
+}
+
+/// A read-only view of one hypothesis and the tracks it holds.
+#[derive(Debug, Clone, Copy)]
+pub struct HypothesisView<'a, T: Real, const S: usize, const N: usize> {
+    hypothesis: &'a Hypothesis<T, N>,
+    tracks: &'a [Track<T, S>],
+}
+
+impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
+    /// Normalised weight w.
+    pub fn weight(&self) -> T {
+        exp(self.hypothesis.log_weight)
+    }
+
+    /// Normalised log-weight ln w.
+    pub fn log_weight(&self) -> T {
+        self.hypothesis.log_weight
+    }
+
+    /// Number of objects.
+    pub fn len(&self) -> usize {
+        self.hypothesis.len()
+    }
+
+    /// Whether the hypothesis holds no object.
+    pub fn is_empty(&self) -> bool {
+        self.hypothesis.is_empty()
+    }
+
+    /// Store slots of its tracks (in label order).
+    pub fn slots(&self) -> &'a [u16] {
+        self.hypothesis.slots()
+    }
+
+    /// Its tracks, in label order.
+    pub fn tracks(&self) -> impl Iterator<Item = &'a Track<T, S>> + 'a {
+        let tracks = self.tracks;
+        self.hypothesis.slots().iter().map(move |&slot| &tracks[slot as usize])
+    }
+}
+
+fn split_pair<X>(pair: &mut [X; 2], active: usize) -> (&X, &mut X) {
+    let (first, second) = pair.split_at_mut(1);
+    if active == 0 { (&first[0], &mut second[0]) } else { (&second[0], &mut first[0]) }
+}
+
+/// 64-bit FNV-1a of a slot list, to find identical children quickly.
+fn slots_hash(slots: &[u16]) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for &slot in slots {
+        for byte in slot.to_le_bytes() {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
+}
+
+impl<T, M, G, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
+    Tracker<T, M, G, S, D, H, N, Z, K, B>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D>,
+{
+    const CAPACITY_CHECK: () = {
+        assert!(S > 0 && D > 0, "state and measurement dimensions must be > 0");
+        assert!(H > 0 && N > 0 && Z > 0, "capacities H, N and Z must be > 0");
+        assert!(K >= N, "the track store must hold at least N tracks so that the best child always fits");
+        assert!(H < u16::MAX as usize && N < u16::MAX as usize && Z < u16::MAX as usize && K < u16::MAX as usize && B < u16::MAX as usize, "capacities must fit in u16");
+    };
+
+    /// Builds a tracker from a configuration, a prior (one or more weighted hypotheses) and the prior's
+    /// time in seconds.
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the first invalid parameter or prior entry.
+    pub fn new(config: Config<T, M, G, S, B>, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<Self, ConfigError> {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CAPACITY_CHECK;
+        let (birth_innovations, birth_in_field_of_view) = Self::validate(&config)?;
+        if !time.is_finite() {
+            return Err(ConfigError::PriorTime);
+        }
+        let mut tracker = Self {
+            log_terms: config.sensor.log_terms(),
+            config,
+            birth_innovations,
+            birth_in_field_of_view,
+            stores: [TrackStore::default(), TrackStore::default()],
+            hypotheses: [HypothesisSet::default(), HypothesisSet::default()],
+            active: 0,
+            time,
+            scans: 0,
+            next_label: 0,
+            work: Workspace::default(),
+        };
+        tracker.load_prior(prior)?;
+        Ok(tracker)
+    }
+
+    /// Builds a tracker whose prior is one hypothesis (weight 1) holding `objects`, labelled 0, 1, ...
+    ///
+    /// # Errors
+    /// As [`Tracker::new`].
+    pub fn with_objects(config: Config<T, M, G, S, B>, objects: &[Gaussian<T, S>], time: f64) -> Result<Self, ConfigError> {
+        let mut prior: heapless::Vec<PriorObject<T, S>, N> = heapless::Vec::new();
+        for (index, state) in objects.iter().enumerate() {
+            prior.push(PriorObject { label: TrackLabel(index as u32), state: *state }).map_err(|_| ConfigError::PriorTooManyObjects { hypothesis: 0 })?;
+        }
+        Self::new(config, &[PriorHypothesis { weight: T::one(), objects: &prior }], time)
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn validate(config: &Config<T, M, G, S, B>) -> Result<([Innovation<T, D>; B], [bool; B]), ConfigError> {
+        config.motion.validate().map_err(ConfigError::Motion)?;
+        config.sensor.validate(D).map_err(ConfigError::Sensor)?;
+        if !ekf::is_valid_covariance(&config.measurement.noise_covariance()) {
+            return Err(ConfigError::MeasurementNoise);
+        }
+        let alpha = config.birth.probability;
+        if !(alpha.is_finite_value() && alpha >= T::zero() && alpha <= T::one()) {
+            return Err(ConfigError::BirthProbability);
+        }
+        let beta = config.death_probability;
+        if !(beta.is_finite_value() && beta >= T::zero() && beta <= T::one()) {
+            return Err(ConfigError::DeathProbability);
+        }
+        // P(no event) = 1 − M_b α − M_d β must stay > 0 for every parent: M_d ≤ N.
+        let cells = T::of_f64(config.birth.cells.len() as f64);
+        if !(T::one() - cells * alpha - T::of_f64(N as f64) * beta > T::zero()) {
+            return Err(ConfigError::EventProbabilities);
+        }
+        if let Some(gate) = config.gate
+            && !(gate.is_finite_value() && gate > T::zero())
+        {
+            return Err(ConfigError::Gate);
+        }
+        match config.children {
+            ChildGeneration::Exhaustive { max_children_per_scan } => {
+                if max_children_per_scan == 0 {
+                    return Err(ConfigError::ChildBudget);
+                }
+            }
+        }
+        let mut innovations = [Innovation::default(); B];
+        let mut in_view = [false; B];
+        for (cell, birth) in config.birth.cells.iter().enumerate() {
+            if !(birth.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&birth.covariance)) {
+                return Err(ConfigError::BirthCell { cell });
+            }
+            innovations[cell] = ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
+            in_view[cell] = config.sensor.field_of_view.contains(&innovations[cell].predicted);
+        }
+        Ok((innovations, in_view))
+    }
+
+    fn load_prior(&mut self, prior: &[PriorHypothesis<'_, T, S>]) -> Result<(), ConfigError> {
+        if prior.is_empty() {
+            return Err(ConfigError::PriorEmpty);
+        }
+        if prior.len() > H {
+            return Err(ConfigError::PriorTooManyHypotheses);
+        }
+        let mut total = T::zero();
+        for (index, hypothesis) in prior.iter().enumerate() {
+            if !(hypothesis.weight.is_finite_value() && hypothesis.weight >= T::zero()) {
+                return Err(ConfigError::PriorWeight { hypothesis: index });
+            }
+            total += hypothesis.weight;
+        }
+        if !(total > T::zero() && total.is_finite_value()) {
+            return Err(ConfigError::PriorWeight { hypothesis: 0 });
+        }
+        let store = &mut self.stores[0];
+        let set = &mut self.hypotheses[0];
+        let mut next_label: u32 = 0;
+        for (index, hypothesis) in prior.iter().enumerate() {
+            if hypothesis.objects.len() > N {
+                return Err(ConfigError::PriorTooManyObjects { hypothesis: index });
+            }
+            let mut slots = [0u16; N];
+            for (position, object) in hypothesis.objects.iter().enumerate() {
+                let state = &object.state;
+                if !(state.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&state.covariance)) {
+                    return Err(ConfigError::PriorObject { hypothesis: index, object: position });
+                }
+                if hypothesis.objects[..position].iter().any(|other| other.label == object.label) {
+                    return Err(ConfigError::PriorDuplicateLabel { hypothesis: index });
+                }
+                next_label = next_label.max(object.label.0.saturating_add(1));
+                let existing = store.as_slice().iter().position(|t| t.label == object.label && t.state == *state);
+                slots[position] = match existing {
+                    Some(slot) => slot as u16,
+                    None => store.push(Track { label: object.label, state: *state, existence: T::zero() }).map_err(|_| ConfigError::PriorTrackStoreFull)?,
+                };
+            }
+            if hypothesis.weight == T::zero() {
+                continue;
+            }
+            let count = hypothesis.objects.len();
+            let tracks = store.as_slice();
+            slots[..count].sort_unstable_by_key(|&slot| tracks[slot as usize].label);
+            // The prior has at most H hypotheses, so this push cannot fail.
+            let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), &slots[..count]));
+        }
+        self.next_label = next_label;
+        finish_hypotheses(set, store);
+        Ok(())
+    }
+
+    /// Processes one scan taken at `time` (seconds, after the previous scan) with `measurements`.
+    ///
+    /// # Errors
+    /// [`StepError`]; the tracker is then exactly as it was before the call.
+    pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
+        self.check_scan(time, measurements)?;
+        let dt = T::of_f64(time - self.time);
+        self.predict_and_score(dt, measurements)?;
+        let births_skipped = self.generate_children(measurements.len())?;
+        let outcome = self.materialise(measurements)?;
+
+        // Commit.
+        self.active = 1 - self.active;
+        self.time = time;
+        self.scans += 1;
+        self.next_label = outcome.next_label;
+        let top = &self.work.top;
+        Ok(StepReport {
+            scan: self.scans,
+            measurements: measurements.len(),
+            hypotheses: self.hypotheses[self.active].len(),
+            tracks: self.stores[self.active].len(),
+            children: top.offered(),
+            captured_mass: exp(outcome.log_kept - top.log_total()),
+            merged_children: outcome.merged,
+            children_dropped_for_store: outcome.dropped_for_store,
+            births_beyond_object_capacity: births_skipped,
+            expected_cardinality: self.expected_cardinality(),
+        })
+    }
+
+    fn check_scan(&self, time: f64, measurements: &[SVector<T, D>]) -> Result<(), StepError> {
+        if measurements.len() > Z {
+            return Err(StepError::TooManyMeasurements { received: measurements.len(), capacity: Z });
+        }
+        if !time.is_finite() {
+            return Err(StepError::NonFiniteTime);
+        }
+        if time <= self.time {
+            return Err(StepError::TimeNotAfterLastScan);
+        }
+        for (index, z) in measurements.iter().enumerate() {
+            if !z.iter().all(|v| v.is_finite_value()) {
+                return Err(StepError::NonFiniteMeasurement { index });
+            }
+            if !self.config.sensor.field_of_view.contains(z) {
+                return Err(StepError::MeasurementOutsideFieldOfView { index });
+            }
+        }
+        Ok(())
+    }
+
+    /// The entry δ = ln(p_D ĝ / ((1 − p_D) λ_C)) of digest §4.4 (without the (1 − p_D) when p_D = 1),
+    /// `-inf` outside the gate.
+    fn entry(&self, innovation: &Innovation<T, D>, z: &SVector<T, D>) -> T {
+        let (distance_squared, log_likelihood) = innovation.score(z);
+        if self.config.gate.is_some_and(|gate| distance_squared > gate) {
+            return T::NEG_INFINITY;
+        }
+        self.log_terms.detect + log_likelihood - self.log_terms.clutter - self.finite_miss()
+    }
+
+    /// ln(1 − p_D) when finite, else 0 (p_D = 1 makes detectable columns required instead).
+    fn finite_miss(&self) -> T {
+        if self.log_terms.miss.is_finite_value() { self.log_terms.miss } else { T::zero() }
+    }
+
+    /// Step 1: predict every track once and score it against every measurement once.
+    fn predict_and_score(&mut self, dt: T, measurements: &[SVector<T, D>]) -> Result<(), StepError> {
+        let store = &self.stores[self.active];
+        for (slot, track) in store.as_slice().iter().enumerate() {
+            let numerical = |error| StepError::Numerical { label: track.label, error };
+            let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
+            let innovation = ekf::innovation(&self.config.measurement, &state).map_err(numerical)?;
+            let in_field_of_view = self.config.sensor.field_of_view.contains(&innovation.predicted);
+            for (row, z) in measurements.iter().enumerate() {
+                self.work.entries[slot][row] = if in_field_of_view { self.entry(&innovation, z) } else { T::NEG_INFINITY };
+            }
+            self.work.predicted[slot] = Predicted { state, innovation, in_field_of_view };
+        }
+        for cell in 0..self.config.birth.cells.len() {
+            for (row, z) in measurements.iter().enumerate() {
+                self.work.birth_entries[cell][row] =
+                    if self.birth_in_field_of_view[cell] { self.entry(&self.birth_innovations[cell], z) } else { T::NEG_INFINITY };
+            }
+        }
+        Ok(())
+    }
+
+    /// Step 2: offer every (parent, event) child to the selection. Returns the number of birth events
+    /// skipped because the parent already holds `N` objects.
+    fn generate_children(&mut self, rows: usize) -> Result<u64, StepError> {
+        let mut generator = match self.config.children {
+            ChildGeneration::Exhaustive { max_children_per_scan } => ExhaustiveChildren::new(max_children_per_scan),
+        };
+        let budget_error = |error: GenerateError| match error {
+            GenerateError::BudgetExceeded { budget } => StepError::ChildBudgetExceeded { budget },
+        };
+        let alpha = self.config.birth.probability;
+        let beta = self.config.death_probability;
+        let (ln_alpha, ln_beta) = (ln(alpha), ln(beta));
+        let birth_cells = self.config.birth.cells.len();
+        let miss = self.finite_miss();
+        let columns_required = !self.log_terms.miss.is_finite_value();
+        let birth_required = columns_required || self.config.birth.detection == BirthDetection::AllDetected;
+        let scan_constant = T::of_f64(rows as f64) * self.log_terms.clutter;
+        let mut births_skipped = 0u64;
+
+        let work = &mut self.work;
+        work.top.clear();
+        let parents = self.hypotheses[self.active].as_slice();
+        for (parent_index, parent) in parents.iter().enumerate() {
+            // Columns: the parent's objects in the field of view, in the parent's order.
+            work.matrix = AssociationMatrix::new(rows, 0, T::zero());
+            for &slot in parent.slots() {
+                if work.predicted[slot as usize].in_field_of_view {
+                    // A parent holds at most N objects, so the matrix has room.
+                    let _ = work.matrix.push_column(&work.entries[slot as usize][..rows], columns_required);
+                }
+            }
+            let in_view = work.matrix.columns();
+            let common = parent.log_weight + scan_constant;
+            let count = |n: usize| T::of_f64(n as f64);
+            let parent_index = parent_index as u16;
+
+            // No event: P = 1 − M_b α − M_d β with M_d = objects in the field of view.
+            let no_event = T::one() - count(birth_cells) * alpha - count(in_view) * beta;
+            work.matrix.set_baseline(common + ln(no_event) + count(in_view) * miss);
+            work.top.set_context(parent_index, Event::None);
+            generator.generate(&work.matrix, &mut work.top).map_err(budget_error)?;
+
+            // One birth in a cell: P = α.
+            if alpha > T::zero() {
+                if parent.len() >= N {
+                    births_skipped += birth_cells as u64;
+                } else {
+                    for cell in 0..birth_cells {
+                        let detectable = self.birth_in_field_of_view[cell];
+                        if detectable {
+                            let _ = work.matrix.push_column(&work.birth_entries[cell][..rows], birth_required);
+                        } else if birth_required {
+                            continue; // a birth that must be detected where it cannot be
+                        }
+                        let in_view_child = in_view + usize::from(detectable);
+                        work.matrix.set_baseline(common + ln_alpha + count(in_view_child) * miss);
+                        work.top.set_context(parent_index, Event::Birth { cell: cell as u16 });
+                        let result = generator.generate(&work.matrix, &mut work.top);
+                        if detectable {
+                            work.matrix.pop_column();
+                        }
+                        result.map_err(budget_error)?;
+                    }
+                }
+            }
+
+            // One death among the objects in the field of view: P = β each.
+            if beta > T::zero() {
+                let mut column = 0usize;
+                for (position, &slot) in parent.slots().iter().enumerate() {
+                    if !work.predicted[slot as usize].in_field_of_view {
+                        continue;
+                    }
+                    work.matrix.column(column, &mut work.saved_column);
+                    let required = work.matrix.is_required(column);
+                    work.matrix.set_column(column, &[T::NEG_INFINITY; Z][..rows], false);
+                    work.matrix.set_baseline(common + ln_beta + count(in_view - 1) * miss);
+                    work.top.set_context(parent_index, Event::Death { object: position as u16 });
+                    let result = generator.generate(&work.matrix, &mut work.top);
+                    work.matrix.set_column(column, &work.saved_column[..rows], required);
+                    result.map_err(budget_error)?;
+                    column += 1;
+                }
+            }
+        }
+        if work.top.is_empty() {
+            return Err(StepError::NoViableChild);
+        }
+        Ok(births_skipped)
+    }
+
+    /// Step 3: build the kept children's tracks and hypotheses in the inactive buffers.
+    fn materialise(&mut self, measurements: &[SVector<T, D>]) -> Result<Materialised<T>, StepError> {
+        let active = self.active;
+        let (store, next_store) = split_pair(&mut self.stores, active);
+        let (parents, next_set) = split_pair(&mut self.hypotheses, active);
+        let work = &mut self.work;
+        let config = &self.config;
+        next_store.clear();
+        next_set.clear();
+        work.source_head[..store.len()].fill(NONE);
+        work.birth_head.fill(NONE);
+
+        let mut next_label = self.next_label;
+        let mut dropped_for_store = 0usize;
+        let mut merged = 0usize;
+        let kept = work.top.best_first(&mut work.order);
+        for rank in 0..kept {
+            let candidate = work.top.kept()[work.order[rank] as usize];
+            let parent = &parents.as_slice()[candidate.parent as usize];
+
+            // Which row took each column.
+            work.row_of_column.fill(NONE);
+            for (row, &column) in candidate.assignment[..measurements.len()].iter().enumerate() {
+                if column != CLUTTER {
+                    work.row_of_column[column as usize] = row as u16;
+                }
+            }
+            // The child's objects as (source, measurement) keys.
+            let mut count = 0usize;
+            let mut column = 0usize;
+            for (position, &slot) in parent.slots().iter().enumerate() {
+                let row = if work.predicted[slot as usize].in_field_of_view {
+                    column += 1;
+                    work.row_of_column[column - 1]
+                } else {
+                    NONE
+                };
+                if candidate.event == (Event::Death { object: position as u16 }) {
+                    continue;
+                }
+                work.child_sources[count] = (Source::Track(slot), row);
+                count += 1;
+            }
+            if let Event::Birth { cell } = candidate.event {
+                let row = if self.birth_in_field_of_view[cell as usize] { work.row_of_column[column] } else { NONE };
+                work.child_sources[count] = (Source::Birth(cell), row);
+                count += 1;
+            }
+
+            // Room for its new tracks?
+            let new_tracks = work.child_sources[..count].iter().filter(|&&(source, row)| lookup(work, source, row).is_none()).count();
+            if next_store.len() + new_tracks > K {
+                match config.store_overflow {
+                    StoreOverflow::PruneChildren => {
+                        dropped_for_store += 1;
+                        continue;
+                    }
+                    StoreOverflow::Error => return Err(StepError::TrackStoreFull { capacity: K }),
+                }
+            }
+
+            for index in 0..count {
+                let (source, row) = work.child_sources[index];
+                let slot = match lookup(work, source, row) {
+                    Some(slot) => slot,
+                    None => {
+                        let (label, prior, innovation) = match source {
+                            Source::Track(old) => {
+                                let predicted = &work.predicted[old as usize];
+                                (store.as_slice()[old as usize].label, predicted.state, predicted.innovation)
+                            }
+                            Source::Birth(cell) => {
+                                let label = TrackLabel(next_label);
+                                next_label = next_label.checked_add(1).ok_or(StepError::LabelsExhausted)?;
+                                (label, config.birth.cells[cell as usize], self.birth_innovations[cell as usize])
+                            }
+                        };
+                        let state = if row == NONE {
+                            prior
+                        } else {
+                            ekf::update(&config.measurement, &prior, &innovation, &measurements[row as usize])
+                                .map_err(|error| StepError::Numerical { label, error })?
+                        };
+                        // Room was checked above; the error path is unreachable but kept panic-free.
+                        let new_slot = next_store
+                            .push(Track { label, state, existence: T::zero() })
+                            .map_err(|_| StepError::TrackStoreFull { capacity: K })?;
+                        let head = match source {
+                            Source::Track(old) => &mut work.source_head[old as usize],
+                            Source::Birth(cell) => &mut work.birth_head[cell as usize],
+                        };
+                        work.next_same_source[new_slot as usize] = *head;
+                        *head = new_slot;
+                        work.new_slot_measurement[new_slot as usize] = row;
+                        new_slot
+                    }
+                };
+                work.child_slots[index] = slot;
+            }
+            let tracks = next_store.as_slice();
+            let slots = &mut work.child_slots[..count];
+            slots.sort_unstable_by_key(|&slot| tracks[slot as usize].label);
+
+            // Merge with an identical child kept earlier, else keep it.
+            let hash = slots_hash(slots);
+            let existing = next_set.as_slice().iter().zip(work.hashes.iter()).position(|(h, &other)| other == hash && h.slots() == &*slots);
+            match existing {
+                Some(index) => {
+                    let hypothesis = &mut next_set.as_mut_slice()[index];
+                    hypothesis.log_weight = log_add(hypothesis.log_weight, candidate.log_weight);
+                    merged += 1;
+                }
+                None => {
+                    if let Ok(index) = next_set.push(Hypothesis::new(candidate.log_weight, slots)) {
+                        work.hashes[index] = hash;
+                    }
+                }
+            }
+        }
+
+        // Normalise over the kept hypotheses.
+        let mut kept_total = LogSumExp::new();
+        for hypothesis in next_set.as_slice() {
+            kept_total.add(hypothesis.log_weight);
+        }
+        let log_kept = kept_total.value();
+        for hypothesis in next_set.as_mut_slice() {
+            hypothesis.log_weight -= log_kept;
+        }
+        finish_hypotheses(next_set, next_store);
+        Ok(Materialised { log_kept, next_label, dropped_for_store, merged })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &Config<T, M, G, S, B> {
+        &self.config
+    }
+
+    /// Time of the last scan (or of the prior), in seconds.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Number of scans processed.
+    pub fn scans(&self) -> u64 {
+        self.scans
+    }
+
+    /// The hypotheses, best first, with normalised weights.
+    pub fn hypotheses(&self) -> impl ExactSizeIterator<Item = HypothesisView<'_, T, S, N>> + '_ {
+        let tracks = self.stores[self.active].as_slice();
+        self.hypotheses[self.active].as_slice().iter().map(move |hypothesis| HypothesisView { hypothesis, tracks })
+    }
+
+    /// The maximum a posteriori hypothesis (the first of [`Tracker::hypotheses`]; ties keep the
+    /// deterministic enumeration order).
+    pub fn map_hypothesis(&self) -> HypothesisView<'_, T, S, N> {
+        let tracks = self.stores[self.active].as_slice();
+        // There is always at least one hypothesis: the prior has one and every scan keeps one.
+        HypothesisView { hypothesis: &self.hypotheses[self.active].as_slice()[0], tracks }
+    }
+
+    /// Every track of the shared store, with its existence probability.
+    pub fn tracks(&self) -> &[Track<T, S>] {
+        self.stores[self.active].as_slice()
+    }
+
+    /// Existence probability of the object `label`: the total weight of the hypotheses that hold a
+    /// track with that label.
+    pub fn label_existence(&self, label: TrackLabel) -> T {
+        self.tracks().iter().filter(|track| track.label == label).fold(T::zero(), |sum, track| sum + track.existence)
+    }
+
+    /// P(number of objects = `n`).
+    pub fn cardinality_probability(&self, n: usize) -> T {
+        self.hypotheses().filter(|h| h.len() == n).fold(T::zero(), |sum, h| sum + h.weight())
+    }
+
+    /// Expected number of objects Σ_h w_h N_h.
+    pub fn expected_cardinality(&self) -> T {
+        self.hypotheses().fold(T::zero(), |sum, h| sum + h.weight() * T::of_f64(h.len() as f64))
+    }
+}
+
+/// What materialisation produced besides the buffers.
+struct Materialised<T> {
+    log_kept: T,
+    next_label: u32,
+    dropped_for_store: usize,
+    merged: usize,
+}
+
+/// Finds the new slot made from `source` with measurement `row` (or missed), if any.
+fn lookup<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    work: &Workspace<T, S, D, H, N, Z, K, B>,
+    source: Source,
+    row: u16,
+) -> Option<u16> {
+    let mut slot = match source {
+        Source::Track(old) => work.source_head[old as usize],
+        Source::Birth(cell) => work.birth_head[cell as usize],
+    };
+    // Each source has at most Z + 1 distinct new slots (one per measurement, one missed).
+    while slot != NONE {
+        if work.new_slot_measurement[slot as usize] == row {
+            return Some(slot);
+        }
+        slot = work.next_same_source[slot as usize];
+    }
+    None
+}
+
+/// Orders hypotheses best first (stable, so ties keep their order) and sets every track's existence.
+fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(set: &mut HypothesisSet<T, N, H>, store: &mut TrackStore<T, S, K>) {
+    let items = set.as_mut_slice();
+    // Insertion sort: merging only raises weights of earlier entries, so few moves are needed.
+    for i in 1..items.len() {
+        let mut j = i;
+        while j > 0 && items[j].log_weight > items[j - 1].log_weight {
+            items.swap(j, j - 1);
+            j -= 1;
+        }
+    }
+    let tracks = store.as_mut_slice();
+    for track in tracks.iter_mut() {
+        track.existence = T::zero();
+    }
+    for hypothesis in set.as_slice() {
+        let weight = exp(hypothesis.log_weight);
+        for &slot in hypothesis.slots() {
+            tracks[slot as usize].existence += weight;
+        }
+    }
+}
