@@ -1,0 +1,120 @@
+//! Birth and death (digest §1.3 (3), (4), (5), (9); §4.4 event probabilities).
+
+use conformance::*;
+use tracker_core::{BirthDetection, BirthModel, Gaussian, LinearConfig, LinearTracker, TrackLabel};
+
+type Tracker = LinearTracker<f64, 64, 4, 4, 64, 3>;
+
+fn config_with_births(alpha: f64, beta: f64, cells: &[Gaussian<f64, 4>], detection: BirthDetection) -> LinearConfig<f64, 3> {
+    let mut config = linear_config::<3>(0.9, 1.0, 400.0);
+    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection };
+    config.death_probability = beta;
+    config
+}
+
+fn birth_cell() -> Gaussian<f64, 4> {
+    let mut cell = gaussian([10.0, 10.0, 0.0, 0.0], 4.0);
+    cell.covariance[(2, 2)] = 1.0;
+    cell.covariance[(3, 3)] = 1.0;
+    cell
+}
+
+#[test]
+fn death_factor_is_survival_times_missed_over_death() {
+    let beta = 0.05;
+    let mut t = Tracker::with_objects(config_with_births(0.0, beta, &[], BirthDetection::AllDetected), &[gaussian([0.0, 0.0, 1.0, 0.0], 0.5)], 0.0).unwrap();
+    let report = t.step(1.0, &[]).unwrap();
+    assert_eq!(report.children, 2);
+    let ratio = t.cardinality_probability(1) / t.cardinality_probability(0);
+    assert!(relative_difference(ratio, (1.0 - beta) * (1.0 - 0.9) / beta) < 1e-12);
+}
+
+#[test]
+fn detected_birth_factor_is_alpha_pd_g_over_clutter() {
+    let (alpha, beta) = (0.01, 0.02);
+    let cell = birth_cell();
+    let config = config_with_births(alpha, beta, &[cell], BirthDetection::AllDetected);
+    let object = gaussian([0.0, 0.0, 1.0, 0.0], 0.5);
+    let zs = [V2::new(1.05, 0.1), V2::new(10.8, 9.4)];
+    let mut t = Tracker::with_objects(config.clone(), &[object], 0.0).unwrap();
+    t.step(1.0, &zs).unwrap();
+    let kf = TextbookKf { config: &config };
+    let predicted = kf.predict(&object, 1.0);
+    let object_posterior = kf.update(&predicted, &zs[0]);
+    let holds_updated_object = |h: &tracker_core::HypothesisView<'_, f64, 4, 4>| h.tracks().any(|tr| tr.label == TrackLabel(0) && (tr.state.mean - object_posterior.mean).abs().max() < 1e-12);
+    let born = t.hypotheses().find(|h| h.len() == 2 && holds_updated_object(h)).unwrap();
+    let clutter = t.hypotheses().find(|h| h.len() == 1 && holds_updated_object(h)).unwrap();
+    // FISST (36): a detected birth carries α p_D ĝ_b where the no-event companion carries P(none) λ_C.
+    let g_birth = kf.likelihood(&cell, &zs[1]);
+    let lambda = 1.0 / 400.0;
+    let expected = alpha * 0.9 * g_birth / ((1.0 - alpha - beta) * lambda);
+    assert!(relative_difference(born.weight() / clutter.weight(), expected) < 1e-12);
+    // The born track is the birth pdf updated with z₂, with a fresh label.
+    let new_track = born.tracks().find(|tr| tr.label != TrackLabel(0)).unwrap();
+    assert_eq!(new_track.label, TrackLabel(1));
+    assert!((new_track.state.mean - kf.update(&cell, &zs[1]).mean).abs().max() < 1e-12);
+}
+
+#[test]
+fn undetected_births_rank_below_their_companions() {
+    // Digest §1.3 (4)-(5) in the first-order model: an undetected birth in a cell weighs
+    // α (1 − p_D) / P(no event) times its companion without the birth.
+    let alpha = 0.01;
+    let cells = [birth_cell(), gaussian([-10.0, 5.0, 0.0, 0.0], 4.0), gaussian([5.0, -10.0, 0.0, 0.0], 4.0)];
+    let config = config_with_births(alpha, 0.0, &cells, BirthDetection::AllowUndetected);
+    let object = gaussian([0.0, 0.0, 1.0, 0.0], 0.5);
+    let mut t = LinearTracker::<f64, 512, 4, 4, 64, 3>::with_objects(config, &[object], 0.0).unwrap();
+    let report = t.step(1.0, &[V2::new(1.05, 0.1)]).unwrap();
+    assert_eq!(report.captured_mass, 1.0);
+    let ratio = alpha * 0.1 / (1.0 - 3.0 * alpha);
+    let one_object: Vec<_> = t.hypotheses().filter(|h| h.len() == 1).collect();
+    let undetected: Vec<_> = t.hypotheses().filter(|h| h.len() == 2 && h.tracks().any(|tr| tr.label != TrackLabel(0) && tr.state.covariance[(0, 0)] == 4.0)).collect();
+    assert_eq!(undetected.len(), 3 * one_object.len(), "every (cell, association) has its undetected-birth child");
+    for u in &undetected {
+        let object_track = u.tracks().find(|tr| tr.label == TrackLabel(0)).unwrap();
+        let companion = one_object.iter().find(|c| c.tracks().next().unwrap().state == object_track.state).unwrap();
+        assert!(relative_difference(u.weight() / companion.weight(), ratio) < 1e-12);
+        assert!(u.weight() < companion.weight());
+    }
+    let undetected_mass: f64 = undetected.iter().map(|h| h.weight()).sum();
+    let companion_mass: f64 = one_object.iter().map(|h| h.weight()).sum();
+    assert!(relative_difference(undetected_mass / companion_mass, 3.0 * ratio) < 1e-12);
+
+    // The default (all births detected) has no such children.
+    let mut detected_only = LinearTracker::<f64, 512, 4, 4, 64, 3>::with_objects(config_with_births(alpha, 0.0, &cells, BirthDetection::AllDetected), &[object], 0.0).unwrap();
+    detected_only.step(1.0, &[V2::new(1.05, 0.1)]).unwrap();
+    assert!(detected_only.hypotheses().all(|h| h.tracks().all(|tr| tr.state.covariance[(0, 0)] != 4.0)));
+}
+
+#[test]
+fn a_new_object_is_confirmed_and_a_vanished_one_dies() {
+    // Object 0 is known and keeps being detected until t = 6, then vanishes; a second object appears in
+    // the birth cell at t = 1 and moves at (0.5, 0).
+    let config = config_with_births(0.02, 0.02, &[birth_cell()], BirthDetection::AllDetected);
+    let mut t = Tracker::with_objects(config, &[gaussian([0.0, 0.0, 1.0, 0.0], 0.2)], 0.0).unwrap();
+    for k in 1..=12 {
+        let time = k as f64;
+        let mut zs = vec![V2::new(10.0 + 0.5 * time + 0.05 * (k % 3) as f64, 10.0 - 0.04 * (k % 2) as f64)];
+        if k <= 6 {
+            zs.push(V2::new(time + 0.03 * (k % 2) as f64, -0.02 * (k % 3) as f64));
+        }
+        let report = t.step(time, &zs).unwrap();
+        assert!(report.hypotheses >= 1);
+        if k == 6 {
+            assert!((t.expected_cardinality() - 2.0).abs() < 0.05, "two objects at t = 6: {}", t.expected_cardinality());
+        }
+    }
+    let born = t.tracks().iter().map(|tr| tr.label).filter(|l| *l != TrackLabel(0)).min().unwrap();
+    assert!(t.label_existence(born) > 0.99, "birth existence {}", t.label_existence(born));
+    assert!(t.label_existence(TrackLabel(0)) < 0.05, "vanished object existence {}", t.label_existence(TrackLabel(0)));
+    assert!((t.expected_cardinality() - 1.0).abs() < 0.05);
+}
+
+#[test]
+fn births_are_reported_when_a_parent_is_full() {
+    let config = config_with_births(0.01, 0.0, &[birth_cell()], BirthDetection::AllDetected);
+    let objects: Vec<_> = (0..4).map(|i| gaussian([i as f64, 0.0, 0.0, 0.0], 0.2)).collect();
+    let mut t = Tracker::with_objects(config, &objects, 0.0).unwrap();
+    let report = t.step(1.0, &[V2::new(10.0, 10.0)]).unwrap();
+    assert_eq!(report.births_beyond_object_capacity, 1);
+}
