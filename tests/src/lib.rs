@@ -4,8 +4,8 @@
 
 use nalgebra::{SMatrix, SVector};
 use tracker_core::{
-    BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, LinearConfig, MeasurementModel, MotionModel, PositionMeasurement, Real, Region, Sensor,
-    StoreOverflow, Tracker,
+    BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, LinearConfig, MeasurementModel, MotionModel,
+    PositionMeasurement, Real, Region, Sensor, StoreOverflow, Tracker,
 };
 
 /// 2-vector.
@@ -16,7 +16,11 @@ pub type V4 = SVector<f64, 4>;
 pub type M4 = SMatrix<f64, 4, 4>;
 
 /// A constant-velocity configuration with no birth, no death and no gate: the exact recursion.
-pub fn linear_config<const B: usize>(detection_probability: f64, clutter_rate: f64, volume: f64) -> LinearConfig<f64, B> {
+pub fn linear_config<const B: usize>(
+    detection_probability: f64,
+    clutter_rate: f64,
+    volume: f64,
+) -> LinearConfig<f64, B> {
     Config {
         motion: ConstantVelocity { acceleration_noise: 0.05 },
         measurement: PositionMeasurement::isotropic(0.4),
@@ -45,7 +49,10 @@ impl<const B: usize> TextbookKf<'_, B> {
     /// x⁻ = F x, P⁻ = F P Fᵀ + Q.
     pub fn predict(&self, g: &Gaussian<f64, 4>, dt: f64) -> Gaussian<f64, 4> {
         let f = self.config.motion.propagate(&g.mean, dt).unwrap().transition;
-        Gaussian { mean: f * g.mean, covariance: f * g.covariance * f.transpose() + self.config.motion.process_noise(&g.mean, dt) }
+        Gaussian {
+            mean: f * g.mean,
+            covariance: f * g.covariance * f.transpose() + self.config.motion.process_noise(&g.mean, dt),
+        }
     }
 
     /// N(z; H x⁻, H P⁻ Hᵀ + R) from the explicit inverse and determinant.
@@ -86,7 +93,18 @@ pub fn all_associations(rows: usize, objects: usize) -> Vec<Vec<Option<usize>>> 
 }
 
 /// The bits of everything a tracker exposes: time, scan count, each hypothesis's weight and tracks.
-pub fn fingerprint<T: Real, M, G, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+pub fn fingerprint<
+    T: Real,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
     tracker: &Tracker<T, M, G, S, D, H, N, Z, K, B>,
 ) -> Vec<u64>
 where

@@ -5,7 +5,12 @@ use tracker_core::{BirthDetection, BirthModel, Gaussian, LinearConfig, LinearTra
 
 type Tracker = LinearTracker<f64, 64, 4, 4, 64, 3>;
 
-fn config_with_births(alpha: f64, beta: f64, cells: &[Gaussian<f64, 4>], detection: BirthDetection) -> LinearConfig<f64, 3> {
+fn config_with_births(
+    alpha: f64,
+    beta: f64,
+    cells: &[Gaussian<f64, 4>],
+    detection: BirthDetection,
+) -> LinearConfig<f64, 3> {
     let mut config = linear_config::<3>(0.9, 1.0, 400.0);
     config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection };
     config.death_probability = beta;
@@ -22,7 +27,12 @@ fn birth_cell() -> Gaussian<f64, 4> {
 #[test]
 fn death_factor_is_survival_times_missed_over_death() {
     let beta = 0.05;
-    let mut t = Tracker::with_objects(config_with_births(0.0, beta, &[], BirthDetection::AllDetected), &[gaussian([0.0, 0.0, 1.0, 0.0], 0.5)], 0.0).unwrap();
+    let mut t = Tracker::with_objects(
+        config_with_births(0.0, beta, &[], BirthDetection::AllDetected),
+        &[gaussian([0.0, 0.0, 1.0, 0.0], 0.5)],
+        0.0,
+    )
+    .unwrap();
     let report = t.step(1.0, &[]).unwrap();
     assert_eq!(report.children, 2);
     let ratio = t.cardinality_probability(1) / t.cardinality_probability(0);
@@ -41,7 +51,9 @@ fn detected_birth_factor_is_alpha_pd_g_over_clutter() {
     let kf = TextbookKf { config: &config };
     let predicted = kf.predict(&object, 1.0);
     let object_posterior = kf.update(&predicted, &zs[0]);
-    let holds_updated_object = |h: &tracker_core::HypothesisView<'_, f64, 4, 4>| h.tracks().any(|tr| tr.label == TrackLabel(0) && (tr.state.mean - object_posterior.mean).abs().max() < 1e-12);
+    let holds_updated_object = |h: &tracker_core::HypothesisView<'_, f64, 4, 4>| {
+        h.tracks().any(|tr| tr.label == TrackLabel(0) && (tr.state.mean - object_posterior.mean).abs().max() < 1e-12)
+    };
     let born = t.hypotheses().find(|h| h.len() == 2 && holds_updated_object(h)).unwrap();
     let clutter = t.hypotheses().find(|h| h.len() == 1 && holds_updated_object(h)).unwrap();
     // FISST (36): a detected birth carries α p_D ĝ_b where the no-event companion carries P(none) λ_C.
@@ -68,7 +80,12 @@ fn undetected_births_rank_below_their_companions() {
     assert_eq!(report.captured_mass, 1.0);
     let ratio = alpha * 0.1 / (1.0 - 3.0 * alpha);
     let one_object: Vec<_> = t.hypotheses().filter(|h| h.len() == 1).collect();
-    let undetected: Vec<_> = t.hypotheses().filter(|h| h.len() == 2 && h.tracks().any(|tr| tr.label != TrackLabel(0) && tr.state.covariance[(0, 0)] == 4.0)).collect();
+    let undetected: Vec<_> = t
+        .hypotheses()
+        .filter(|h| {
+            h.len() == 2 && h.tracks().any(|tr| tr.label != TrackLabel(0) && tr.state.covariance[(0, 0)] == 4.0)
+        })
+        .collect();
     assert_eq!(undetected.len(), 3 * one_object.len(), "every (cell, association) has its undetected-birth child");
     for u in &undetected {
         let object_track = u.tracks().find(|tr| tr.label == TrackLabel(0)).unwrap();
@@ -81,7 +98,12 @@ fn undetected_births_rank_below_their_companions() {
     assert!(relative_difference(undetected_mass / companion_mass, 3.0 * ratio) < 1e-12);
 
     // The default (all births detected) has no such children.
-    let mut detected_only = LinearTracker::<f64, 512, 4, 4, 64, 3>::with_objects(config_with_births(alpha, 0.0, &cells, BirthDetection::AllDetected), &[object], 0.0).unwrap();
+    let mut detected_only = LinearTracker::<f64, 512, 4, 4, 64, 3>::with_objects(
+        config_with_births(alpha, 0.0, &cells, BirthDetection::AllDetected),
+        &[object],
+        0.0,
+    )
+    .unwrap();
     detected_only.step(1.0, &[V2::new(1.05, 0.1)]).unwrap();
     assert!(detected_only.hypotheses().all(|h| h.tracks().all(|tr| tr.state.covariance[(0, 0)] != 4.0)));
 }
@@ -101,7 +123,11 @@ fn a_new_object_is_confirmed_and_a_vanished_one_dies() {
         let report = t.step(time, &zs).unwrap();
         assert!(report.hypotheses >= 1);
         if k == 6 {
-            assert!((t.expected_cardinality() - 2.0).abs() < 0.05, "two objects at t = 6: {}", t.expected_cardinality());
+            assert!(
+                (t.expected_cardinality() - 2.0).abs() < 0.05,
+                "two objects at t = 6: {}",
+                t.expected_cardinality()
+            );
         }
     }
     let born = t.tracks().iter().map(|tr| tr.label).filter(|l| *l != TrackLabel(0)).min().unwrap();

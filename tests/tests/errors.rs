@@ -4,7 +4,9 @@
 use conformance::*;
 use nalgebra::SMatrix;
 use tracker_core::config::ChildGeneration;
-use tracker_core::{ConfigError, LinearTracker, PriorHypothesis, PriorObject, Region, StepError, StoreOverflow, TrackLabel};
+use tracker_core::{
+    ConfigError, LinearTracker, PriorHypothesis, PriorObject, Region, StepError, StoreOverflow, TrackLabel,
+};
 
 type Tracker = LinearTracker<f64, 8, 4, 3, 8, 1>;
 
@@ -19,7 +21,11 @@ fn tracker() -> Tracker {
 
 /// Runs `bad` on a copy, checks the error and that nothing observable changed, then checks the copy
 /// still tracks exactly like an untouched tracker.
-fn assert_rejected(mut t: Tracker, bad: impl FnOnce(&mut Tracker) -> Result<tracker_core::StepReport<f64>, StepError>, expected: StepError) {
+fn assert_rejected(
+    mut t: Tracker,
+    bad: impl FnOnce(&mut Tracker) -> Result<tracker_core::StepReport<f64>, StepError>,
+    expected: StepError,
+) {
     let before = fingerprint(&t);
     let untouched = t.clone();
     assert_eq!(bad(&mut t).unwrap_err(), expected);
@@ -128,11 +134,20 @@ fn invalid_configurations_are_typed_errors() {
     assert!(matches!(build(&|c| c.sensor.detection_probability = f64::NAN), Some(ConfigError::Sensor(_))));
     assert!(matches!(build(&|c| c.sensor.clutter_rate = -1.0), Some(ConfigError::Sensor(_))));
     assert!(matches!(build(&|c| c.sensor.clutter_rate = 0.0), Some(ConfigError::Sensor(_))));
-    assert!(matches!(build(&|c| c.sensor.field_of_view = Region::Everywhere { volume: -1.0 }), Some(ConfigError::Sensor(_))));
+    assert!(matches!(
+        build(&|c| c.sensor.field_of_view = Region::Everywhere { volume: -1.0 }),
+        Some(ConfigError::Sensor(_))
+    ));
     assert!(matches!(build(&|c| c.motion.acceleration_noise = -0.1), Some(ConfigError::Motion(_))));
     assert!(matches!(build(&|c| c.motion.acceleration_noise = 0.0), Some(ConfigError::Motion(_))));
-    assert_eq!(build(&|c| c.measurement.noise = SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0)), Some(ConfigError::MeasurementNoise));
-    assert_eq!(build(&|c| c.measurement.noise = SMatrix::<f64, 2, 2>::new(1.0, 0.1, 0.0, 1.0)), Some(ConfigError::MeasurementNoise));
+    assert_eq!(
+        build(&|c| c.measurement.noise = SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0)),
+        Some(ConfigError::MeasurementNoise)
+    );
+    assert_eq!(
+        build(&|c| c.measurement.noise = SMatrix::<f64, 2, 2>::new(1.0, 0.1, 0.0, 1.0)),
+        Some(ConfigError::MeasurementNoise)
+    );
     assert_eq!(build(&|c| c.birth.probability = -0.1), Some(ConfigError::BirthProbability));
     assert_eq!(build(&|c| c.death_probability = 1.5), Some(ConfigError::DeathProbability));
     // M_b α + N β ≥ 1 with N = 4.
@@ -145,9 +160,15 @@ fn invalid_configurations_are_typed_errors() {
         }),
         Some(ConfigError::EventProbabilities)
     );
-    assert_eq!(build(&|c| c.birth.cells.push(gaussian([0.0; 4], -1.0)).unwrap()), Some(ConfigError::BirthCell { cell: 0 }));
+    assert_eq!(
+        build(&|c| c.birth.cells.push(gaussian([0.0; 4], -1.0)).unwrap()),
+        Some(ConfigError::BirthCell { cell: 0 })
+    );
     assert_eq!(build(&|c| c.gate = Some(0.0)), Some(ConfigError::Gate));
-    assert_eq!(build(&|c| c.children = ChildGeneration::Exhaustive { max_children_per_scan: 0 }), Some(ConfigError::ChildBudget));
+    assert_eq!(
+        build(&|c| c.children = ChildGeneration::Exhaustive { max_children_per_scan: 0 }),
+        Some(ConfigError::ChildBudget)
+    );
 }
 
 #[test]
@@ -161,19 +182,42 @@ fn invalid_priors_are_typed_errors() {
     let build = |prior: &[PriorHypothesis<'_, f64, 4>], time: f64| Tracker::new(config.clone(), prior, time).err();
     assert_eq!(build(&[], 0.0), Some(ConfigError::PriorEmpty));
     assert_eq!(build(&[PriorHypothesis { weight: 1.0, objects: &[good] }], f64::NAN), Some(ConfigError::PriorTime));
-    assert_eq!(build(&[PriorHypothesis { weight: -1.0, objects: &[good] }], 0.0), Some(ConfigError::PriorWeight { hypothesis: 0 }));
-    assert_eq!(build(&[PriorHypothesis { weight: 0.0, objects: &[good] }], 0.0), Some(ConfigError::PriorWeight { hypothesis: 0 }));
-    assert_eq!(build(&[PriorHypothesis { weight: 1.0, objects: &[degenerate] }], 0.0), Some(ConfigError::PriorObject { hypothesis: 0, object: 0 }));
-    assert_eq!(build(&[PriorHypothesis { weight: 1.0, objects: &[nan] }], 0.0), Some(ConfigError::PriorObject { hypothesis: 0, object: 0 }));
-    assert_eq!(build(&[PriorHypothesis { weight: 1.0, objects: &[good, good] }], 0.0), Some(ConfigError::PriorDuplicateLabel { hypothesis: 0 }));
+    assert_eq!(
+        build(&[PriorHypothesis { weight: -1.0, objects: &[good] }], 0.0),
+        Some(ConfigError::PriorWeight { hypothesis: 0 })
+    );
+    assert_eq!(
+        build(&[PriorHypothesis { weight: 0.0, objects: &[good] }], 0.0),
+        Some(ConfigError::PriorWeight { hypothesis: 0 })
+    );
+    assert_eq!(
+        build(&[PriorHypothesis { weight: 1.0, objects: &[degenerate] }], 0.0),
+        Some(ConfigError::PriorObject { hypothesis: 0, object: 0 })
+    );
+    assert_eq!(
+        build(&[PriorHypothesis { weight: 1.0, objects: &[nan] }], 0.0),
+        Some(ConfigError::PriorObject { hypothesis: 0, object: 0 })
+    );
+    assert_eq!(
+        build(&[PriorHypothesis { weight: 1.0, objects: &[good, good] }], 0.0),
+        Some(ConfigError::PriorDuplicateLabel { hypothesis: 0 })
+    );
     let five: Vec<_> = (0..5).map(|i| PriorObject { label: TrackLabel(i), ..good }).collect();
-    assert_eq!(build(&[PriorHypothesis { weight: 1.0, objects: &five }], 0.0), Some(ConfigError::PriorTooManyObjects { hypothesis: 0 }));
+    assert_eq!(
+        build(&[PriorHypothesis { weight: 1.0, objects: &five }], 0.0),
+        Some(ConfigError::PriorTooManyObjects { hypothesis: 0 })
+    );
     let one = [good];
     let many = vec![PriorHypothesis { weight: 1.0, objects: &one[..] }; 9];
     assert_eq!(build(&many, 0.0), Some(ConfigError::PriorTooManyHypotheses));
     // K = 8 tracks: three hypotheses of four distinct tracks each need 12.
-    let sets: Vec<Vec<PriorObject<f64, 4>>> =
-        (0..3).map(|h| (0..4).map(|i| PriorObject { label: TrackLabel(i), state: gaussian([h as f64, i as f64, 0.0, 0.0], 1.0) }).collect()).collect();
+    let sets: Vec<Vec<PriorObject<f64, 4>>> = (0..3)
+        .map(|h| {
+            (0..4)
+                .map(|i| PriorObject { label: TrackLabel(i), state: gaussian([h as f64, i as f64, 0.0, 0.0], 1.0) })
+                .collect()
+        })
+        .collect();
     let prior: Vec<_> = sets.iter().map(|objects| PriorHypothesis { weight: 1.0, objects }).collect();
     assert_eq!(build(&prior, 0.0), Some(ConfigError::PriorTrackStoreFull));
 }

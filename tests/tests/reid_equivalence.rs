@@ -29,13 +29,14 @@ fn thirteen_children_with_reid_weights_and_kalman_states() {
         .map(|sigma| {
             let d = sigma.iter().flatten().count() as i32;
             let k = 3 - d;
-            let likelihood: f64 = sigma.iter().enumerate().filter_map(|(j, o)| o.map(|o| kf.likelihood(&predicted[o], &zs[j]))).product();
+            let likelihood: f64 =
+                sigma.iter().enumerate().filter_map(|(j, o)| o.map(|o| kf.likelihood(&predicted[o], &zs[j]))).product();
             pd.powi(d) * (1.0 - pd).powi(2 - d) * lambda.powi(k) * likelihood
         })
         .collect();
     let total: f64 = raw.iter().sum();
 
-    let mut matched = vec![false; 13];
+    let mut matched = [false; 13];
     for (sigma, w) in associations.iter().zip(&raw) {
         // Expected posterior of each object under σ.
         let expected: Vec<_> = (0..2)
@@ -47,7 +48,10 @@ fn thirteen_children_with_reid_weights_and_kalman_states() {
         let index = tracker
             .hypotheses()
             .position(|h| {
-                h.tracks().zip(&expected).all(|(t, e)| (t.state.mean - e.mean).abs().max() < 1e-12 && (t.state.covariance - e.covariance).abs().max() < 1e-12)
+                h.tracks().zip(&expected).all(|(t, e)| {
+                    (t.state.mean - e.mean).abs().max() < 1e-12
+                        && (t.state.covariance - e.covariance).abs().max() < 1e-12
+                })
             })
             .unwrap_or_else(|| panic!("no hypothesis for {sigma:?}"));
         assert!(!matched[index], "two associations matched one hypothesis");
@@ -71,7 +75,8 @@ fn weight_is_a_product_of_per_object_factors_and_scales_with_clutter() {
     let ratio = |clutter_rate: f64| {
         let mut t = Tracker::with_objects(linear_config::<1>(0.9, clutter_rate, 100.0), &priors, 0.0).unwrap();
         t.step(1.0, &zs).unwrap();
-        let all_clutter = t.hypotheses().find(|h| h.tracks().next().unwrap().state.covariance[(0, 0)] > 0.5).unwrap().weight();
+        let all_clutter =
+            t.hypotheses().find(|h| h.tracks().next().unwrap().state.covariance[(0, 0)] > 0.5).unwrap().weight();
         let detected: f64 = t.hypotheses().map(|h| h.weight()).sum::<f64>() - all_clutter;
         // detected children have k = 1, the all-clutter child k = 2 (and the object missed)
         all_clutter / detected

@@ -203,7 +203,13 @@ mod tests {
     #[test]
     fn association_count_table() {
         // Digest §2.3 (3): A_N(m) for m = 0..4 (rows) and N = 0..5 (columns).
-        let table = [[1, 1, 1, 1, 1, 1], [1, 2, 3, 4, 5, 6], [1, 3, 7, 13, 21, 31], [1, 4, 13, 34, 73, 136], [1, 5, 21, 73, 209, 501]];
+        let table = [
+            [1, 1, 1, 1, 1, 1],
+            [1, 2, 3, 4, 5, 6],
+            [1, 3, 7, 13, 21, 31],
+            [1, 4, 13, 34, 73, 136],
+            [1, 5, 21, 73, 209, 501],
+        ];
         for (m, row) in table.iter().enumerate() {
             for (n, &expected) in row.iter().enumerate() {
                 assert_eq!(association_count(n as u32, m as u32), expected, "A_{n}({m})");

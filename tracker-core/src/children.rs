@@ -31,7 +31,11 @@ pub trait ChildGenerator<T: Real, const N: usize, const Z: usize> {
     ///
     /// # Errors
     /// [`GenerateError`] when a budget stops the generator; the sink then holds a partial set.
-    fn generate<K: ChildSink<T>>(&mut self, matrix: &AssociationMatrix<T, N, Z>, sink: &mut K) -> Result<u64, GenerateError>;
+    fn generate<K: ChildSink<T>>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        sink: &mut K,
+    ) -> Result<u64, GenerateError>;
 }
 
 /// Every child, by depth-first enumeration, with a budget on the number of leaves visited per scan.
@@ -59,7 +63,11 @@ impl ExhaustiveChildren {
 }
 
 impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for ExhaustiveChildren {
-    fn generate<K: ChildSink<T>>(&mut self, matrix: &AssociationMatrix<T, N, Z>, sink: &mut K) -> Result<u64, GenerateError> {
+    fn generate<K: ChildSink<T>>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        sink: &mut K,
+    ) -> Result<u64, GenerateError> {
         let rows = matrix.rows();
         let columns = matrix.columns();
         let required_total = matrix.required_count();

@@ -130,20 +130,31 @@ impl<T: Real, const D: usize> Innovation<T, D> {
 ///
 /// # Errors
 /// The motion model's error, or [`NumericalError::NonFinite`].
-pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(model: &M, prior: &Gaussian<T, S>, dt: T) -> Result<Gaussian<T, S>, NumericalError> {
+pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
+    model: &M,
+    prior: &Gaussian<T, S>,
+    dt: T,
+) -> Result<Gaussian<T, S>, NumericalError> {
     let propagation = model.propagate(&prior.mean, dt).map_err(NumericalError::Model)?;
     let phi = propagation.transition;
     // P⁻ = Φ P Φᵀ + Q
     let covariance = symmetrise(&(phi * prior.covariance * phi.transpose() + model.process_noise(&prior.mean, dt)));
     let predicted = Gaussian { mean: propagation.state, covariance };
-    if predicted.mean.iter().chain(predicted.covariance.iter()).all(|v| v.is_finite_value()) { Ok(predicted) } else { Err(NumericalError::NonFinite) }
+    if predicted.mean.iter().chain(predicted.covariance.iter()).all(|v| v.is_finite_value()) {
+        Ok(predicted)
+    } else {
+        Err(NumericalError::NonFinite)
+    }
 }
 
 /// The innovation of a predicted track: ẑ = h(x̂⁻) and S = H P⁻ Hᵀ + R, factored.
 ///
 /// # Errors
 /// [`NumericalError::NotPositiveDefinite`] when S cannot be factored.
-pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(model: &G, predicted: &Gaussian<T, S>) -> Result<Innovation<T, D>, NumericalError> {
+pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+    model: &G,
+    predicted: &Gaussian<T, S>,
+) -> Result<Innovation<T, D>, NumericalError> {
     let h = model.jacobian(&predicted.mean);
     // S = H P⁻ Hᵀ + R
     let s = symmetrise(&(h * predicted.covariance * h.transpose() + model.noise_covariance()));
@@ -173,9 +184,14 @@ pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: us
     let mean = predicted.mean + gain * nu;
     // P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ   (Joseph)
     let i_kh = SMatrix::<T, S, S>::identity() - gain * h;
-    let covariance = symmetrise(&(i_kh * predicted.covariance * i_kh.transpose() + gain * model.noise_covariance() * gain_t));
+    let covariance =
+        symmetrise(&(i_kh * predicted.covariance * i_kh.transpose() + gain * model.noise_covariance() * gain_t));
     let updated = Gaussian { mean, covariance };
-    if updated.mean.iter().chain(updated.covariance.iter()).all(|v| v.is_finite_value()) { Ok(updated) } else { Err(NumericalError::NonFinite) }
+    if updated.mean.iter().chain(updated.covariance.iter()).all(|v| v.is_finite_value()) {
+        Ok(updated)
+    } else {
+        Err(NumericalError::NonFinite)
+    }
 }
 
 /// ½ (A + Aᵀ).
@@ -185,7 +201,9 @@ pub(crate) fn symmetrise<T: Real, const S: usize>(a: &SMatrix<T, S, S>) -> SMatr
 
 /// Whether `covariance` is finite, symmetric and positive definite (checked by Cholesky).
 pub fn is_valid_covariance<T: Real, const S: usize>(covariance: &SMatrix<T, S, S>) -> bool {
-    covariance.iter().all(|v| v.is_finite_value()) && *covariance == covariance.transpose() && Cholesky::new(*covariance).is_some()
+    covariance.iter().all(|v| v.is_finite_value())
+        && *covariance == covariance.transpose()
+        && Cholesky::new(*covariance).is_some()
 }
 
 #[cfg(test)]
@@ -199,7 +217,8 @@ mod tests {
         let innovation = Innovation::new(SVector::from([1.0, -1.0]), s).unwrap();
         let z = SVector::from([1.5, 0.2]);
         let nu = z - SVector::from([1.0, -1.0]);
-        let direct = (-0.5 * (nu.transpose() * s.try_inverse().unwrap() * nu)[0]).exp() / (2.0 * core::f64::consts::PI * s.determinant().sqrt());
+        let direct = (-0.5 * (nu.transpose() * s.try_inverse().unwrap() * nu)[0]).exp()
+            / (2.0 * core::f64::consts::PI * s.determinant().sqrt());
         let (_, log_g) = innovation.score(&z);
         assert!((log_g.exp() - direct).abs() < 1e-15);
     }

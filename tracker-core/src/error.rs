@@ -71,24 +71,42 @@ impl core::fmt::Display for ConfigError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             ConfigError::Motion(why) | ConfigError::Sensor(why) => f.write_str(why),
-            ConfigError::MeasurementNoise => f.write_str("measurement noise covariance R is not symmetric positive definite"),
+            ConfigError::MeasurementNoise => {
+                f.write_str("measurement noise covariance R is not symmetric positive definite")
+            }
             ConfigError::BirthProbability => f.write_str("birth probability alpha must be in [0, 1]"),
-            ConfigError::BirthCell { cell } => write!(f, "birth cell {cell}: mean and covariance must be finite, covariance symmetric positive definite"),
+            ConfigError::BirthCell { cell } => write!(
+                f,
+                "birth cell {cell}: mean and covariance must be finite, covariance symmetric positive definite"
+            ),
             ConfigError::DeathProbability => f.write_str("death probability beta must be in [0, 1]"),
             ConfigError::EventProbabilities => f.write_str("M_b alpha + N beta must be < 1 (N = object capacity)"),
             ConfigError::Gate => f.write_str("gate must be finite and > 0"),
             ConfigError::ChildBudget => f.write_str("child budget must be > 0"),
             ConfigError::PriorEmpty => f.write_str("prior has no hypothesis"),
             ConfigError::PriorTooManyHypotheses => f.write_str("prior has more hypotheses than the capacity H"),
-            ConfigError::PriorWeight { hypothesis } => write!(f, "prior hypothesis {hypothesis}: weight must be finite and >= 0, and not all zero"),
-            ConfigError::PriorTooManyObjects { hypothesis } => write!(f, "prior hypothesis {hypothesis}: more objects than the capacity N"),
-            ConfigError::PriorObject { hypothesis, object } => {
-                write!(f, "prior hypothesis {hypothesis}, object {object}: mean and covariance must be finite, covariance symmetric positive definite")
+            ConfigError::PriorWeight { hypothesis } => {
+                write!(f, "prior hypothesis {hypothesis}: weight must be finite and >= 0, and not all zero")
             }
-            ConfigError::PriorDuplicateLabel { hypothesis } => write!(f, "prior hypothesis {hypothesis}: a label appears twice"),
-            ConfigError::PriorTrackStoreFull => f.write_str("prior needs more distinct tracks than the store capacity K"),
+            ConfigError::PriorTooManyObjects { hypothesis } => {
+                write!(f, "prior hypothesis {hypothesis}: more objects than the capacity N")
+            }
+            ConfigError::PriorObject { hypothesis, object } => {
+                write!(
+                    f,
+                    "prior hypothesis {hypothesis}, object {object}: mean and covariance must be finite, covariance symmetric positive definite"
+                )
+            }
+            ConfigError::PriorDuplicateLabel { hypothesis } => {
+                write!(f, "prior hypothesis {hypothesis}: a label appears twice")
+            }
+            ConfigError::PriorTrackStoreFull => {
+                f.write_str("prior needs more distinct tracks than the store capacity K")
+            }
             ConfigError::PriorTime => f.write_str("prior time must be finite"),
-            ConfigError::BirthInnovation { cell } => write!(f, "birth cell {cell}: innovation covariance is not positive definite"),
+            ConfigError::BirthInnovation { cell } => {
+                write!(f, "birth cell {cell}: innovation covariance is not positive definite")
+            }
         }
     }
 }
@@ -148,9 +166,13 @@ pub enum StepError {
 impl core::fmt::Display for StepError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            StepError::TooManyMeasurements { received, capacity } => write!(f, "{received} measurements exceed the capacity of {capacity}"),
+            StepError::TooManyMeasurements { received, capacity } => {
+                write!(f, "{received} measurements exceed the capacity of {capacity}")
+            }
             StepError::NonFiniteMeasurement { index } => write!(f, "measurement {index} is not finite"),
-            StepError::MeasurementOutsideFieldOfView { index } => write!(f, "measurement {index} is outside the field of view"),
+            StepError::MeasurementOutsideFieldOfView { index } => {
+                write!(f, "measurement {index} is outside the field of view")
+            }
             StepError::NonFiniteTime => f.write_str("scan time is not finite"),
             StepError::TimeNotAfterLastScan => f.write_str("scan time is not after the previous scan"),
             StepError::Numerical { label, error } => write!(f, "track {label}: {error}"),

@@ -36,6 +36,8 @@
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+// `!(x > 0)` is deliberate throughout: unlike `x <= 0` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod association;
 pub mod children;

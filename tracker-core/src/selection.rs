@@ -82,7 +82,15 @@ impl<T: Real, const H: usize, const Z: usize> Default for TopChildren<T, H, Z> {
 impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// An empty selection.
     pub fn new() -> Self {
-        Self { items: [Candidate::default(); H], heap: [0; H], len: 0, offered: 0, total: LogSumExp::new(), parent: 0, event: Event::None }
+        Self {
+            items: [Candidate::default(); H],
+            heap: [0; H],
+            len: 0,
+            offered: 0,
+            total: LogSumExp::new(),
+            parent: 0,
+            event: Event::None,
+        }
     }
 
     /// Empties the selection for a new scan.
@@ -176,7 +184,13 @@ impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H,
             return;
         }
         self.total.add(log_weight);
-        let mut candidate = Candidate { log_weight, sequence: self.offered, parent: self.parent, event: self.event, assignment: [0; Z] };
+        let mut candidate = Candidate {
+            log_weight,
+            sequence: self.offered,
+            parent: self.parent,
+            event: self.event,
+            assignment: [0; Z],
+        };
         self.offered += 1;
         if self.len == H {
             let worst = self.heap[0] as usize;
@@ -208,7 +222,10 @@ mod tests {
         }
         let mut order = [0u16; 3];
         let n = top.best_first(&mut order);
-        let kept: std::vec::Vec<_> = order[..n].iter().map(|&i| (top.kept()[i as usize].log_weight, top.kept()[i as usize].assignment[0])).collect();
+        let kept: std::vec::Vec<_> = order[..n]
+            .iter()
+            .map(|&i| (top.kept()[i as usize].log_weight, top.kept()[i as usize].assignment[0]))
+            .collect();
         assert_eq!(kept, vec![(5.0, 1), (5.0, 3), (4.0, 5)]);
         let direct = [1.0f64, 5.0, 3.0, 5.0, 0.0, 4.0, 3.0].iter().map(|w| w.exp()).sum::<f64>().ln();
         assert!((top.log_total() - direct).abs() < 1e-14);

@@ -56,7 +56,9 @@ impl<T: Real> Region<T> {
     pub fn contains<const D: usize>(&self, z: &SVector<T, D>) -> bool {
         match *self {
             Region::Everywhere { .. } => true,
-            Region::Rectangle { min, max } => D >= 2 && z[0] >= min[0] && z[0] <= max[0] && z[1] >= min[1] && z[1] <= max[1],
+            Region::Rectangle { min, max } => {
+                D >= 2 && z[0] >= min[0] && z[0] <= max[0] && z[1] >= min[1] && z[1] <= max[1]
+            }
             Region::Sector { origin, look_direction, half_angle, max_range } => {
                 if D < 2 {
                     return false;
@@ -162,7 +164,12 @@ mod tests {
 
     #[test]
     fn sector_contains_points_inside_only() {
-        let fov = Region::Sector { origin: [0.0, 0.0], look_direction: 15f64.to_radians(), half_angle: 15f64.to_radians(), max_range: 10.0 };
+        let fov = Region::Sector {
+            origin: [0.0, 0.0],
+            look_direction: 15f64.to_radians(),
+            half_angle: 15f64.to_radians(),
+            max_range: 10.0,
+        };
         let at = |deg: f64, r: f64| SVector::from([r * deg.to_radians().cos(), r * deg.to_radians().sin()]);
         assert!(fov.contains(&at(15.0, 5.0)));
         assert!(fov.contains(&at(1.0, 9.9)));

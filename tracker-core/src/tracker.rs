@@ -67,7 +67,16 @@ struct Predicted<T: Real, const S: usize, const D: usize> {
 
 /// Scratch space of one scan. Its contents never outlive a `step` call.
 #[derive(Debug, Clone)]
-struct Workspace<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+struct Workspace<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> {
     predicted: [Predicted<T, S, D>; K],
     /// δ of digest §4.4 for every (track slot, measurement).
     entries: [[T; Z]; K],
@@ -89,8 +98,16 @@ struct Workspace<T: Real, const S: usize, const D: usize, const H: usize, const 
     hashes: [u64; H],
 }
 
-impl<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Default
-    for Workspace<T, S, D, H, N, Z, K, B>
+impl<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Default for Workspace<T, S, D, H, N, Z, K, B>
 {
     fn default() -> Self {
         Self {
@@ -237,8 +254,18 @@ fn slots_hash(slots: &[u16]) -> u64 {
     hash
 }
 
-impl<T, M, G, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
-    Tracker<T, M, G, S, D, H, N, Z, K, B>
+impl<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Tracker<T, M, G, S, D, H, N, Z, K, B>
 where
     T: Real,
     M: MotionModel<T, S>,
@@ -248,7 +275,14 @@ where
         assert!(S > 0 && D > 0, "state and measurement dimensions must be > 0");
         assert!(H > 0 && N > 0 && Z > 0, "capacities H, N and Z must be > 0");
         assert!(K >= N, "the track store must hold at least N tracks so that the best child always fits");
-        assert!(H < u16::MAX as usize && N < u16::MAX as usize && Z < u16::MAX as usize && K < u16::MAX as usize && B < u16::MAX as usize, "capacities must fit in u16");
+        assert!(
+            H < u16::MAX as usize
+                && N < u16::MAX as usize
+                && Z < u16::MAX as usize
+                && K < u16::MAX as usize
+                && B < u16::MAX as usize,
+            "capacities must fit in u16"
+        );
     };
 
     /// Builds a tracker from a configuration, a prior (one or more weighted hypotheses) and the prior's
@@ -256,7 +290,11 @@ where
     ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry.
-    pub fn new(config: Config<T, M, G, S, B>, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<Self, ConfigError> {
+    pub fn new(
+        config: Config<T, M, G, S, B>,
+        prior: &[PriorHypothesis<'_, T, S>],
+        time: f64,
+    ) -> Result<Self, ConfigError> {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_CHECK;
         let (birth_innovations, birth_in_field_of_view) = Self::validate(&config)?;
@@ -284,10 +322,16 @@ where
     ///
     /// # Errors
     /// As [`Tracker::new`].
-    pub fn with_objects(config: Config<T, M, G, S, B>, objects: &[Gaussian<T, S>], time: f64) -> Result<Self, ConfigError> {
+    pub fn with_objects(
+        config: Config<T, M, G, S, B>,
+        objects: &[Gaussian<T, S>],
+        time: f64,
+    ) -> Result<Self, ConfigError> {
         let mut prior: heapless::Vec<PriorObject<T, S>, N> = heapless::Vec::new();
         for (index, state) in objects.iter().enumerate() {
-            prior.push(PriorObject { label: TrackLabel(index as u32), state: *state }).map_err(|_| ConfigError::PriorTooManyObjects { hypothesis: 0 })?;
+            prior
+                .push(PriorObject { label: TrackLabel(index as u32), state: *state })
+                .map_err(|_| ConfigError::PriorTooManyObjects { hypothesis: 0 })?;
         }
         Self::new(config, &[PriorHypothesis { weight: T::one(), objects: &prior }], time)
     }
@@ -330,7 +374,8 @@ where
             if !(birth.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&birth.covariance)) {
                 return Err(ConfigError::BirthCell { cell });
             }
-            innovations[cell] = ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
+            innovations[cell] =
+                ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
             in_view[cell] = config.sensor.field_of_view.contains(&innovations[cell].predicted);
         }
         Ok((innovations, in_view))
@@ -373,7 +418,9 @@ where
                 let existing = store.as_slice().iter().position(|t| t.label == object.label && t.state == *state);
                 slots[position] = match existing {
                     Some(slot) => slot as u16,
-                    None => store.push(Track { label: object.label, state: *state, existence: T::zero() }).map_err(|_| ConfigError::PriorTrackStoreFull)?,
+                    None => store
+                        .push(Track { label: object.label, state: *state, existence: T::zero() })
+                        .map_err(|_| ConfigError::PriorTrackStoreFull)?,
                 };
             }
             if hypothesis.weight == T::zero() {
@@ -466,14 +513,18 @@ where
             let innovation = ekf::innovation(&self.config.measurement, &state).map_err(numerical)?;
             let in_field_of_view = self.config.sensor.field_of_view.contains(&innovation.predicted);
             for (row, z) in measurements.iter().enumerate() {
-                self.work.entries[slot][row] = if in_field_of_view { self.entry(&innovation, z) } else { T::NEG_INFINITY };
+                self.work.entries[slot][row] =
+                    if in_field_of_view { self.entry(&innovation, z) } else { T::NEG_INFINITY };
             }
             self.work.predicted[slot] = Predicted { state, innovation, in_field_of_view };
         }
         for cell in 0..self.config.birth.cells.len() {
             for (row, z) in measurements.iter().enumerate() {
-                self.work.birth_entries[cell][row] =
-                    if self.birth_in_field_of_view[cell] { self.entry(&self.birth_innovations[cell], z) } else { T::NEG_INFINITY };
+                self.work.birth_entries[cell][row] = if self.birth_in_field_of_view[cell] {
+                    self.entry(&self.birth_innovations[cell], z)
+                } else {
+                    T::NEG_INFINITY
+                };
             }
         }
         Ok(())
@@ -620,7 +671,10 @@ where
             }
 
             // Room for its new tracks?
-            let new_tracks = work.child_sources[..count].iter().filter(|&&(source, row)| lookup(work, source, row).is_none()).count();
+            let new_tracks = work.child_sources[..count]
+                .iter()
+                .filter(|&&(source, row)| lookup(work, source, row).is_none())
+                .count();
             if next_store.len() + new_tracks > K {
                 match config.store_overflow {
                     StoreOverflow::PruneChildren => {
@@ -675,7 +729,11 @@ where
 
             // Merge with an identical child kept earlier, else keep it.
             let hash = slots_hash(slots);
-            let existing = next_set.as_slice().iter().zip(work.hashes.iter()).position(|(h, &other)| other == hash && h.slots() == &*slots);
+            let existing = next_set
+                .as_slice()
+                .iter()
+                .zip(work.hashes.iter())
+                .position(|(h, &other)| other == hash && h.slots() == &*slots);
             match existing {
                 Some(index) => {
                     let hypothesis = &mut next_set.as_mut_slice()[index];
@@ -763,7 +821,16 @@ struct Materialised<T> {
 }
 
 /// Finds the new slot made from `source` with measurement `row` (or missed), if any.
-fn lookup<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn lookup<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
     work: &Workspace<T, S, D, H, N, Z, K, B>,
     source: Source,
     row: u16,
@@ -783,7 +850,10 @@ fn lookup<T: Real, const S: usize, const D: usize, const H: usize, const N: usiz
 }
 
 /// Orders hypotheses best first (stable, so ties keep their order) and sets every track's existence.
-fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(set: &mut HypothesisSet<T, N, H>, store: &mut TrackStore<T, S, K>) {
+fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(
+    set: &mut HypothesisSet<T, N, H>,
+    store: &mut TrackStore<T, S, K>,
+) {
     let items = set.as_mut_slice();
     // Insertion sort: merging only raises weights of earlier entries, so few moves are needed.
     for i in 1..items.len() {

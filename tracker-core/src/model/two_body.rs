@@ -17,7 +17,7 @@ use nalgebra::{SMatrix, SVector};
 /// ```
 /// use tracker_core::model::{MotionModel, TwoBody};
 /// use nalgebra::SVector;
-/// let mu = 398_600.4418_f64; // km³/s²
+/// let mu = 398_600.441_8_f64; // km³/s²
 /// let r = 7000.0;
 /// let v = (mu / r).sqrt();
 /// let period = 2.0 * core::f64::consts::PI * (r * r * r / mu).sqrt();
@@ -39,7 +39,11 @@ pub struct TwoBody<T> {
 
 impl<T: Real> TwoBody<T> {
     /// Time derivative of the state and of Φ: (ẋ, Φ̇) = (f(x), A(x) Φ).
-    fn derivative(&self, state: &SVector<T, 4>, phi: &SMatrix<T, 4, 4>) -> Result<(SVector<T, 4>, SMatrix<T, 4, 4>), ModelError> {
+    fn derivative(
+        &self,
+        state: &SVector<T, 4>,
+        phi: &SMatrix<T, 4, 4>,
+    ) -> Result<(SVector<T, 4>, SMatrix<T, 4, 4>), ModelError> {
         let (x, y) = (state[0], state[1]);
         let r2 = x * x + y * y;
         if !(r2 > T::zero()) || !r2.is_finite_value() {
@@ -127,10 +131,13 @@ mod tests {
     use super::*;
 
     fn leo() -> (TwoBody<f64>, SVector<f64, 4>) {
-        let mu = 398_600.4418;
+        let mu = 398_600.441_8;
         let r: f64 = 7000.0;
         let v = (mu / r).sqrt();
-        (TwoBody { mu, acceleration_noise: 1e-9, max_step: 10.0, max_substeps: 1000 }, SVector::from([r, 0.0, 0.0, v * 1.05]))
+        (
+            TwoBody { mu, acceleration_noise: 1e-9, max_step: 10.0, max_substeps: 1000 },
+            SVector::from([r, 0.0, 0.0, v * 1.05]),
+        )
     }
 
     #[test]
@@ -144,11 +151,15 @@ mod tests {
             plus[j] += eps;
             let mut minus = x0;
             minus[j] -= eps;
-            let column = (model.propagate(&plus, dt).unwrap().state - model.propagate(&minus, dt).unwrap().state) / (2.0 * eps);
+            let column =
+                (model.propagate(&plus, dt).unwrap().state - model.propagate(&minus, dt).unwrap().state) / (2.0 * eps);
             for i in 0..4 {
                 let expected = column[i];
                 let got = base.transition[(i, j)];
-                assert!((got - expected).abs() <= 1e-6 * (1.0 + expected.abs()), "Φ[{i},{j}] = {got}, finite difference {expected}");
+                assert!(
+                    (got - expected).abs() <= 1e-6 * (1.0 + expected.abs()),
+                    "Φ[{i},{j}] = {got}, finite difference {expected}"
+                );
             }
         }
     }
@@ -156,7 +167,8 @@ mod tests {
     #[test]
     fn energy_is_conserved_over_an_hour() {
         let (model, x0) = leo();
-        let energy = |x: &SVector<f64, 4>| 0.5 * (x[2] * x[2] + x[3] * x[3]) - model.mu / (x[0] * x[0] + x[1] * x[1]).sqrt();
+        let energy =
+            |x: &SVector<f64, 4>| 0.5 * (x[2] * x[2] + x[3] * x[3]) - model.mu / (x[0] * x[0] + x[1] * x[1]).sqrt();
         let x1 = model.propagate(&x0, 3600.0).unwrap().state;
         assert!((energy(&x1) - energy(&x0)).abs() < 1e-8 * energy(&x0).abs());
     }

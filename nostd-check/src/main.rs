@@ -1,0 +1,108 @@
+//! Links tracker-core into a `#![no_std]`, `#![no_main]` binary with no global allocator (any use of
+//! `alloc` would fail to link) and tracks two objects through a few scans. Exits 0 when the tracker finds
+//! both objects, 1 otherwise.
+#![no_std]
+#![no_main]
+
+use core::fmt::Write;
+use nalgebra::{SMatrix, SVector};
+use tracker_core::config::{ChildGeneration, StoreOverflow};
+use tracker_core::{
+    BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor,
+};
+
+#[link(name = "c")]
+unsafe extern "C" {
+    fn write(fd: i32, buf: *const u8, count: usize) -> isize;
+}
+
+/// A fixed buffer that implements `fmt::Write`, flushed to stdout.
+struct Out {
+    buf: [u8; 256],
+    len: usize,
+}
+
+impl Write for Out {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        let bytes = s.as_bytes();
+        let end = (self.len + bytes.len()).min(self.buf.len());
+        self.buf[self.len..end].copy_from_slice(&bytes[..end - self.len]);
+        self.len = end;
+        Ok(())
+    }
+}
+
+impl Out {
+    fn flush(&mut self) {
+        // SAFETY: the pointer and length describe initialised bytes of `self.buf`.
+        unsafe { write(1, self.buf.as_ptr(), self.len) };
+        self.len = 0;
+    }
+}
+
+/// The precompiled `core` for this host target was built with unwinding and references this symbol;
+/// with `panic = "abort"` it is never called.
+#[unsafe(no_mangle)]
+extern "C" fn rust_eh_personality() {}
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {}
+}
+
+type Tracker = LinearTracker<f64, 16, 4, 4, 32, 1>;
+
+fn run() -> Result<f64, tracker_core::StepError> {
+    let config = Config {
+        motion: ConstantVelocity { acceleration_noise: 0.01 },
+        measurement: PositionMeasurement::isotropic(0.3),
+        sensor: Sensor {
+            detection_probability: 0.9,
+            clutter_rate: 1.0,
+            field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+        },
+        birth: BirthModel::none(),
+        death_probability: 0.01,
+        gate: Some(16.0),
+        children: ChildGeneration::Exhaustive { max_children_per_scan: 100_000 },
+        store_overflow: StoreOverflow::PruneChildren,
+        seed: 1,
+    };
+    let objects = [
+        Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() },
+        Gaussian { mean: SVector::from([0.0, 5.0, 1.0, -0.5]), covariance: SMatrix::identity() },
+    ];
+    let mut tracker =
+        Tracker::with_objects(config, &objects, 0.0).map_err(|_| tracker_core::StepError::NoViableChild)?;
+    for k in 1..=6 {
+        let t = k as f64;
+        let zs =
+            [SVector::from([t + 0.1, 0.05]), SVector::from([t - 0.05, 5.0 - 0.5 * t]), SVector::from([-20.0, 30.0])];
+        tracker.step(t, &zs)?;
+    }
+    Ok(tracker.expected_cardinality())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
+    let mut out = Out { buf: [0; 256], len: 0 };
+    let size = core::mem::size_of::<Tracker>();
+    match run() {
+        Ok(cardinality) if (cardinality - 2.0).abs() < 0.1 => {
+            let _ =
+                writeln!(out, "nostd-check: ok, expected cardinality {cardinality:.4}, size_of tracker {size} bytes");
+            out.flush();
+            0
+        }
+        Ok(cardinality) => {
+            let _ = writeln!(out, "nostd-check: FAILED, expected cardinality {cardinality:.4}");
+            out.flush();
+            1
+        }
+        Err(_) => {
+            let _ = writeln!(out, "nostd-check: FAILED, step error");
+            out.flush();
+            1
+        }
+    }
+}

@@ -1,0 +1,17 @@
+//! Prints `core::mem::size_of` of the default configurations' trackers.
+//!
+//! `cargo run -p tracker-core --example sizes`
+use tracker_core::{SsaTracker, ssa_caps};
+
+fn main() {
+    println!(
+        "SsaTracker caps: H = {}, N = {}, Z = {}, K = {}, B = {}",
+        ssa_caps::HYPOTHESES,
+        ssa_caps::OBJECTS,
+        ssa_caps::MEASUREMENTS,
+        ssa_caps::TRACKS,
+        ssa_caps::BIRTH_CELLS
+    );
+    println!("size_of::<SsaTracker<f64>>() = {} bytes", core::mem::size_of::<SsaTracker<f64>>());
+    println!("size_of::<SsaTracker<f32>>() = {} bytes", core::mem::size_of::<SsaTracker<f32>>());
+}
