@@ -52,6 +52,7 @@ pub mod selection;
 pub mod sensor;
 pub mod store;
 pub mod tracker;
+pub mod weight;
 
 pub use config::{BirthDetection, BirthModel, ChildGeneration, Config, StoreOverflow};
 pub use ekf::{Gaussian, NumericalError};

@@ -8,25 +8,8 @@
 
 use crate::children::ChildSink;
 use crate::real::{LogSumExp, Real};
+pub use crate::weight::Event;
 use core::cmp::Ordering;
-
-/// The birth/death event of a child (digest §4.4, [003]'s first-order model).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Event {
-    /// No birth and no death: probability 1 − M_b α − M_d β.
-    #[default]
-    None,
-    /// One object born in birth cell `cell`: probability α.
-    Birth {
-        /// Index of the birth cell.
-        cell: u16,
-    },
-    /// The object at position `object` of the parent dies: probability β.
-    Death {
-        /// Position of the dying object in the parent hypothesis.
-        object: u16,
-    },
-}
 
 /// One kept child: where it comes from and how it associates the scan.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,7 +6,7 @@
 //! scan, uniform over the field of view, so its intensity is λ_C = clutter_rate / V with V the area of
 //! the field of view in measurement space.
 
-use crate::real::{Real, atan2, cos, ln, sin};
+use crate::real::{Real, atan2, cos, sin};
 use nalgebra::SVector;
 
 /// The region of measurement space the sensor sees.
@@ -124,17 +124,6 @@ pub struct Sensor<T> {
     pub field_of_view: Region<T>,
 }
 
-/// Logarithms of the sensor's factors in the weight of digest §4.4, computed once.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct SensorLogTerms<T> {
-    /// ln p_D.
-    pub detect: T,
-    /// ln(1 − p_D); `-inf` when p_D = 1 (every object in the field of view must then be detected).
-    pub miss: T,
-    /// ln λ_C, the log clutter intensity per unit measurement volume.
-    pub clutter: T,
-}
-
 impl<T: Real> Sensor<T> {
     pub(crate) fn validate(&self, measurement_dimension: usize) -> Result<(), &'static str> {
         let pd = self.detection_probability;
@@ -150,11 +139,6 @@ impl<T: Real> Sensor<T> {
     /// Clutter intensity λ_C = Λ_C / V per unit measurement volume.
     pub fn clutter_intensity(&self) -> T {
         self.clutter_rate / self.field_of_view.volume()
-    }
-
-    pub(crate) fn log_terms(&self) -> SensorLogTerms<T> {
-        let pd = self.detection_probability;
-        SensorLogTerms { detect: ln(pd), miss: ln(T::one() - pd), clutter: ln(self.clutter_intensity()) }
     }
 }
 

@@ -24,16 +24,16 @@
 
 use crate::association::{AssociationMatrix, CLUTTER};
 use crate::children::{ChildGenerator, ExhaustiveChildren, GenerateError};
-use crate::config::{BirthDetection, ChildGeneration, Config, StoreOverflow};
+use crate::config::{ChildGeneration, Config, StoreOverflow};
 use crate::ekf::{self, Gaussian, Innovation};
 use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{LogSumExp, Real, exp, ln, log_add};
 use crate::report::StepReport;
-use crate::selection::{Event, TopChildren};
-use crate::sensor::SensorLogTerms;
+use crate::selection::TopChildren;
 use crate::store::{Track, TrackLabel, TrackStore};
+use crate::weight::{Event, WeightModel};
 use nalgebra::SVector;
 
 /// "No slot" / "missed" marker in the materialisation tables.
@@ -185,7 +185,7 @@ pub struct Tracker<
     const B: usize,
 > {
     config: Config<T, M, G, S, B>,
-    log_terms: SensorLogTerms<T>,
+    weights: WeightModel<T>,
     birth_innovations: [Innovation<T, D>; B],
     birth_in_field_of_view: [bool; B],
     stores: [TrackStore<T, S, K>; 2],
@@ -302,7 +302,7 @@ where
             return Err(ConfigError::PriorTime);
         }
         let mut tracker = Self {
-            log_terms: config.sensor.log_terms(),
+            weights: WeightModel::from_config(&config),
             config,
             birth_innovations,
             birth_in_field_of_view,
@@ -489,21 +489,6 @@ where
         Ok(())
     }
 
-    /// The entry δ = ln(p_D ĝ / ((1 − p_D) λ_C)) of digest §4.4 (without the (1 − p_D) when p_D = 1),
-    /// `-inf` outside the gate.
-    fn entry(&self, innovation: &Innovation<T, D>, z: &SVector<T, D>) -> T {
-        let (distance_squared, log_likelihood) = innovation.score(z);
-        if self.config.gate.is_some_and(|gate| distance_squared > gate) {
-            return T::NEG_INFINITY;
-        }
-        self.log_terms.detect + log_likelihood - self.log_terms.clutter - self.finite_miss()
-    }
-
-    /// ln(1 − p_D) when finite, else 0 (p_D = 1 makes detectable columns required instead).
-    fn finite_miss(&self) -> T {
-        if self.log_terms.miss.is_finite_value() { self.log_terms.miss } else { T::zero() }
-    }
-
     /// Step 1: predict every track once and score it against every measurement once.
     fn predict_and_score(&mut self, dt: T, measurements: &[SVector<T, D>]) -> Result<(), StepError> {
         let store = &self.stores[self.active];
@@ -514,14 +499,14 @@ where
             let in_field_of_view = self.config.sensor.field_of_view.contains(&innovation.predicted);
             for (row, z) in measurements.iter().enumerate() {
                 self.work.entries[slot][row] =
-                    if in_field_of_view { self.entry(&innovation, z) } else { T::NEG_INFINITY };
+                    if in_field_of_view { self.weights.entry(&innovation, z) } else { T::NEG_INFINITY };
             }
             self.work.predicted[slot] = Predicted { state, innovation, in_field_of_view };
         }
         for cell in 0..self.config.birth.cells.len() {
             for (row, z) in measurements.iter().enumerate() {
                 self.work.birth_entries[cell][row] = if self.birth_in_field_of_view[cell] {
-                    self.entry(&self.birth_innovations[cell], z)
+                    self.weights.entry(&self.birth_innovations[cell], z)
                 } else {
                     T::NEG_INFINITY
                 };
@@ -539,14 +524,8 @@ where
         let budget_error = |error: GenerateError| match error {
             GenerateError::BudgetExceeded { budget } => StepError::ChildBudgetExceeded { budget },
         };
-        let alpha = self.config.birth.probability;
-        let beta = self.config.death_probability;
-        let (ln_alpha, ln_beta) = (ln(alpha), ln(beta));
-        let birth_cells = self.config.birth.cells.len();
-        let miss = self.finite_miss();
-        let columns_required = !self.log_terms.miss.is_finite_value();
-        let birth_required = columns_required || self.config.birth.detection == BirthDetection::AllDetected;
-        let scan_constant = T::of_f64(rows as f64) * self.log_terms.clutter;
+        let weights = self.weights;
+        let birth_cells = if weights.births_possible() { self.config.birth.cells.len() } else { 0 };
         let mut births_skipped = 0u64;
 
         let work = &mut self.work;
@@ -558,46 +537,41 @@ where
             for &slot in parent.slots() {
                 if work.predicted[slot as usize].in_field_of_view {
                     // A parent holds at most N objects, so the matrix has room.
-                    let _ = work.matrix.push_column(&work.entries[slot as usize][..rows], columns_required);
+                    let _ = work.matrix.push_column(&work.entries[slot as usize][..rows], weights.detection_required());
                 }
             }
             let in_view = work.matrix.columns();
-            let common = parent.log_weight + scan_constant;
-            let count = |n: usize| T::of_f64(n as f64);
             let parent_index = parent_index as u16;
+            let mut generate = |work: &mut Workspace<T, S, D, H, N, Z, K, B>, event: Event, child_in_view: usize| {
+                let log_probability = weights.event_log_probability(event, in_view);
+                work.matrix.set_baseline(weights.baseline(parent.log_weight, log_probability, child_in_view, rows));
+                work.top.set_context(parent_index, event);
+                generator.generate(&work.matrix, &mut work.top).map_err(budget_error)
+            };
 
-            // No event: P = 1 − M_b α − M_d β with M_d = objects in the field of view.
-            let no_event = T::one() - count(birth_cells) * alpha - count(in_view) * beta;
-            work.matrix.set_baseline(common + ln(no_event) + count(in_view) * miss);
-            work.top.set_context(parent_index, Event::None);
-            generator.generate(&work.matrix, &mut work.top).map_err(budget_error)?;
+            generate(work, Event::None, in_view)?;
 
-            // One birth in a cell: P = α.
-            if alpha > T::zero() {
-                if parent.len() >= N {
-                    births_skipped += birth_cells as u64;
-                } else {
-                    for cell in 0..birth_cells {
-                        let detectable = self.birth_in_field_of_view[cell];
-                        if detectable {
-                            let _ = work.matrix.push_column(&work.birth_entries[cell][..rows], birth_required);
-                        } else if birth_required {
-                            continue; // a birth that must be detected where it cannot be
-                        }
-                        let in_view_child = in_view + usize::from(detectable);
-                        work.matrix.set_baseline(common + ln_alpha + count(in_view_child) * miss);
-                        work.top.set_context(parent_index, Event::Birth { cell: cell as u16 });
-                        let result = generator.generate(&work.matrix, &mut work.top);
-                        if detectable {
-                            work.matrix.pop_column();
-                        }
-                        result.map_err(budget_error)?;
+            // One birth in a cell (α each), if the child can hold one more object.
+            if parent.len() >= N {
+                births_skipped += birth_cells as u64;
+            } else {
+                for cell in 0..birth_cells {
+                    let detectable = self.birth_in_field_of_view[cell];
+                    if detectable {
+                        let _ = work.matrix.push_column(&work.birth_entries[cell][..rows], weights.birth_required());
+                    } else if weights.birth_required() {
+                        continue; // a birth that must be detected where it cannot be
                     }
+                    let result = generate(work, Event::Birth { cell: cell as u16 }, in_view + usize::from(detectable));
+                    if detectable {
+                        work.matrix.pop_column();
+                    }
+                    result?;
                 }
             }
 
-            // One death among the objects in the field of view: P = β each.
-            if beta > T::zero() {
+            // One death among the objects in the field of view (β each).
+            if weights.deaths_possible() {
                 let mut column = 0usize;
                 for (position, &slot) in parent.slots().iter().enumerate() {
                     if !work.predicted[slot as usize].in_field_of_view {
@@ -606,11 +580,9 @@ where
                     work.matrix.column(column, &mut work.saved_column);
                     let required = work.matrix.is_required(column);
                     work.matrix.set_column(column, &[T::NEG_INFINITY; Z][..rows], false);
-                    work.matrix.set_baseline(common + ln_beta + count(in_view - 1) * miss);
-                    work.top.set_context(parent_index, Event::Death { object: position as u16 });
-                    let result = generator.generate(&work.matrix, &mut work.top);
+                    let result = generate(work, Event::Death { object: position as u16 }, in_view - 1);
                     work.matrix.set_column(column, &work.saved_column[..rows], required);
-                    result.map_err(budget_error)?;
+                    result?;
                     column += 1;
                 }
             }
