@@ -96,6 +96,10 @@ struct Workspace<
     child_sources: [(Source, u16); N],
     child_slots: [u16; N],
     hashes: [u64; H],
+    /// The label of the object born from each measurement this scan, whatever its birth cell.
+    birth_label_of_row: [Option<TrackLabel>; Z],
+    /// The label of the undetected object born in each cell this scan.
+    birth_label_of_cell: [Option<TrackLabel>; B],
 }
 
 impl<
@@ -126,6 +130,8 @@ impl<
             child_sources: [(Source::Track(0), NONE); N],
             child_slots: [0; N],
             hashes: [0; H],
+            birth_label_of_row: [None; Z],
+            birth_label_of_cell: [None; B],
         }
     }
 }
@@ -604,6 +610,8 @@ where
         next_set.clear();
         work.source_head[..store.len()].fill(NONE);
         work.birth_head.fill(NONE);
+        work.birth_label_of_row.fill(None);
+        work.birth_label_of_cell.fill(None);
 
         let mut next_label = self.next_label;
         let mut dropped_for_store = 0usize;
@@ -668,8 +676,21 @@ where
                                 (store.as_slice()[old as usize].label, predicted.state, predicted.innovation)
                             }
                             Source::Birth(cell) => {
-                                let label = TrackLabel(next_label);
-                                next_label = next_label.checked_add(1).ok_or(StepError::LabelsExhausted)?;
+                                // One new object per measurement (or per cell when undetected): the same
+                                // birth explained by different cells' pdfs is one object with one label.
+                                let known = match work.birth_label_of_row.get_mut(row as usize) {
+                                    Some(by_row) => by_row,
+                                    None => &mut work.birth_label_of_cell[cell as usize],
+                                };
+                                let label = match *known {
+                                    Some(label) => label,
+                                    None => {
+                                        let label = TrackLabel(next_label);
+                                        next_label = next_label.checked_add(1).ok_or(StepError::LabelsExhausted)?;
+                                        *known = Some(label);
+                                        label
+                                    }
+                                };
                                 (label, config.birth.cells[cell as usize], self.birth_innovations[cell as usize])
                             }
                         };

@@ -142,7 +142,13 @@ impl<T: Real> WeightModel<T> {
     /// The association matrix's baseline: ln w_i + ln P(e) + N'_F ln(1 − p_D) + m ln λ_C, the log-weight
     /// of the child that misses all `child_in_view` objects in the field of view and calls all
     /// `measurements` clutter.
-    pub fn baseline(&self, parent_log_weight: T, event_log_probability: T, child_in_view: usize, measurements: usize) -> T {
+    pub fn baseline(
+        &self,
+        parent_log_weight: T,
+        event_log_probability: T,
+        child_in_view: usize,
+        measurements: usize,
+    ) -> T {
         parent_log_weight
             + event_log_probability
             + T::of_f64(child_in_view as f64) * self.finite_miss()

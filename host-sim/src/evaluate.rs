@@ -1,0 +1,518 @@
+//! Running a tracker over a scenario, scoring it against the truth, and writing the outputs of
+//! `host-sim run` and `host-sim compare`.
+//!
+//! Scoring uses the MAP hypothesis's estimates: GOSPA (α = 2, cut-off and order from the scenario's
+//! `evaluation`), OSPA, the error of the expected cardinality, and label switches along GOSPA's
+//! assignment. An estimate is *within the error bound* when GOSPA with cut-off `error_bound` assigns it to
+//! a true object. A born object is *confirmed* once a track within the error bound of it belongs to a
+//! label whose existence probability reaches `confirmation_existence`.
+
+use crate::metrics::{LabelSwitches, gospa, ospa};
+use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
+use crate::runner::{Profile, Runner, TrackerKind, build};
+use crate::scenario::{FieldOfViewSpec, Scenario, ScenarioError};
+use crate::setup;
+use crate::snapshot::Snapshot;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Serialize;
+use serde_json::json;
+use std::collections::HashMap;
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::time::Instant;
+
+/// Options shared by `run` and `compare`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Capacity profile of the core tracker.
+    pub profile: Profile,
+    /// Memory budget of the reference tracker, in bytes.
+    pub reference_budget_bytes: usize,
+    /// Hypotheses written per scan to `scans.jsonl`.
+    pub max_hypotheses_out: usize,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// The fractions of the run at which snapshots are plotted (paper 003 Figs. 6, 8-10).
+pub const SNAPSHOT_FRACTIONS: [f64; 4] = [0.10, 0.50, 0.75, 1.00];
+
+/// The scan index at a fraction of a run of `scans` scans.
+pub fn scan_at(fraction: f64, scans: usize) -> usize {
+    ((fraction * scans as f64).ceil() as usize).clamp(1, scans.max(1)) - 1
+}
+
+/// True objects at scan `k`: (id, position).
+pub fn truth_positions(scenario: &Scenario, k: usize) -> Option<Vec<(u64, [f64; 2])>> {
+    scenario.truth.as_ref().map(|t| t.scans[k].objects.iter().map(|o| (o.id, [o.state[0], o.state[1]])).collect())
+}
+
+/// Per-scan record of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScanRecord {
+    /// Scan index (0-based).
+    pub scan: usize,
+    /// Scan time (s).
+    pub time: f64,
+    /// Wall-clock time of the tracker's step (ms).
+    pub ms: f64,
+    /// Children generated.
+    pub children: u64,
+    /// Hypotheses kept.
+    pub hypotheses: usize,
+    /// Fraction of the children's weight kept.
+    pub captured_mass: f64,
+    /// Expected number of objects.
+    pub expected_cardinality: f64,
+    /// Objects in the MAP hypothesis.
+    pub map_cardinality: usize,
+    /// True number of objects.
+    pub true_cardinality: Option<usize>,
+    /// GOSPA of the MAP estimates.
+    pub gospa: Option<f64>,
+    /// OSPA of the MAP estimates.
+    pub ospa: Option<f64>,
+    /// The tracker's error when it rejected the scan.
+    pub error: Option<String>,
+}
+
+/// The scored estimates of one scan.
+struct Scored {
+    gospa: f64,
+    ospa: f64,
+    /// (truth id, label) pairs within the GOSPA cut-off.
+    pairs: Vec<(u64, u32)>,
+    /// Per MAP track: within the error bound.
+    within_bound: Vec<bool>,
+}
+
+fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Option<Scored> {
+    let truth = truth_positions(scenario, k)?;
+    let evaluation = &scenario.evaluation;
+    let points: Vec<[f64; 2]> = truth.iter().map(|t| t.1).collect();
+    let map = snapshot.map_tracks();
+    let estimates: Vec<[f64; 2]> = map.iter().map(|t| [t.mean[0], t.mean[1]]).collect();
+    let g = gospa(&points, &estimates, evaluation.gospa_cutoff, evaluation.gospa_order);
+    let pairs = g.assignment.iter().enumerate().filter_map(|(i, e)| e.map(|e| (truth[i].0, map[e].label))).collect();
+    let bound = gospa(&points, &estimates, evaluation.error_bound, 1.0);
+    let mut within_bound = vec![false; estimates.len()];
+    for e in bound.assignment.iter().flatten() {
+        within_bound[*e] = true;
+    }
+    Some(Scored {
+        gospa: g.distance,
+        ospa: ospa(&points, &estimates, evaluation.gospa_cutoff, evaluation.gospa_order),
+        pairs,
+        within_bound,
+    })
+}
+
+/// The births of a scenario and the first scan at which each is confirmed.
+fn birth_confirmations(
+    scenario: &Scenario,
+    k: usize,
+    snapshot: &Snapshot,
+    confirmed: &mut HashMap<u64, Option<usize>>,
+) {
+    let Some(truth) = &scenario.truth else { return };
+    let threshold = scenario.evaluation.confirmation_existence;
+    let existence: HashMap<u32, f64> = snapshot.label_existence().into_iter().collect();
+    for object in truth.objects.iter().filter(|o| !o.in_prior) {
+        let entry = confirmed.entry(object.id).or_insert(None);
+        if entry.is_some() {
+            continue;
+        }
+        let Some(state) = truth.scans[k].objects.iter().find(|o| o.id == object.id) else { continue };
+        let near = snapshot.tracks.iter().any(|t| {
+            existence.get(&t.label).copied().unwrap_or(0.0) >= threshold
+                && (t.mean[0] - state.state[0]).hypot(t.mean[1] - state.state[1]) <= scenario.evaluation.error_bound
+        });
+        if near {
+            *entry = Some(k);
+        }
+    }
+}
+
+fn progress(scans: usize, quiet: bool, message: &'static str) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(scans as u64), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} scans, {elapsed} (eta {eta})") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(message);
+    bar
+}
+
+fn io_error(path: &Path, e: impl std::fmt::Display) -> ScenarioError {
+    ScenarioError(format!("{}: {e}", path.display()))
+}
+
+fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), ScenarioError> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| io_error(path, e))?;
+    std::fs::write(path, text + "\n").map_err(|e| io_error(path, e))
+}
+
+/// One scan's line of `scans.jsonl`: at most `max` hypotheses and the tracks they hold.
+fn scan_line(k: usize, time: f64, snapshot: &Snapshot, max: usize) -> serde_json::Value {
+    let written = &snapshot.hypotheses[..snapshot.hypotheses.len().min(max)];
+    let mut index: HashMap<usize, usize> = HashMap::new();
+    let mut tracks = vec![];
+    let hypotheses: Vec<serde_json::Value> = written
+        .iter()
+        .map(|h| {
+            let ids: Vec<usize> = h
+                .tracks
+                .iter()
+                .map(|&t| {
+                    *index.entry(t).or_insert_with(|| {
+                        tracks.push(&snapshot.tracks[t]);
+                        tracks.len() - 1
+                    })
+                })
+                .collect();
+            json!({"weight": h.weight, "tracks": ids})
+        })
+        .collect();
+    let existence: Vec<serde_json::Value> =
+        snapshot.label_existence().iter().map(|(l, e)| json!({"label": l, "existence": e})).collect();
+    json!({
+        "scan": k,
+        "time": time,
+        "expected_cardinality": snapshot.expected_cardinality(),
+        "hypotheses_total": snapshot.hypotheses.len(),
+        "hypotheses": hypotheses,
+        "tracks": tracks,
+        "existence": existence,
+    })
+}
+
+fn fov_lines(scenario: &Scenario) -> Option<FovLines> {
+    match scenario.sensor.field_of_view {
+        FieldOfViewSpec::Sector { origin, look_direction_deg, field_of_view_deg, max_range } => Some(FovLines {
+            origin,
+            look_direction: look_direction_deg.to_radians(),
+            half_angle: field_of_view_deg.to_radians() / 2.0,
+            max_range,
+        }),
+        _ => None,
+    }
+}
+
+fn is_ssa(scenario: &Scenario) -> bool {
+    matches!(scenario.motion, crate::scenario::MotionSpec::TwoBody { .. })
+}
+
+/// `host-sim run`: runs `kind` on `scenario`, writes `summary.json`, `scans.jsonl`, `estimates.csv` and the
+/// plots into `out`, and returns the summary and whether every scan was accepted.
+///
+/// # Errors
+/// A one-line message when the tracker cannot be built or a file cannot be written.
+pub fn run(
+    scenario: &Scenario,
+    kind: TrackerKind,
+    options: &Options,
+    out: &Path,
+) -> Result<(serde_json::Value, bool), ScenarioError> {
+    std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
+    let mut runner = build(kind, options.profile, scenario, options.reference_budget_bytes)?;
+    let scans_path = out.join("scans.jsonl");
+    let mut scans_file =
+        std::io::BufWriter::new(std::fs::File::create(&scans_path).map_err(|e| io_error(&scans_path, e))?);
+    let csv_path = out.join("estimates.csv");
+    let mut csv = std::io::BufWriter::new(std::fs::File::create(&csv_path).map_err(|e| io_error(&csv_path, e))?);
+    writeln!(csv, "scan,time,label,x,y,vx,vy,existence,within_error_bound").map_err(|e| io_error(&csv_path, e))?;
+
+    let n = scenario.scans.len();
+    let snapshot_scans: Vec<usize> = SNAPSHOT_FRACTIONS.iter().map(|&f| scan_at(f, n)).collect();
+    let mut snapshots: Vec<(usize, Snapshot, Vec<bool>)> = vec![];
+    let mut records = vec![];
+    let mut switches = LabelSwitches::new();
+    let mut confirmed: HashMap<u64, Option<usize>> = HashMap::new();
+    let mut peak_hypotheses = 0;
+    let bar = progress(n, options.quiet, kind.name());
+    for (k, scan) in scenario.scans.iter().enumerate() {
+        let zs = setup::measurements(scan);
+        let start = Instant::now();
+        let outcome = runner.step(scan.time, &zs);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        bar.inc(1);
+        let snapshot = runner.snapshot();
+        let scored = score(scenario, k, &snapshot);
+        birth_confirmations(scenario, k, &snapshot, &mut confirmed);
+        if let Some(s) = &scored {
+            switches.record(&s.pairs);
+        }
+        let (info, error) = match outcome {
+            Ok(info) => (Some(info), None),
+            Err(e) => {
+                bar.suspend(|| eprintln!("warning: scan {k} (t = {}) rejected: {e}", scan.time));
+                (None, Some(e))
+            }
+        };
+        peak_hypotheses = peak_hypotheses.max(snapshot.hypotheses.len());
+        let map = snapshot.map_tracks();
+        let within: Vec<bool> = scored.as_ref().map(|s| s.within_bound.clone()).unwrap_or_default();
+        for (i, t) in map.iter().enumerate() {
+            let existence = snapshot.label_existence().iter().find(|e| e.0 == t.label).map_or(0.0, |e| e.1);
+            let bound = within.get(i).map_or(String::new(), |w| w.to_string());
+            writeln!(
+                csv,
+                "{k},{},{},{},{},{},{},{existence},{bound}",
+                scan.time, t.label, t.mean[0], t.mean[1], t.mean[2], t.mean[3]
+            )
+            .map_err(|e| io_error(&csv_path, e))?;
+        }
+        serde_json::to_writer(&mut scans_file, &scan_line(k, scan.time, &snapshot, options.max_hypotheses_out))
+            .map_err(|e| io_error(&scans_path, e))?;
+        writeln!(scans_file).map_err(|e| io_error(&scans_path, e))?;
+        records.push(ScanRecord {
+            scan: k,
+            time: scan.time,
+            ms,
+            children: info.map_or(0, |i| i.children),
+            hypotheses: snapshot.hypotheses.len(),
+            captured_mass: info.map_or(1.0, |i| i.captured_mass),
+            expected_cardinality: snapshot.expected_cardinality(),
+            map_cardinality: map.len(),
+            true_cardinality: truth_positions(scenario, k).map(|t| t.len()),
+            gospa: scored.as_ref().map(|s| s.gospa),
+            ospa: scored.as_ref().map(|s| s.ospa),
+            error,
+        });
+        if snapshot_scans.contains(&k) {
+            snapshots.push((k, snapshot, within));
+        }
+    }
+    bar.finish_and_clear();
+    scans_file.flush().map_err(|e| io_error(&scans_path, e))?;
+    csv.flush().map_err(|e| io_error(&csv_path, e))?;
+
+    let accepted: Vec<&ScanRecord> = records.iter().filter(|r| r.error.is_none()).collect();
+    let mean = |values: &[f64]| if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 };
+    let ms: Vec<f64> = accepted.iter().map(|r| r.ms).collect();
+    let gospas: Vec<f64> = records.iter().filter_map(|r| r.gospa).collect();
+    let ospas: Vec<f64> = records.iter().filter_map(|r| r.ospa).collect();
+    let births_total = confirmed.len();
+    let births_confirmed = confirmed.values().filter(|c| c.is_some()).count();
+    let rejected: Vec<serde_json::Value> =
+        records.iter().filter_map(|r| r.error.as_ref().map(|e| json!({"scan": r.scan, "error": e}))).collect();
+    let last = records.last();
+    let summary = json!({
+        "scenario": scenario.name,
+        "tracker": kind.name(),
+        "profile": if kind == TrackerKind::Reference { "unbounded" } else { options.profile.name() },
+        "scans": n,
+        "mean_gospa": mean(&gospas),
+        "mean_ospa": mean(&ospas),
+        "gospa_cutoff": scenario.evaluation.gospa_cutoff,
+        "gospa_order": scenario.evaluation.gospa_order,
+        "error_bound": scenario.evaluation.error_bound,
+        "final_expected_cardinality": last.map_or(0.0, |r| r.expected_cardinality),
+        "final_map_cardinality": last.map_or(0, |r| r.map_cardinality),
+        "true_final_cardinality": last.and_then(|r| r.true_cardinality),
+        "births_total": births_total,
+        "births_confirmed": births_confirmed,
+        "birth_confirmation_scans": confirmed.iter().map(|(id, k)| json!({"object": id, "scan": k})).collect::<Vec<_>>(),
+        "label_switches": switches.total(),
+        "mean_ms_per_scan": mean(&ms),
+        "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
+        "peak_hypotheses": peak_hypotheses,
+        "mean_captured_mass": mean(&accepted.iter().map(|r| r.captured_mass).collect::<Vec<_>>()),
+        "min_captured_mass": accepted.iter().map(|r| r.captured_mass).fold(1.0, f64::min),
+        "rejected_scans": rejected,
+        "reference_budget_reached_scans": records.iter().filter(|r| r.captured_mass < 1.0 && kind == TrackerKind::Reference).map(|r| r.scan).collect::<Vec<_>>(),
+    });
+    write_json(&out.join("summary.json"), &summary)?;
+    write_run_plots(scenario, &records, &snapshots, out)?;
+    Ok((summary, rejected.is_empty()))
+}
+
+fn write_run_plots(
+    scenario: &Scenario,
+    records: &[ScanRecord],
+    snapshots: &[(usize, Snapshot, Vec<bool>)],
+    out: &Path,
+) -> Result<(), ScenarioError> {
+    let n = records.len().max(1);
+    let unit = if is_ssa(scenario) { "km" } else { "" };
+    let panels: Vec<SnapshotPanel> = snapshots
+        .iter()
+        .map(|(k, snapshot, within)| {
+            let map = snapshot.map_tracks();
+            let (mut inside, mut outside) = (vec![], vec![]);
+            for (i, t) in map.iter().enumerate() {
+                // Without truth every estimate is drawn as within the bound.
+                if within.get(i).copied().unwrap_or(true) {
+                    inside.push([t.mean[0], t.mean[1]])
+                } else {
+                    outside.push([t.mean[0], t.mean[1]])
+                }
+            }
+            SnapshotPanel {
+                title: format!("{:.0}% (scan {}): truth vs MAP", 100.0 * (*k + 1) as f64 / n as f64, k),
+                truth: truth_positions(scenario, *k).unwrap_or_default().iter().map(|t| t.1).collect(),
+                estimates_within_bound: inside,
+                estimates_outside_bound: outside,
+                fov: fov_lines(scenario),
+                unit: unit.to_string(),
+                central_body_radius: is_ssa(scenario).then_some(crate::sim::EARTH_RADIUS),
+            }
+        })
+        .collect();
+    let plot_error = |e: String| ScenarioError(format!("plot: {e}"));
+    plots::plot_snapshots(&out.join("truth_vs_map"), &panels).map_err(plot_error)?;
+    let weights: Vec<(String, Vec<f64>)> = snapshots
+        .iter()
+        .map(|(k, s, _)| {
+            (
+                format!("{:.0}% (scan {k})", 100.0 * (*k + 1) as f64 / n as f64),
+                s.hypotheses.iter().map(|h| h.weight).collect(),
+            )
+        })
+        .collect();
+    plots::plot_hypothesis_weights(&out.join("hypothesis_weights"), &weights).map_err(plot_error)?;
+    let percent = |r: &ScanRecord| 100.0 * (r.scan + 1) as f64 / n as f64;
+    let mut series = vec![Series {
+        name: "expected number of objects".into(),
+        points: records.iter().map(|r| (percent(r), r.expected_cardinality)).collect(),
+        markers: false,
+    }];
+    if records.iter().any(|r| r.true_cardinality.is_some()) {
+        series.push(Series {
+            name: "true number of objects".into(),
+            points: records.iter().filter_map(|r| r.true_cardinality.map(|c| (percent(r), c as f64))).collect(),
+            markers: false,
+        });
+    }
+    plots::plot_series(
+        &out.join("expected_cardinality"),
+        "Expected number of objects",
+        "run completed (%)",
+        "objects",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+    .map_err(plot_error)?;
+    if records.iter().any(|r| r.gospa.is_some()) {
+        let gospa_series = [Series {
+            name: "GOSPA of the MAP estimates".into(),
+            points: records.iter().filter_map(|r| r.gospa.map(|g| (percent(r), g))).collect(),
+            markers: false,
+        }];
+        plots::plot_series(
+            &out.join("gospa"),
+            "GOSPA over the run",
+            "run completed (%)",
+            &format!("GOSPA ({unit})"),
+            Scale::Linear,
+            Scale::Linear,
+            &gospa_series,
+        )
+        .map_err(plot_error)?;
+    }
+    Ok(())
+}
+
+/// `host-sim compare`: runs the bounded tracker `bounded` and the unbounded reference on the same scans
+/// and writes `compare.json`.
+///
+/// Captured mass = the reference's posterior mass on the hypotheses the bounded tracker kept; weight L1 =
+/// Σ |w_bounded − w_reference| over the union of hypotheses; MAP agreement = the bounded tracker's MAP
+/// hypothesis has the reference's largest weight. Hypotheses are matched by the exact bits of their
+/// tracks' states ([`Snapshot::hypothesis_key`]).
+///
+/// # Errors
+/// A one-line message when a tracker cannot be built or the file cannot be written.
+pub fn compare(
+    scenario: &Scenario,
+    bounded: TrackerKind,
+    options: &Options,
+    out: &Path,
+) -> Result<serde_json::Value, ScenarioError> {
+    std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
+    let mut trackers: [Box<dyn Runner>; 2] = [
+        build(bounded, options.profile, scenario, options.reference_budget_bytes)?,
+        build(TrackerKind::Reference, options.profile, scenario, options.reference_budget_bytes)?,
+    ];
+    let bar = progress(scenario.scans.len(), options.quiet, "compare");
+    let mut per_scan = vec![];
+    let mut ms_totals = [vec![], vec![]];
+    let mut gospas = [vec![], vec![]];
+    let mut budget_scans = vec![];
+    for (k, scan) in scenario.scans.iter().enumerate() {
+        let zs = setup::measurements(scan);
+        let mut snapshots = vec![];
+        let mut errors = vec![];
+        for (i, tracker) in trackers.iter_mut().enumerate() {
+            let start = Instant::now();
+            let outcome = tracker.step(scan.time, &zs);
+            ms_totals[i].push(start.elapsed().as_secs_f64() * 1e3);
+            if let Ok(info) = &outcome
+                && info.budget_reached
+            {
+                budget_scans.push(k);
+            }
+            errors.push(outcome.err());
+            let snapshot = tracker.snapshot();
+            if let Some(s) = score(scenario, k, &snapshot) {
+                gospas[i].push(s.gospa);
+            }
+            snapshots.push(snapshot);
+        }
+        bar.inc(1);
+        let (b, r) = (&snapshots[0], &snapshots[1]);
+        let reference_weights: HashMap<Vec<u64>, f64> =
+            (0..r.hypotheses.len()).map(|i| (r.hypothesis_key(i), r.hypotheses[i].weight)).collect();
+        let bounded_weights: HashMap<Vec<u64>, f64> =
+            (0..b.hypotheses.len()).map(|i| (b.hypothesis_key(i), b.hypotheses[i].weight)).collect();
+        let captured: f64 = bounded_weights.keys().filter_map(|key| reference_weights.get(key)).sum();
+        let mut l1: f64 =
+            bounded_weights.iter().map(|(key, w)| (w - reference_weights.get(key).copied().unwrap_or(0.0)).abs()).sum();
+        l1 += reference_weights
+            .iter()
+            .filter(|(key, _)| !bounded_weights.contains_key(*key))
+            .map(|(_, w)| w)
+            .sum::<f64>();
+        let reference_max = r.hypotheses.first().map_or(0.0, |h| h.weight);
+        let map_weight_in_reference =
+            b.hypotheses.first().and_then(|_| reference_weights.get(&b.hypothesis_key(0))).copied().unwrap_or(0.0);
+        let agree = reference_max > 0.0 && (map_weight_in_reference - reference_max).abs() <= 1e-9 * reference_max;
+        per_scan.push(json!({
+            "scan": k,
+            "time": scan.time,
+            "captured_mass": captured,
+            "weight_l1": l1,
+            "map_agreement": agree,
+            "bounded_hypotheses": b.hypotheses.len(),
+            "reference_hypotheses": r.hypotheses.len(),
+            "bounded_ms": ms_totals[0][k],
+            "reference_ms": ms_totals[1][k],
+            "bounded_error": errors[0],
+            "reference_error": errors[1],
+        }));
+    }
+    bar.finish_and_clear();
+    let mean = |values: &[f64]| if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 };
+    let column = |key: &str| per_scan.iter().filter_map(|s| s[key].as_f64()).collect::<Vec<f64>>();
+    let captured = column("captured_mass");
+    let agreement =
+        per_scan.iter().filter(|s| s["map_agreement"] == json!(true)).count() as f64 / per_scan.len().max(1) as f64;
+    let result = json!({
+        "scenario": scenario.name,
+        "bounded_tracker": bounded.name(),
+        "profile": options.profile.name(),
+        "scans": scenario.scans.len(),
+        "mean_captured_mass": mean(&captured),
+        "min_captured_mass": captured.iter().copied().fold(1.0, f64::min),
+        "mean_weight_l1": mean(&column("weight_l1")),
+        "map_agreement": agreement,
+        "bounded": {"tracker": bounded.name(), "mean_gospa": mean(&gospas[0]), "mean_ms_per_scan": mean(&ms_totals[0]), "max_ms_per_scan": ms_totals[0].iter().copied().fold(0.0, f64::max)},
+        "reference": {"tracker": "reference", "mean_gospa": mean(&gospas[1]), "mean_ms_per_scan": mean(&ms_totals[1]), "max_ms_per_scan": ms_totals[1].iter().copied().fold(0.0, f64::max), "budget_reached_scans": budget_scans},
+        "per_scan": per_scan,
+    });
+    write_json(&out.join("compare.json"), &result)?;
+    Ok(result)
+}

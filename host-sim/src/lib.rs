@@ -1,0 +1,18 @@
+//! host-sim: the SSA scenario simulator, scenario files, the unbounded reference tracker, metrics, the
+//! `host-sim` command line and its plots.
+//!
+//! - [`sim`] simulates scenarios (presets of paper 003's experiments) into [`scenario`] files.
+//! - [`setup`] turns a scenario into tracker-core values; [`runner`] runs a core tracker or the
+//!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
+//! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
+
+pub mod evaluate;
+pub mod metrics;
+pub mod plots;
+pub mod reference;
+pub mod rng;
+pub mod runner;
+pub mod scenario;
+pub mod setup;
+pub mod sim;
+pub mod snapshot;

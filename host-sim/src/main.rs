@@ -1,0 +1,160 @@
+//! The `host-sim` command line.
+//!
+//! Exit codes: 0 success; 2 a malformed scenario file or invalid arguments (one-line message on stderr);
+//! 3 the run finished but the tracker rejected some scans (listed in `summary.json` and on stderr);
+//! 1 any other failure (for example an output file that cannot be written).
+
+use clap::{Parser, Subcommand};
+use host_sim::evaluate::{self, Options};
+use host_sim::runner::{Profile, TrackerKind};
+use host_sim::scenario::{Scenario, ScenarioError};
+use host_sim::sim;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "host-sim", version, about = "SSA scenario simulator and runner for the R-FISST tracker")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Clone, Copy)]
+struct Common {
+    /// Capacity profile of the core tracker.
+    #[arg(long, value_enum, default_value_t = Profile::Embedded)]
+    profile: Profile,
+    /// Memory budget of the unbounded reference tracker, in MiB; beyond it the reference drops its
+    /// lowest-weight children and says so.
+    #[arg(long, default_value_t = 4096)]
+    reference_budget_mib: usize,
+    /// Hypotheses written per scan to scans.jsonl.
+    #[arg(long, default_value_t = 100)]
+    max_hypotheses_out: usize,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+impl Common {
+    fn options(self) -> Options {
+        Options {
+            profile: self.profile,
+            reference_budget_bytes: self.reference_budget_mib.saturating_mul(1 << 20),
+            max_hypotheses_out: self.max_hypotheses_out,
+            quiet: self.quiet,
+        }
+    }
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a preset scenario and write it as a scenario file.
+    Generate {
+        /// fifty-birth-death, fifteen-compare, debris-crossing or linear-small.
+        preset: String,
+        /// Seed of every random choice.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output scenario file (JSON).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Run a tracker on a scenario file; writes summary.json, scans.jsonl, estimates.csv and plots.
+    Run {
+        /// Scenario file.
+        file: PathBuf,
+        /// Tracker to run.
+        #[arg(long, value_enum, default_value_t = TrackerKind::Homht)]
+        tracker: TrackerKind,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Run the bounded tracker and the unbounded reference on the same scans; writes compare.json.
+    Compare {
+        /// Scenario file.
+        file: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        common: Common,
+    },
+}
+
+enum Failure {
+    Input(ScenarioError),
+    Rejected,
+}
+
+fn execute(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Generate { preset, seed, out } => {
+            let simulation = sim::preset(&preset, seed).ok_or_else(|| {
+                Failure::Input(ScenarioError(format!(
+                    "unknown preset \"{preset}\"; one of: {}",
+                    sim::PRESETS.join(", ")
+                )))
+            })?;
+            let scenario = simulation.run();
+            scenario.save(&out).map_err(Failure::Input)?;
+            eprintln!(
+                "wrote {} ({} scans, {} measurements, {} objects)",
+                out.display(),
+                scenario.scans.len(),
+                scenario.scans.iter().map(|s| s.measurements.len()).sum::<usize>(),
+                simulation.objects.len()
+            );
+            Ok(())
+        }
+        Command::Run { file, tracker, out, common } => {
+            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
+            let (summary, clean) =
+                evaluate::run(&scenario, tracker, &common.options(), &out).map_err(Failure::Input)?;
+            println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
+            if clean { Ok(()) } else { Err(Failure::Rejected) }
+        }
+        Command::Compare { file, out, common } => {
+            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
+            let result =
+                evaluate::compare(&scenario, TrackerKind::Homht, &common.options(), &out).map_err(Failure::Input)?;
+            let mut brief = result.clone();
+            if let Some(object) = brief.as_object_mut() {
+                object.remove("per_scan");
+            }
+            println!("{}", serde_json::to_string_pretty(&brief).unwrap_or_default());
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    // The host profile's tracker holds several MiB inline: run on a thread with a large stack.
+    let worker = std::thread::Builder::new().stack_size(512 << 20).spawn(move || execute(cli));
+    let outcome = match worker {
+        Ok(handle) => handle.join(),
+        Err(e) => {
+            eprintln!("error: cannot start the worker thread: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    match outcome {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(Failure::Input(e))) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+        Ok(Err(Failure::Rejected)) => {
+            eprintln!("error: the tracker rejected some scans (see rejected_scans in summary.json)");
+            ExitCode::from(3)
+        }
+        Err(_) => {
+            eprintln!("error: internal failure (a panic); please report it with the scenario file");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! Trackers behind one interface, so that `run` and `compare` treat the bounded core trackers and the
+//! unbounded reference alike.
+//!
+//! The core's capacities are compile-time constants, so the host offers two capacity profiles:
+//! `embedded` (the default SSA configuration of tracker-core, [`tracker_core::ssa_caps`]) and `host`
+//! (larger, for dense scenarios such as the debris crossing).
+
+use crate::reference::ReferenceTracker;
+use crate::scenario::{MotionSpec, Scenario, ScenarioError};
+use crate::setup;
+use crate::snapshot::Snapshot;
+use nalgebra::SVector;
+use tracker_core::{ChildGeneration, Config, MotionModel, PositionMeasurement, PriorHypothesis, Tracker, ssa_caps};
+
+/// Which tracker to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TrackerKind {
+    /// The unbounded exhaustive reference (every child of every parent).
+    Reference,
+    /// tracker-core with exhaustive children, capped at H∞ hypotheses.
+    Homht,
+}
+
+impl TrackerKind {
+    /// The name written to outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            TrackerKind::Reference => "reference",
+            TrackerKind::Homht => "homht",
+        }
+    }
+}
+
+/// Capacity profile of the core tracker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
+pub enum Profile {
+    /// H = 32, N = 64, Z = 16, K = 256, B = 8: the embedded default (tracker-core's `ssa_caps`).
+    #[default]
+    Embedded,
+    /// H = 256, N = 128, Z = 64, K = 4096, B = 16.
+    Host,
+}
+
+impl Profile {
+    /// The name written to outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Profile::Embedded => "embedded",
+            Profile::Host => "host",
+        }
+    }
+
+    /// (H, N, Z, K, B).
+    pub fn caps(self) -> (usize, usize, usize, usize, usize) {
+        match self {
+            Profile::Embedded => (
+                ssa_caps::HYPOTHESES,
+                ssa_caps::OBJECTS,
+                ssa_caps::MEASUREMENTS,
+                ssa_caps::TRACKS,
+                ssa_caps::BIRTH_CELLS,
+            ),
+            Profile::Host => (256, 128, 64, 4096, 16),
+        }
+    }
+}
+
+/// What one scan did, in tracker-independent terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepInfo {
+    /// Children with non-zero weight generated.
+    pub children: u64,
+    /// Hypotheses kept.
+    pub hypotheses: usize,
+    /// Fraction of the children's weight kept.
+    pub captured_mass: f64,
+    /// Whether the reference's memory budget forced pruning.
+    pub budget_reached: bool,
+}
+
+/// A tracker that processes scans.
+pub trait Runner: Send {
+    /// Processes one scan.
+    ///
+    /// # Errors
+    /// The tracker's error as a message; the tracker is unchanged.
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String>;
+    /// The posterior now.
+    fn snapshot(&self) -> Snapshot;
+}
+
+struct CoreRunner<M, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+    tracker: Box<Tracker<f64, M, PositionMeasurement<f64>, 4, 2, H, N, Z, K, B>>,
+}
+
+impl<M, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Runner
+    for CoreRunner<M, H, N, Z, K, B>
+where
+    M: MotionModel<f64, 4> + Send,
+{
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String> {
+        let report = self.tracker.step(time, measurements).map_err(|e| e.to_string())?;
+        Ok(StepInfo {
+            children: report.children,
+            hypotheses: report.hypotheses,
+            captured_mass: report.captured_mass,
+            budget_reached: false,
+        })
+    }
+
+    fn snapshot(&self) -> Snapshot {
+        Snapshot::of(&*self.tracker)
+    }
+}
+
+fn core_runner<M, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: &Scenario,
+    motion: M,
+    children: ChildGeneration,
+) -> Result<Box<dyn Runner>, ScenarioError>
+where
+    M: MotionModel<f64, 4> + Send + 'static,
+{
+    let config: Config<f64, M, PositionMeasurement<f64>, 4, B> = setup::config(scenario, motion, children)?;
+    let prior = setup::prior(scenario);
+    let hypotheses: Vec<PriorHypothesis<'_, f64, 4>> =
+        prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let tracker =
+        Tracker::<f64, M, PositionMeasurement<f64>, 4, 2, H, N, Z, K, B>::new(config, &hypotheses, scenario.prior.time)
+            .map_err(|e| ScenarioError(format!("tracker configuration: {e}")))?;
+    Ok(Box::new(CoreRunner { tracker: Box::new(tracker) }))
+}
+
+struct ReferenceRunner<M> {
+    tracker: ReferenceTracker<M>,
+}
+
+impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String> {
+        let report = self.tracker.step(time, measurements).map_err(|e| e.to_string())?;
+        Ok(StepInfo {
+            children: report.children,
+            hypotheses: report.hypotheses,
+            captured_mass: report.captured_mass,
+            budget_reached: report.budget_reached,
+        })
+    }
+
+    fn snapshot(&self) -> Snapshot {
+        self.tracker.snapshot()
+    }
+}
+
+fn reference_runner<M>(scenario: &Scenario, motion: M, budget_bytes: usize) -> Result<Box<dyn Runner>, ScenarioError>
+where
+    M: MotionModel<f64, 4> + Clone + Send + 'static,
+{
+    // The reference has no capacities: allow as many birth cells as the scenario has.
+    let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
+        setup::config(scenario, motion, setup::exhaustive(scenario))?;
+    let tracker = ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget_bytes)
+        .map_err(ScenarioError)?;
+    Ok(Box::new(ReferenceRunner { tracker }))
+}
+
+macro_rules! core_for_profile {
+    ($profile:expr, $scenario:expr, $motion:expr, $children:expr) => {
+        match $profile {
+            Profile::Embedded => core_runner::<
+                _,
+                { ssa_caps::HYPOTHESES },
+                { ssa_caps::OBJECTS },
+                { ssa_caps::MEASUREMENTS },
+                { ssa_caps::TRACKS },
+                { ssa_caps::BIRTH_CELLS },
+            >($scenario, $motion, $children),
+            Profile::Host => core_runner::<_, 256, 128, 64, 4096, 16>($scenario, $motion, $children),
+        }
+    };
+}
+
+/// Builds the tracker `kind` for `scenario`.
+///
+/// # Errors
+/// A message when the scenario does not fit the tracker (for example more birth cells than the profile
+/// holds) or its configuration is rejected.
+pub fn build(
+    kind: TrackerKind,
+    profile: Profile,
+    scenario: &Scenario,
+    reference_budget_bytes: usize,
+) -> Result<Box<dyn Runner>, ScenarioError> {
+    let children = setup::exhaustive(scenario);
+    match (kind, scenario.motion) {
+        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => {
+            reference_runner(scenario, setup::two_body(&scenario.motion).expect("two-body"), reference_budget_bytes)
+        }
+        (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
+            scenario,
+            setup::constant_velocity(&scenario.motion).expect("constant velocity"),
+            reference_budget_bytes,
+        ),
+        (TrackerKind::Homht, MotionSpec::TwoBody { .. }) => {
+            core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)
+        }
+        (TrackerKind::Homht, MotionSpec::ConstantVelocity { .. }) => {
+            core_for_profile!(
+                profile,
+                scenario,
+                setup::constant_velocity(&scenario.motion).expect("constant velocity"),
+                children
+            )
+        }
+    }
+}

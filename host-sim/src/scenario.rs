@@ -1,0 +1,551 @@
+//! Scenario files: models, sensor, birth/death model, tracker configuration, prior, scans and optional
+//! truth, as JSON (format `rfisst-scenario/1`, documented field by field in `docs/scenario-format.md`).
+//!
+//! [`Scenario::load`] parses a file and checks everything a tracker relies on; any problem is a
+//! [`ScenarioError`] whose one-line message names the field (`scans[12].time: ...`). Unknown fields are
+//! rejected so that a typo cannot silently fall back to a default.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::Path;
+
+/// The format tag every scenario file carries.
+pub const FORMAT: &str = "rfisst-scenario/1";
+
+/// A problem with a scenario file: a one-line message that names the field.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ScenarioError(pub String);
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ScenarioError {}
+
+fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
+    ScenarioError(format!("{field}: {message}"))
+}
+
+/// A complete scenario.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Must be [`FORMAT`].
+    pub format: String,
+    /// Short name.
+    pub name: String,
+    /// Free text.
+    #[serde(default)]
+    pub description: String,
+    /// How objects move.
+    pub motion: MotionSpec,
+    /// How the sensor measures.
+    pub measurement: MeasurementSpec,
+    /// Detection, clutter and field of view.
+    pub sensor: SensorSpec,
+    /// Birth model.
+    pub birth: BirthSpec,
+    /// β: probability that an object in the field of view dies before a scan.
+    pub death_probability: f64,
+    /// Tracker settings.
+    pub tracker: TrackerSpec,
+    /// The prior hypotheses.
+    pub prior: PriorSpec,
+    /// The scans, in time order.
+    pub scans: Vec<ScanSpec>,
+    /// Ground truth, when known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub truth: Option<TruthSpec>,
+    /// How results are scored.
+    #[serde(default)]
+    pub evaluation: EvaluationSpec,
+}
+
+/// Motion model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MotionSpec {
+    /// Planar two-body gravity.
+    TwoBody {
+        /// μ (length³/s²).
+        mu: f64,
+        /// White acceleration noise spectral density q (length²/s³).
+        acceleration_noise: f64,
+        /// Largest RK4 sub-step (s).
+        max_step: f64,
+        /// Most sub-steps per prediction.
+        max_substeps: u32,
+    },
+    /// 2-D constant velocity.
+    ConstantVelocity {
+        /// White acceleration noise spectral density q (length²/s³).
+        acceleration_noise: f64,
+    },
+}
+
+/// Measurement model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MeasurementSpec {
+    /// Position (x, y) with Gaussian noise.
+    Position {
+        /// R (length²), symmetric positive definite.
+        noise_covariance: [[f64; 2]; 2],
+    },
+}
+
+/// Field of view.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum FieldOfViewSpec {
+    /// A sector seen from `origin`.
+    Sector {
+        /// Sensor position (length).
+        origin: [f64; 2],
+        /// Boresight, degrees counter-clockwise from +x.
+        look_direction_deg: f64,
+        /// Full field-of-view angle, degrees.
+        field_of_view_deg: f64,
+        /// Largest range (length).
+        max_range: f64,
+    },
+    /// An axis-aligned rectangle.
+    Rectangle {
+        /// Lower corner (length).
+        min: [f64; 2],
+        /// Upper corner (length).
+        max: [f64; 2],
+    },
+    /// No boundary; clutter over an abstract volume.
+    Everywhere {
+        /// Clutter volume V (length²).
+        volume: f64,
+    },
+}
+
+/// Sensor.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SensorSpec {
+    /// p_D in (0, 1].
+    pub detection_probability: f64,
+    /// Expected clutter returns per scan Λ_C (> 0).
+    pub clutter_rate: f64,
+    /// What the sensor sees.
+    pub field_of_view: FieldOfViewSpec,
+}
+
+/// A Gaussian over the state (x, y, vx, vy).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaussianSpec {
+    /// Mean (length, length, length/s, length/s).
+    pub mean: [f64; 4],
+    /// Covariance, symmetric positive definite.
+    pub covariance: [[f64; 4]; 4],
+}
+
+/// Whether births must be detected at birth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum BirthDetectionSpec {
+    /// Paper 000's "all births detected" (the default).
+    #[default]
+    AllDetected,
+    /// Births may be missed like any object.
+    AllowUndetected,
+}
+
+/// Birth model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthSpec {
+    /// α per cell per scan.
+    pub probability: f64,
+    /// Detection rule.
+    #[serde(default)]
+    pub detection: BirthDetectionSpec,
+    /// Birth pdf of each cell.
+    pub cells: Vec<GaussianSpec>,
+}
+
+/// Track-store overflow policy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum StoreOverflowSpec {
+    /// Drop the children that do not fit (the default).
+    #[default]
+    PruneChildren,
+    /// Fail the scan.
+    Error,
+}
+
+/// Tracker settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrackerSpec {
+    /// Gate on the squared Mahalanobis distance; `null` for no gate.
+    pub gate: Option<f64>,
+    /// Bound on exhaustive enumeration per scan.
+    pub max_children_per_scan: u64,
+    /// Track-store overflow policy.
+    #[serde(default)]
+    pub store_overflow: StoreOverflowSpec,
+    /// Seed of every random choice.
+    pub seed: u64,
+}
+
+/// One prior object.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PriorObjectSpec {
+    /// Label.
+    pub label: u32,
+    /// Mean.
+    pub mean: [f64; 4],
+    /// Covariance.
+    pub covariance: [[f64; 4]; 4],
+}
+
+/// One prior hypothesis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PriorHypothesisSpec {
+    /// Relative weight (≥ 0).
+    pub weight: f64,
+    /// Objects.
+    pub objects: Vec<PriorObjectSpec>,
+}
+
+/// The prior.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PriorSpec {
+    /// Time of the prior (s).
+    pub time: f64,
+    /// Hypotheses.
+    pub hypotheses: Vec<PriorHypothesisSpec>,
+}
+
+/// One scan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScanSpec {
+    /// Time (s), strictly after the previous scan and the prior.
+    pub time: f64,
+    /// Measurements (length).
+    pub measurements: Vec<[f64; 2]>,
+}
+
+/// One true object.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TruthObjectSpec {
+    /// Identifier used by the truth scans.
+    pub id: u64,
+    /// Whether the prior knows it; `false` makes it a birth.
+    pub in_prior: bool,
+    /// When it starts to exist (s); `null` for "before the prior".
+    #[serde(default)]
+    pub birth_time: Option<f64>,
+    /// When it stops existing (s); `null` for never.
+    #[serde(default)]
+    pub death_time: Option<f64>,
+}
+
+/// The true state of one object at a scan.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TruthStateSpec {
+    /// Object id.
+    pub id: u64,
+    /// State (x, y, vx, vy).
+    pub state: [f64; 4],
+}
+
+/// The truth of one scan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TruthScanSpec {
+    /// Every object that exists at the scan time.
+    pub objects: Vec<TruthStateSpec>,
+    /// Per measurement, the id of the object that produced it, or `null` for clutter.
+    pub origins: Vec<Option<u64>>,
+}
+
+/// Ground truth.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TruthSpec {
+    /// The objects.
+    pub objects: Vec<TruthObjectSpec>,
+    /// One entry per scan.
+    pub scans: Vec<TruthScanSpec>,
+}
+
+/// How results are scored.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EvaluationSpec {
+    /// An estimate within this distance of a true object is correct (length).
+    pub error_bound: f64,
+    /// GOSPA cut-off c (length).
+    pub gospa_cutoff: f64,
+    /// GOSPA order p.
+    pub gospa_order: f64,
+    /// Existence probability at which a born object counts as confirmed.
+    pub confirmation_existence: f64,
+}
+
+impl Default for EvaluationSpec {
+    fn default() -> Self {
+        Self { error_bound: 10.0, gospa_cutoff: 50.0, gospa_order: 2.0, confirmation_existence: 0.9 }
+    }
+}
+
+impl Scenario {
+    /// Reads and checks a scenario file.
+    ///
+    /// # Errors
+    /// A one-line [`ScenarioError`] naming the file's problem.
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| error(path.display(), e))?;
+        Self::from_json(&text)
+    }
+
+    /// Parses and checks a scenario from JSON text.
+    ///
+    /// # Errors
+    /// A one-line [`ScenarioError`] naming the field.
+    pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
+        let deserializer = &mut serde_json::Deserializer::from_str(text);
+        let scenario: Scenario = serde_path_to_error::deserialize(deserializer).map_err(|e| {
+            let path = e.path().to_string();
+            let inner = e.into_inner();
+            let message = inner.to_string().replace('\n', " ");
+            if path == "." { ScenarioError(format!("invalid scenario JSON: {message}")) } else { error(path, message) }
+        })?;
+        scenario.validate()?;
+        Ok(scenario)
+    }
+
+    /// Writes the scenario as pretty JSON.
+    ///
+    /// # Errors
+    /// The I/O error, as a message.
+    pub fn save(&self, path: &Path) -> Result<(), ScenarioError> {
+        let text = serde_json::to_string_pretty(self).map_err(|e| error(path.display(), e))?;
+        std::fs::write(path, text).map_err(|e| error(path.display(), e))
+    }
+
+    /// Checks everything the trackers rely on that the JSON types cannot express.
+    ///
+    /// # Errors
+    /// The first problem found.
+    pub fn validate(&self) -> Result<(), ScenarioError> {
+        if self.format != FORMAT {
+            return Err(error("format", format!("expected \"{FORMAT}\", found \"{}\"", self.format)));
+        }
+        match self.motion {
+            MotionSpec::TwoBody { mu, acceleration_noise, max_step, max_substeps } => {
+                positive("motion.mu", mu)?;
+                positive("motion.acceleration_noise", acceleration_noise)?;
+                positive("motion.max_step", max_step)?;
+                if max_substeps == 0 {
+                    return Err(error("motion.max_substeps", "must be > 0"));
+                }
+            }
+            MotionSpec::ConstantVelocity { acceleration_noise } => {
+                positive("motion.acceleration_noise", acceleration_noise)?
+            }
+        }
+        let MeasurementSpec::Position { noise_covariance } = self.measurement;
+        covariance2("measurement.noise_covariance", &noise_covariance)?;
+
+        let sensor = &self.sensor;
+        let pd = sensor.detection_probability;
+        if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
+            return Err(error("sensor.detection_probability", format!("{pd} is not in (0, 1]")));
+        }
+        positive("sensor.clutter_rate", sensor.clutter_rate)?;
+        match sensor.field_of_view {
+            FieldOfViewSpec::Sector { origin, look_direction_deg, field_of_view_deg, max_range } => {
+                finite_all("sensor.field_of_view.origin", &origin)?;
+                finite("sensor.field_of_view.look_direction_deg", look_direction_deg)?;
+                if !(field_of_view_deg > 0.0 && field_of_view_deg <= 360.0) {
+                    return Err(error(
+                        "sensor.field_of_view.field_of_view_deg",
+                        format!("{field_of_view_deg} is not in (0, 360]"),
+                    ));
+                }
+                positive("sensor.field_of_view.max_range", max_range)?;
+            }
+            FieldOfViewSpec::Rectangle { min, max } => {
+                finite_all("sensor.field_of_view.min", &min)?;
+                finite_all("sensor.field_of_view.max", &max)?;
+                if !(max[0] > min[0] && max[1] > min[1]) {
+                    return Err(error("sensor.field_of_view", "max must exceed min on both axes"));
+                }
+            }
+            FieldOfViewSpec::Everywhere { volume } => positive("sensor.field_of_view.volume", volume)?,
+        }
+
+        let alpha = self.birth.probability;
+        if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
+            return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
+        }
+        for (i, cell) in self.birth.cells.iter().enumerate() {
+            finite_all(&format!("birth.cells[{i}].mean"), &cell.mean)?;
+            covariance4(&format!("birth.cells[{i}].covariance"), &cell.covariance)?;
+        }
+        let beta = self.death_probability;
+        if !(beta.is_finite() && (0.0..=1.0).contains(&beta)) {
+            return Err(error("death_probability", format!("{beta} is not in [0, 1]")));
+        }
+        if let Some(gate) = self.tracker.gate {
+            positive("tracker.gate", gate)?;
+        }
+        if self.tracker.max_children_per_scan == 0 {
+            return Err(error("tracker.max_children_per_scan", "must be > 0"));
+        }
+
+        finite("prior.time", self.prior.time)?;
+        if self.prior.hypotheses.is_empty() {
+            return Err(error("prior.hypotheses", "needs at least one hypothesis"));
+        }
+        let mut total = 0.0;
+        for (h, hypothesis) in self.prior.hypotheses.iter().enumerate() {
+            let w = hypothesis.weight;
+            if !(w.is_finite() && w >= 0.0) {
+                return Err(error(format!("prior.hypotheses[{h}].weight"), format!("{w} is not finite and >= 0")));
+            }
+            total += w;
+            for (o, object) in hypothesis.objects.iter().enumerate() {
+                let field = format!("prior.hypotheses[{h}].objects[{o}]");
+                finite_all(&format!("{field}.mean"), &object.mean)?;
+                covariance4(&format!("{field}.covariance"), &object.covariance)?;
+                if hypothesis.objects[..o].iter().any(|other| other.label == object.label) {
+                    return Err(error(
+                        format!("{field}.label"),
+                        format!("label {} appears twice in the hypothesis", object.label),
+                    ));
+                }
+            }
+        }
+        if total <= 0.0 {
+            return Err(error("prior.hypotheses", "weights sum to zero"));
+        }
+
+        let mut previous = self.prior.time;
+        for (k, scan) in self.scans.iter().enumerate() {
+            finite(&format!("scans[{k}].time"), scan.time)?;
+            if scan.time <= previous {
+                return Err(error(
+                    format!("scans[{k}].time"),
+                    format!("{} is not after the previous time {previous}", scan.time),
+                ));
+            }
+            previous = scan.time;
+            for (j, z) in scan.measurements.iter().enumerate() {
+                finite_all(&format!("scans[{k}].measurements[{j}]"), z)?;
+            }
+        }
+
+        if let Some(truth) = &self.truth {
+            if truth.scans.len() != self.scans.len() {
+                return Err(error(
+                    "truth.scans",
+                    format!("has {} entries for {} scans", truth.scans.len(), self.scans.len()),
+                ));
+            }
+            for (i, object) in truth.objects.iter().enumerate() {
+                if truth.objects[..i].iter().any(|other| other.id == object.id) {
+                    return Err(error(format!("truth.objects[{i}].id"), format!("id {} appears twice", object.id)));
+                }
+            }
+            for (k, (scan, truth_scan)) in self.scans.iter().zip(&truth.scans).enumerate() {
+                if truth_scan.origins.len() != scan.measurements.len() {
+                    return Err(error(
+                        format!("truth.scans[{k}].origins"),
+                        format!(
+                            "has {} entries for {} measurements",
+                            truth_scan.origins.len(),
+                            scan.measurements.len()
+                        ),
+                    ));
+                }
+                for (i, state) in truth_scan.objects.iter().enumerate() {
+                    finite_all(&format!("truth.scans[{k}].objects[{i}].state"), &state.state)?;
+                    if !truth.objects.iter().any(|o| o.id == state.id) {
+                        return Err(error(
+                            format!("truth.scans[{k}].objects[{i}].id"),
+                            format!("unknown object id {}", state.id),
+                        ));
+                    }
+                }
+                for (j, origin) in truth_scan.origins.iter().enumerate() {
+                    if let Some(id) = origin
+                        && !truth_scan.objects.iter().any(|o| o.id == *id)
+                    {
+                        return Err(error(
+                            format!("truth.scans[{k}].origins[{j}]"),
+                            format!("object {id} does not exist at this scan"),
+                        ));
+                    }
+                }
+            }
+        }
+        let e = &self.evaluation;
+        positive("evaluation.error_bound", e.error_bound)?;
+        positive("evaluation.gospa_cutoff", e.gospa_cutoff)?;
+        if !(e.gospa_order.is_finite() && e.gospa_order >= 1.0) {
+            return Err(error("evaluation.gospa_order", "must be >= 1"));
+        }
+        if !(e.confirmation_existence > 0.0 && e.confirmation_existence <= 1.0) {
+            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
+        }
+        Ok(())
+    }
+
+    /// The largest number of measurements in one scan.
+    pub fn max_measurements(&self) -> usize {
+        self.scans.iter().map(|s| s.measurements.len()).max().unwrap_or(0)
+    }
+}
+
+fn finite(field: &str, value: f64) -> Result<(), ScenarioError> {
+    if value.is_finite() { Ok(()) } else { Err(error(field, format!("{value} is not finite"))) }
+}
+
+fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioError> {
+    values.iter().try_for_each(|&v| finite(field, v))
+}
+
+fn positive(field: &str, value: f64) -> Result<(), ScenarioError> {
+    if value.is_finite() && value > 0.0 { Ok(()) } else { Err(error(field, format!("{value} is not finite and > 0"))) }
+}
+
+fn covariance2(field: &str, m: &[[f64; 2]; 2]) -> Result<(), ScenarioError> {
+    let matrix = nalgebra::SMatrix::<f64, 2, 2>::from_fn(|i, j| m[i][j]);
+    check_covariance(field, matrix)
+}
+
+fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
+    let matrix = nalgebra::SMatrix::<f64, 4, 4>::from_fn(|i, j| m[i][j]);
+    check_covariance(field, matrix)
+}
+
+fn check_covariance<const D: usize>(field: &str, m: nalgebra::SMatrix<f64, D, D>) -> Result<(), ScenarioError> {
+    if !m.iter().all(|v| v.is_finite()) {
+        return Err(error(field, "has a non-finite entry"));
+    }
+    if m != m.transpose() {
+        return Err(error(field, "is not symmetric"));
+    }
+    if m.cholesky().is_none() {
+        return Err(error(field, "is not positive definite"));
+    }
+    Ok(())
+}

@@ -1,0 +1,128 @@
+//! From a scenario file to tracker-core values: models, sensor, birth model, configuration and prior.
+
+use crate::scenario::*;
+use nalgebra::{SMatrix, SVector};
+use tracker_core::{
+    BirthDetection, BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, PositionMeasurement, PriorObject,
+    Region, Sensor, StoreOverflow, TrackLabel, TwoBody,
+};
+
+/// The core's region for a field-of-view spec.
+pub fn region(spec: &FieldOfViewSpec) -> Region<f64> {
+    match *spec {
+        FieldOfViewSpec::Sector { origin, look_direction_deg, field_of_view_deg, max_range } => Region::Sector {
+            origin,
+            look_direction: look_direction_deg.to_radians(),
+            half_angle: field_of_view_deg.to_radians() / 2.0,
+            max_range,
+        },
+        FieldOfViewSpec::Rectangle { min, max } => Region::Rectangle { min, max },
+        FieldOfViewSpec::Everywhere { volume } => Region::Everywhere { volume },
+    }
+}
+
+/// The core's sensor.
+pub fn sensor(spec: &SensorSpec) -> Sensor<f64> {
+    Sensor {
+        detection_probability: spec.detection_probability,
+        clutter_rate: spec.clutter_rate,
+        field_of_view: region(&spec.field_of_view),
+    }
+}
+
+/// A Gaussian from mean and covariance arrays.
+pub fn gaussian(mean: &[f64; 4], covariance: &[[f64; 4]; 4]) -> Gaussian<f64, 4> {
+    Gaussian { mean: SVector::from(*mean), covariance: SMatrix::<f64, 4, 4>::from_fn(|i, j| covariance[i][j]) }
+}
+
+/// The measurement model.
+pub fn measurement(spec: &MeasurementSpec) -> PositionMeasurement<f64> {
+    let MeasurementSpec::Position { noise_covariance } = spec;
+    PositionMeasurement { noise: SMatrix::<f64, 2, 2>::from_fn(|i, j| noise_covariance[i][j]) }
+}
+
+/// The two-body model of a two-body scenario.
+pub fn two_body(spec: &MotionSpec) -> Option<TwoBody<f64>> {
+    match *spec {
+        MotionSpec::TwoBody { mu, acceleration_noise, max_step, max_substeps } => {
+            Some(TwoBody { mu, acceleration_noise, max_step, max_substeps })
+        }
+        MotionSpec::ConstantVelocity { .. } => None,
+    }
+}
+
+/// The constant-velocity model of a constant-velocity scenario.
+pub fn constant_velocity(spec: &MotionSpec) -> Option<ConstantVelocity<f64>> {
+    match *spec {
+        MotionSpec::ConstantVelocity { acceleration_noise } => Some(ConstantVelocity { acceleration_noise }),
+        MotionSpec::TwoBody { .. } => None,
+    }
+}
+
+/// The tracker configuration of a scenario with motion model `motion` and at most `B` birth cells.
+///
+/// # Errors
+/// A one-line message when the scenario has more birth cells than `B`.
+pub fn config<M, const B: usize>(
+    scenario: &Scenario,
+    motion: M,
+    children: ChildGeneration,
+) -> Result<Config<f64, M, PositionMeasurement<f64>, 4, B>, ScenarioError> {
+    let mut cells = heapless::Vec::new();
+    for cell in &scenario.birth.cells {
+        cells.push(gaussian(&cell.mean, &cell.covariance)).map_err(|_| {
+            ScenarioError(format!(
+                "birth.cells: {} cells exceed this tracker's capacity of {B}",
+                scenario.birth.cells.len()
+            ))
+        })?;
+    }
+    Ok(Config {
+        motion,
+        measurement: measurement(&scenario.measurement),
+        sensor: sensor(&scenario.sensor),
+        birth: BirthModel {
+            probability: scenario.birth.probability,
+            cells,
+            detection: match scenario.birth.detection {
+                BirthDetectionSpec::AllDetected => BirthDetection::AllDetected,
+                BirthDetectionSpec::AllowUndetected => BirthDetection::AllowUndetected,
+            },
+        },
+        death_probability: scenario.death_probability,
+        gate: scenario.tracker.gate,
+        children,
+        store_overflow: match scenario.tracker.store_overflow {
+            StoreOverflowSpec::PruneChildren => StoreOverflow::PruneChildren,
+            StoreOverflowSpec::Error => StoreOverflow::Error,
+        },
+        seed: scenario.tracker.seed,
+    })
+}
+
+/// The exhaustive child generation a scenario asks for.
+pub fn exhaustive(scenario: &Scenario) -> ChildGeneration {
+    ChildGeneration::Exhaustive { max_children_per_scan: scenario.tracker.max_children_per_scan }
+}
+
+/// The prior hypotheses as (weight, objects).
+pub fn prior(scenario: &Scenario) -> Vec<(f64, Vec<PriorObject<f64, 4>>)> {
+    scenario
+        .prior
+        .hypotheses
+        .iter()
+        .map(|h| {
+            let objects = h
+                .objects
+                .iter()
+                .map(|o| PriorObject { label: TrackLabel(o.label), state: gaussian(&o.mean, &o.covariance) })
+                .collect();
+            (h.weight, objects)
+        })
+        .collect()
+}
+
+/// The scan's measurements as vectors.
+pub fn measurements(scan: &ScanSpec) -> Vec<SVector<f64, 2>> {
+    scan.measurements.iter().map(|z| SVector::from(*z)).collect()
+}
