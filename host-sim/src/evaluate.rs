@@ -304,8 +304,9 @@ pub fn run(
         "tracker": kind.name(),
         "profile": if kind == TrackerKind::Reference { "unbounded" } else { options.profile.name() },
         "scans": n,
-        "mean_gospa": mean(&gospas),
-        "mean_ospa": mean(&ospas),
+        // Without truth there is nothing to score: null, not 0.
+        "mean_gospa": (!gospas.is_empty()).then(|| mean(&gospas)),
+        "mean_ospa": (!ospas.is_empty()).then(|| mean(&ospas)),
         "gospa_cutoff": scenario.evaluation.gospa_cutoff,
         "gospa_order": scenario.evaluation.gospa_order,
         "error_bound": scenario.evaluation.error_bound,
@@ -509,8 +510,8 @@ pub fn compare(
         "min_captured_mass": captured.iter().copied().fold(1.0, f64::min),
         "mean_weight_l1": mean(&column("weight_l1")),
         "map_agreement": agreement,
-        "bounded": {"tracker": bounded.name(), "mean_gospa": mean(&gospas[0]), "mean_ms_per_scan": mean(&ms_totals[0]), "max_ms_per_scan": ms_totals[0].iter().copied().fold(0.0, f64::max)},
-        "reference": {"tracker": "reference", "mean_gospa": mean(&gospas[1]), "mean_ms_per_scan": mean(&ms_totals[1]), "max_ms_per_scan": ms_totals[1].iter().copied().fold(0.0, f64::max), "budget_reached_scans": budget_scans},
+        "bounded": {"tracker": bounded.name(), "mean_gospa": (!gospas[0].is_empty()).then(|| mean(&gospas[0])), "mean_ms_per_scan": mean(&ms_totals[0]), "max_ms_per_scan": ms_totals[0].iter().copied().fold(0.0, f64::max)},
+        "reference": {"tracker": "reference", "mean_gospa": (!gospas[1].is_empty()).then(|| mean(&gospas[1])), "mean_ms_per_scan": mean(&ms_totals[1]), "max_ms_per_scan": ms_totals[1].iter().copied().fold(0.0, f64::max), "budget_reached_scans": budget_scans},
         "per_scan": per_scan,
     });
     write_json(&out.join("compare.json"), &result)?;

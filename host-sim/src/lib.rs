@@ -12,6 +12,7 @@ pub mod plots;
 pub mod reference;
 pub mod rng;
 pub mod runner;
+pub mod sampler_check;
 pub mod scenario;
 pub mod setup;
 pub mod sim;

@@ -77,11 +77,26 @@ enum Command {
     Compare {
         /// Scenario file.
         file: PathBuf,
+        /// The bounded tracker.
+        #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
+        tracker: TrackerKind,
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
         #[command(flatten)]
         common: Common,
+    },
+    /// Check the R-FISST sampler against exhaustive enumeration on random small problems.
+    SamplerCheck {
+        /// Number of random cases.
+        #[arg(long, default_value_t = 1000)]
+        cases: usize,
+        /// Seed of the cases.
+        #[arg(long, default_value_t = 7)]
+        seed: u64,
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -117,15 +132,27 @@ fn execute(cli: Cli) -> Result<(), Failure> {
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
             if clean { Ok(()) } else { Err(Failure::Rejected) }
         }
-        Command::Compare { file, out, common } => {
+        Command::Compare { file, tracker, out, common } => {
+            if tracker == TrackerKind::Reference {
+                return Err(Failure::Input(ScenarioError(
+                    "--tracker: the bounded tracker must be homht or rfisst".into(),
+                )));
+            }
             let scenario = Scenario::load(&file).map_err(Failure::Input)?;
-            let result =
-                evaluate::compare(&scenario, TrackerKind::Homht, &common.options(), &out).map_err(Failure::Input)?;
+            let result = evaluate::compare(&scenario, tracker, &common.options(), &out).map_err(Failure::Input)?;
             let mut brief = result.clone();
             if let Some(object) = brief.as_object_mut() {
                 object.remove("per_scan");
             }
             println!("{}", serde_json::to_string_pretty(&brief).unwrap_or_default());
+            Ok(())
+        }
+        Command::SamplerCheck { cases, seed, out } => {
+            let report = host_sim::sampler_check::run(cases, seed).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            let text = serde_json::to_string_pretty(&report).unwrap_or_default();
+            std::fs::write(&out, format!("{text}\n"))
+                .map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
+            println!("{text}");
             Ok(())
         }
     }

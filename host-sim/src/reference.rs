@@ -78,19 +78,30 @@ pub struct ReferenceTracker<M> {
 
 impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     /// A reference tracker for `config` (its capacities do not apply), the prior hypotheses and a memory
-    /// budget in bytes.
+    /// budget in bytes. The first-order event model needs M_b α + M_d β < 1 for every parent; like the
+    /// core, the reference checks it for up to `max_objects` objects in view (the compared profile's N)
+    /// when it is built, and again for every parent at every scan.
     ///
     /// # Errors
-    /// A message when a birth cell's innovation cannot be factored.
+    /// A message when the event probabilities are impossible or a birth cell's innovation cannot be
+    /// factored.
     pub fn new<const B: usize>(
         config: &Config<f64, M, PositionMeasurement<f64>, 4, B>,
         prior: &[(f64, Vec<PriorObject<f64, 4>>)],
         time: f64,
         budget_bytes: usize,
+        max_objects: usize,
     ) -> Result<Self, String>
     where
         M: Clone,
     {
+        let cells = config.birth.cells.len() as f64;
+        if !(1.0 - cells * config.birth.probability - max_objects as f64 * config.death_probability > 0.0) {
+            return Err(format!(
+                "tracker configuration: {} (N = {max_objects})",
+                tracker_core::ConfigError::EventProbabilities
+            ));
+        }
         let region = config.sensor.field_of_view;
         let mut births = vec![];
         for (cell, gaussian) in config.birth.cells.iter().enumerate() {
@@ -217,6 +228,10 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                 .map(|(position, t)| (position, *t as usize))
                 .collect();
             let in_view = columns.len();
+            if !(self.weights.event_log_probability(Event::None, in_view) > f64::NEG_INFINITY) {
+                // M_b α + M_d β ≥ 1 for this parent: the first-order event model does not apply.
+                return Err(StepError::NoViableChild);
+            }
             let mut events = vec![(Event::None, in_view)];
             if self.weights.births_possible() {
                 for (cell, (_, _, detectable)) in self.births.iter().enumerate() {

@@ -19,6 +19,8 @@ pub enum TrackerKind {
     Reference,
     /// tracker-core with exhaustive children, capped at H∞ hypotheses.
     Homht,
+    /// tracker-core with R-FISST's sampled children (Metropolis, by clusters), capped at H∞.
+    Rfisst,
 }
 
 impl TrackerKind {
@@ -27,6 +29,7 @@ impl TrackerKind {
         match self {
             TrackerKind::Reference => "reference",
             TrackerKind::Homht => "homht",
+            TrackerKind::Rfisst => "rfisst",
         }
     }
 }
@@ -151,15 +154,21 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
     }
 }
 
-fn reference_runner<M>(scenario: &Scenario, motion: M, budget_bytes: usize) -> Result<Box<dyn Runner>, ScenarioError>
+fn reference_runner<M>(
+    scenario: &Scenario,
+    motion: M,
+    budget_bytes: usize,
+    max_objects: usize,
+) -> Result<Box<dyn Runner>, ScenarioError>
 where
     M: MotionModel<f64, 4> + Clone + Send + 'static,
 {
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
-    let tracker = ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget_bytes)
-        .map_err(ScenarioError)?;
+    let tracker =
+        ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget_bytes, max_objects)
+            .map_err(ScenarioError)?;
     Ok(Box::new(ReferenceRunner { tracker }))
 }
 
@@ -190,20 +199,24 @@ pub fn build(
     scenario: &Scenario,
     reference_budget_bytes: usize,
 ) -> Result<Box<dyn Runner>, ScenarioError> {
-    let children = setup::exhaustive(scenario);
+    let children = if kind == TrackerKind::Rfisst { setup::sampled(scenario) } else { setup::exhaustive(scenario) };
     match (kind, scenario.motion) {
-        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => {
-            reference_runner(scenario, setup::two_body(&scenario.motion).expect("two-body"), reference_budget_bytes)
-        }
+        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => reference_runner(
+            scenario,
+            setup::two_body(&scenario.motion).expect("two-body"),
+            reference_budget_bytes,
+            profile.caps().1,
+        ),
         (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
             scenario,
             setup::constant_velocity(&scenario.motion).expect("constant velocity"),
             reference_budget_bytes,
+            profile.caps().1,
         ),
-        (TrackerKind::Homht, MotionSpec::TwoBody { .. }) => {
+        (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {
             core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)
         }
-        (TrackerKind::Homht, MotionSpec::ConstantVelocity { .. }) => {
+        (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::ConstantVelocity { .. }) => {
             core_for_profile!(
                 profile,
                 scenario,

@@ -182,6 +182,59 @@ pub enum StoreOverflowSpec {
     Error,
 }
 
+/// The Metropolis proposal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProposalSpec {
+    /// Paper 003's move (conflicting measurement to clutter).
+    Paper,
+    /// Symmetric move-or-swap.
+    MoveOrSwap,
+    /// Move-or-swap with every other column drawn from the row's entries (the default).
+    #[default]
+    Informed,
+}
+
+/// Settings of the R-FISST sampler (`--tracker rfisst`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SamplerSpec {
+    /// Unrecorded steps per chain.
+    pub burn_in: u32,
+    /// Recorded steps per chain.
+    pub steps: u32,
+    /// Proposal.
+    pub proposal: ProposalSpec,
+    /// Split each association matrix into independent clusters.
+    pub clusters: bool,
+    /// Enumerate clusters with at most this many associations; sample larger ones.
+    pub exhaustive_limit: u64,
+}
+
+impl Default for SamplerSpec {
+    fn default() -> Self {
+        let d = tracker_core::sampler::SamplerConfig::default();
+        Self {
+            burn_in: d.burn_in,
+            steps: d.steps,
+            proposal: ProposalSpec::Informed,
+            clusters: d.clusters,
+            exhaustive_limit: d.exhaustive_limit,
+        }
+    }
+}
+
+/// How H∞ hypotheses are chosen among the children.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum SelectionSpec {
+    /// The H∞ largest weights (the default).
+    #[default]
+    TopWeight,
+    /// H∞ drawn by weight without replacement.
+    SampledByWeight,
+}
+
 /// Tracker settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -195,6 +248,12 @@ pub struct TrackerSpec {
     pub store_overflow: StoreOverflowSpec,
     /// Seed of every random choice.
     pub seed: u64,
+    /// R-FISST sampler settings.
+    #[serde(default)]
+    pub sampler: SamplerSpec,
+    /// H∞ selection.
+    #[serde(default)]
+    pub selection: SelectionSpec,
 }
 
 /// One prior object.
@@ -321,12 +380,14 @@ impl Scenario {
     /// A one-line [`ScenarioError`] naming the field.
     pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
         let deserializer = &mut serde_json::Deserializer::from_str(text);
-        let scenario: Scenario = serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let scenario: Scenario = serde_path_to_error::deserialize(&mut *deserializer).map_err(|e| {
             let path = e.path().to_string();
             let inner = e.into_inner();
             let message = inner.to_string().replace('\n', " ");
             if path == "." { ScenarioError(format!("invalid scenario JSON: {message}")) } else { error(path, message) }
         })?;
+        // Nothing but whitespace may follow the scenario.
+        deserializer.end().map_err(|e| ScenarioError(format!("invalid scenario JSON: {e}")))?;
         scenario.validate()?;
         Ok(scenario)
     }
@@ -410,6 +471,9 @@ impl Scenario {
         if self.tracker.max_children_per_scan == 0 {
             return Err(error("tracker.max_children_per_scan", "must be > 0"));
         }
+        if self.tracker.sampler.steps == 0 {
+            return Err(error("tracker.sampler.steps", "must be > 0"));
+        }
 
         finite("prior.time", self.prior.time)?;
         if self.prior.hypotheses.is_empty() {
@@ -486,6 +550,14 @@ impl Scenario {
                     }
                 }
                 for (j, origin) in truth_scan.origins.iter().enumerate() {
+                    if let Some(id) = origin
+                        && truth_scan.origins[..j].contains(&Some(*id))
+                    {
+                        return Err(error(
+                            format!("truth.scans[{k}].origins[{j}]"),
+                            format!("object {id} already produced a measurement in this scan"),
+                        ));
+                    }
                     if let Some(id) = origin
                         && !truth_scan.objects.iter().any(|o| o.id == *id)
                     {

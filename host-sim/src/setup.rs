@@ -92,6 +92,10 @@ pub fn config<M, const B: usize>(
         death_probability: scenario.death_probability,
         gate: scenario.tracker.gate,
         children,
+        selection: match scenario.tracker.selection {
+            SelectionSpec::TopWeight => tracker_core::config::Selection::TopWeight,
+            SelectionSpec::SampledByWeight => tracker_core::config::Selection::SampledByWeight,
+        },
         store_overflow: match scenario.tracker.store_overflow {
             StoreOverflowSpec::PruneChildren => StoreOverflow::PruneChildren,
             StoreOverflowSpec::Error => StoreOverflow::Error,
@@ -103,6 +107,22 @@ pub fn config<M, const B: usize>(
 /// The exhaustive child generation a scenario asks for.
 pub fn exhaustive(scenario: &Scenario) -> ChildGeneration {
     ChildGeneration::Exhaustive { max_children_per_scan: scenario.tracker.max_children_per_scan }
+}
+
+/// The R-FISST child generation a scenario asks for.
+pub fn sampled(scenario: &Scenario) -> ChildGeneration {
+    let spec = scenario.tracker.sampler;
+    ChildGeneration::Sampled(tracker_core::sampler::SamplerConfig {
+        burn_in: spec.burn_in,
+        steps: spec.steps,
+        proposal: match spec.proposal {
+            ProposalSpec::Paper => tracker_core::sampler::Proposal::Paper,
+            ProposalSpec::MoveOrSwap => tracker_core::sampler::Proposal::MoveOrSwap,
+            ProposalSpec::Informed => tracker_core::sampler::Proposal::Informed,
+        },
+        clusters: spec.clusters,
+        exhaustive_limit: spec.exhaustive_limit,
+    })
 }
 
 /// The prior hypotheses as (weight, objects).

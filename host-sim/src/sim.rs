@@ -341,6 +341,8 @@ fn ssa_tracker(seed: u64) -> TrackerSpec {
         max_children_per_scan: 2_000_000,
         store_overflow: StoreOverflowSpec::PruneChildren,
         seed,
+        sampler: SamplerSpec::default(),
+        selection: SelectionSpec::default(),
     }
 }
 
@@ -474,6 +476,8 @@ pub fn debris_crossing(seed: u64) -> Simulation {
             max_children_per_scan: 2_000_000,
             store_overflow: StoreOverflowSpec::PruneChildren,
             seed,
+            sampler: SamplerSpec::default(),
+            selection: SelectionSpec::default(),
         },
         evaluation: EvaluationSpec {
             error_bound: 5.0,
@@ -535,6 +539,8 @@ pub fn linear_small(seed: u64) -> Simulation {
             max_children_per_scan: 1_000_000,
             store_overflow: StoreOverflowSpec::PruneChildren,
             seed,
+            sampler: SamplerSpec::default(),
+            selection: SelectionSpec::default(),
         },
         evaluation: EvaluationSpec {
             error_bound: 3.0,

@@ -65,6 +65,7 @@ fn run() -> Result<f64, tracker_core::StepError> {
         death_probability: 0.01,
         gate: Some(16.0),
         children: ChildGeneration::Exhaustive { max_children_per_scan: 100_000 },
+        selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         seed: 1,
     };

@@ -29,6 +29,7 @@ pub fn linear_config<const B: usize>(
         death_probability: 0.0,
         gate: None,
         children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000_000 },
+        selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         seed: 7,
     }

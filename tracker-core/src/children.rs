@@ -13,6 +13,12 @@ use crate::real::Real;
 pub trait ChildSink<T> {
     /// Offers one distinct child: its log-weight and, per row, the column it takes or [`CLUTTER`].
     fn offer(&mut self, log_weight: T, assignment: &[u16]);
+
+    /// Reports the total log-weight of children that exist but were not offered (so the scan's total
+    /// weight, and the captured mass, stay honest). The default ignores it.
+    fn unoffered(&mut self, log_mass: T) {
+        let _ = log_mass;
+    }
 }
 
 /// Why a generator stopped early.

@@ -50,6 +50,10 @@ pub enum ChildGeneration {
         /// Bound on the enumeration's leaves per scan.
         max_children_per_scan: u64,
     },
+    /// R-FISST: the Metropolis sampler with a fixed step budget per (parent, event), optionally by
+    /// clusters with small clusters enumerated ([`crate::cluster`]). Every chain keeps its best H distinct
+    /// children.
+    Sampled(crate::sampler::SamplerConfig),
 }
 
 impl Default for ChildGeneration {
@@ -70,6 +74,18 @@ pub enum StoreOverflow {
     Error,
 }
 
+/// How the H∞ hypotheses are chosen among the children (paper 003 §III-A).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Selection {
+    /// The H∞ children of largest weight. **The default.**
+    #[default]
+    TopWeight,
+    /// H∞ children drawn without replacement with probability proportional to their weight (the
+    /// Gumbel-top-k trick: the H∞ largest ln w + G, G standard Gumbel, seeded by the configuration seed
+    /// and the scan index).
+    SampledByWeight,
+}
+
 /// The complete configuration of a tracker.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
@@ -88,6 +104,8 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub gate: Option<T>,
     /// Child generation.
     pub children: ChildGeneration,
+    /// How the H∞ hypotheses are chosen.
+    pub selection: Selection,
     /// Track-store overflow policy.
     pub store_overflow: StoreOverflow,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.

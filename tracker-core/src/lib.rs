@@ -38,9 +38,12 @@
 #![deny(missing_docs)]
 // `!(x > 0)` is deliberate throughout: unlike `x <= 0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+// Index loops over parallel fixed-size arrays (rows, columns, slots) read closer to the maths.
+#![allow(clippy::needless_range_loop)]
 
 pub mod association;
 pub mod children;
+pub mod cluster;
 pub mod config;
 pub mod ekf;
 pub mod error;
@@ -48,6 +51,7 @@ pub mod hypothesis;
 pub mod model;
 pub mod real;
 pub mod report;
+pub mod sampler;
 pub mod selection;
 pub mod sensor;
 pub mod store;

@@ -7,15 +7,19 @@
 //! selection is a total order and the same inputs always keep the same children.
 
 use crate::children::ChildSink;
-use crate::real::{LogSumExp, Real};
+use crate::real::{LogSumExp, Real, ln};
 pub use crate::weight::Event;
 use core::cmp::Ordering;
+use rand_core::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
 
 /// One kept child: where it comes from and how it associates the scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Candidate<T, const Z: usize> {
     /// Unnormalised log-weight ln w̃.
     pub log_weight: T,
+    /// Selection key: ln w̃, plus a standard Gumbel variate when selecting by sampling.
+    pub key: T,
     /// Arrival index within the scan (the tie-break: earlier wins).
     pub sequence: u64,
     /// Index of the parent hypothesis.
@@ -28,14 +32,21 @@ pub struct Candidate<T, const Z: usize> {
 
 impl<T: Real, const Z: usize> Default for Candidate<T, Z> {
     fn default() -> Self {
-        Self { log_weight: T::NEG_INFINITY, sequence: 0, parent: 0, event: Event::None, assignment: [0; Z] }
+        Self {
+            log_weight: T::NEG_INFINITY,
+            key: T::NEG_INFINITY,
+            sequence: 0,
+            parent: 0,
+            event: Event::None,
+            assignment: [0; Z],
+        }
     }
 }
 
 impl<T: Real, const Z: usize> Candidate<T, Z> {
     /// Total order "better than": larger weight, then earlier arrival.
     fn better_than(&self, other: &Self) -> bool {
-        match self.log_weight.partial_cmp(&other.log_weight) {
+        match self.key.partial_cmp(&other.key) {
             Some(Ordering::Greater) => true,
             Some(Ordering::Less) => false,
             _ => self.sequence < other.sequence,
@@ -54,6 +65,8 @@ pub struct TopChildren<T, const H: usize, const Z: usize> {
     total: LogSumExp<T>,
     parent: u16,
     event: Event,
+    /// When selecting by sampling: the stream of Gumbel perturbations.
+    gumbel: Option<Xoshiro256PlusPlus>,
 }
 
 impl<T: Real, const H: usize, const Z: usize> Default for TopChildren<T, H, Z> {
@@ -73,14 +86,23 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
             total: LogSumExp::new(),
             parent: 0,
             event: Event::None,
+            gumbel: None,
         }
     }
 
-    /// Empties the selection for a new scan.
+    /// Empties the selection for a new scan that keeps the H children of largest weight.
     pub fn clear(&mut self) {
         self.len = 0;
         self.offered = 0;
         self.total = LogSumExp::new();
+        self.gumbel = None;
+    }
+
+    /// Empties the selection for a new scan that draws H children without replacement with probability
+    /// proportional to weight: it keeps the H largest ln w̃ + G with G standard Gumbel (Gumbel-top-k).
+    pub fn clear_sampling(&mut self, seed: u64) {
+        self.clear();
+        self.gumbel = Some(Xoshiro256PlusPlus::seed_from_u64(seed));
     }
 
     /// Sets the parent and event of the children offered next.
@@ -102,6 +124,17 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// Number of children offered (with non-zero weight).
     pub fn offered(&self) -> u64 {
         self.offered
+    }
+
+    /// The key a new child must beat to be kept (`-inf` while there is room). With
+    /// [`TopChildren::clear_sampling`] keys are perturbed, so this bounds keys, not weights.
+    pub fn threshold(&self) -> T {
+        if self.len < H { T::NEG_INFINITY } else { self.items[self.heap[0] as usize].key }
+    }
+
+    /// Whether keys are weights (selection by largest weight).
+    pub fn selects_by_weight(&self) -> bool {
+        self.gumbel.is_none()
     }
 
     /// ln Σ w̃ over every child offered.
@@ -162,13 +195,26 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
 }
 
 impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H, Z> {
+    fn unoffered(&mut self, log_mass: T) {
+        self.total.add(log_mass);
+    }
+
     fn offer(&mut self, log_weight: T, assignment: &[u16]) {
         if log_weight == T::NEG_INFINITY {
             return;
         }
         self.total.add(log_weight);
+        let key = match &mut self.gumbel {
+            None => log_weight,
+            Some(rng) => {
+                // G = −ln(−ln U), U uniform in (0, 1).
+                let uniform = ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64);
+                log_weight - ln(-ln(T::of_f64(uniform)))
+            }
+        };
         let mut candidate = Candidate {
             log_weight,
+            key,
             sequence: self.offered,
             parent: self.parent,
             event: self.event,

@@ -23,7 +23,9 @@
 //! numerical failure is returned as [`StepError::Numerical`].
 
 use crate::association::{AssociationMatrix, CLUTTER};
-use crate::children::{ChildGenerator, ExhaustiveChildren, GenerateError};
+use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren, GenerateError};
+use crate::cluster::ClusteredChildren;
+use crate::config::Selection;
 use crate::config::{ChildGeneration, Config, StoreOverflow};
 use crate::ekf::{self, Gaussian, Innovation};
 use crate::error::{ConfigError, StepError};
@@ -31,6 +33,7 @@ use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{LogSumExp, Real, exp, ln, log_add};
 use crate::report::StepReport;
+use crate::sampler::{SamplerConfig, mix};
 use crate::selection::TopChildren;
 use crate::store::{Track, TrackLabel, TrackStore};
 use crate::weight::{Event, WeightModel};
@@ -93,6 +96,8 @@ struct Workspace<
     /// The measurement each new slot took, or `NONE` when missed.
     new_slot_measurement: [u16; K],
     row_of_column: [u16; N],
+    /// Matrix column → position of its object in the parent.
+    column_position: [u16; N],
     child_sources: [(Source, u16); N],
     child_slots: [u16; N],
     hashes: [u64; H],
@@ -127,6 +132,7 @@ impl<
             next_same_source: [NONE; K],
             new_slot_measurement: [NONE; K],
             row_of_column: [NONE; N],
+            column_position: [0; N],
             child_sources: [(Source::Track(0), NONE); N],
             child_slots: [0; N],
             hashes: [0; H],
@@ -158,7 +164,7 @@ enum Source {
 /// ```
 /// use nalgebra::{SMatrix, SVector};
 /// use tracker_core::{Config, ConstantVelocity, PositionMeasurement, Region, Sensor, Tracker, BirthModel, Gaussian};
-/// use tracker_core::config::{ChildGeneration, StoreOverflow};
+/// use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
 ///
 /// let config = Config {
 ///     motion: ConstantVelocity { acceleration_noise: 0.01 },
@@ -168,6 +174,7 @@ enum Source {
 ///     death_probability: 0.0,
 ///     gate: None,
 ///     children: ChildGeneration::default(),
+///     selection: Selection::default(),
 ///     store_overflow: StoreOverflow::default(),
 ///     seed: 1,
 /// };
@@ -201,6 +208,10 @@ pub struct Tracker<
     scans: u64,
     next_label: u32,
     work: Workspace<T, S, D, H, N, Z, K, B>,
+    /// The sampler's state (used when children are sampled).
+    sampler: ClusteredChildren<T, N, Z, H>,
+    /// Children sampled or enumerated in the last scan's chains: Metropolis steps taken.
+    last_sampler_steps: u64,
 }
 
 /// A read-only view of one hypothesis and the tracks it holds.
@@ -304,6 +315,7 @@ where
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_CHECK;
         let (birth_innovations, birth_in_field_of_view) = Self::validate(&config)?;
+        let config_children = config.children;
         if !time.is_finite() {
             return Err(ConfigError::PriorTime);
         }
@@ -319,6 +331,14 @@ where
             scans: 0,
             next_label: 0,
             work: Workspace::default(),
+            sampler: ClusteredChildren::new(
+                match config_children {
+                    ChildGeneration::Sampled(sampler) => sampler,
+                    ChildGeneration::Exhaustive { .. } => SamplerConfig::default(),
+                },
+                0,
+            ),
+            last_sampler_steps: 0,
         };
         tracker.load_prior(prior)?;
         Ok(tracker)
@@ -370,6 +390,11 @@ where
         match config.children {
             ChildGeneration::Exhaustive { max_children_per_scan } => {
                 if max_children_per_scan == 0 {
+                    return Err(ConfigError::ChildBudget);
+                }
+            }
+            ChildGeneration::Sampled(sampler) => {
+                if sampler.steps == 0 {
                     return Err(ConfigError::ChildBudget);
                 }
             }
@@ -470,6 +495,7 @@ where
             merged_children: outcome.merged,
             children_dropped_for_store: outcome.dropped_for_store,
             births_beyond_object_capacity: births_skipped,
+            sampler_steps: self.last_sampler_steps,
             expected_cardinality: self.expected_cardinality(),
         })
     }
@@ -523,39 +549,53 @@ where
 
     /// Step 2: offer every (parent, event) child to the selection. Returns the number of birth events
     /// skipped because the parent already holds `N` objects.
+    ///
+    /// Deaths with sampled children: a death child of object o with association σ (σ leaves o
+    /// unassigned) weighs exactly the no-event child σ times β / (P(no event) (1 − p_D)), so the death
+    /// children are derived from the no-event chain's kept children instead of running one chain per
+    /// object. (With p_D = 1 the sets differ, and each death gets its own chain.)
     fn generate_children(&mut self, rows: usize) -> Result<u64, StepError> {
+        let scan_seed = mix(self.config.seed ^ mix(self.scans + 1));
+        let steps_before = self.sampler.sampler().steps_taken();
+        let sampled = matches!(self.config.children, ChildGeneration::Sampled(_));
         let mut generator = match self.config.children {
-            ChildGeneration::Exhaustive { max_children_per_scan } => ExhaustiveChildren::new(max_children_per_scan),
-        };
-        let budget_error = |error: GenerateError| match error {
-            GenerateError::BudgetExceeded { budget } => StepError::ChildBudgetExceeded { budget },
+            ChildGeneration::Exhaustive { max_children_per_scan } => {
+                Generator::Exhaustive(ExhaustiveChildren::new(max_children_per_scan))
+            }
+            ChildGeneration::Sampled(_) => Generator::Sampled(&mut self.sampler),
         };
         let weights = self.weights;
         let birth_cells = if weights.births_possible() { self.config.birth.cells.len() } else { 0 };
+        let derive_deaths = sampled && weights.deaths_possible() && !weights.detection_required();
         let mut births_skipped = 0u64;
 
         let work = &mut self.work;
-        work.top.clear();
+        match self.config.selection {
+            Selection::TopWeight => work.top.clear(),
+            Selection::SampledByWeight => work.top.clear_sampling(mix(scan_seed ^ 0x5e1e_c7ed)),
+        }
         let parents = self.hypotheses[self.active].as_slice();
         for (parent_index, parent) in parents.iter().enumerate() {
             // Columns: the parent's objects in the field of view, in the parent's order.
             work.matrix = AssociationMatrix::new(rows, 0, T::zero());
-            for &slot in parent.slots() {
+            for (position, &slot) in parent.slots().iter().enumerate() {
                 if work.predicted[slot as usize].in_field_of_view {
                     // A parent holds at most N objects, so the matrix has room.
-                    let _ = work.matrix.push_column(&work.entries[slot as usize][..rows], weights.detection_required());
+                    if let Some(column) =
+                        work.matrix.push_column(&work.entries[slot as usize][..rows], weights.detection_required())
+                    {
+                        work.column_position[column] = position as u16;
+                    }
                 }
             }
             let in_view = work.matrix.columns();
-            let parent_index = parent_index as u16;
-            let mut generate = |work: &mut Workspace<T, S, D, H, N, Z, K, B>, event: Event, child_in_view: usize| {
-                let log_probability = weights.event_log_probability(event, in_view);
-                work.matrix.set_baseline(weights.baseline(parent.log_weight, log_probability, child_in_view, rows));
-                work.top.set_context(parent_index, event);
-                generator.generate(&work.matrix, &mut work.top).map_err(budget_error)
-            };
+            let context =
+                ParentContext { index: parent_index as u16, log_weight: parent.log_weight, in_view, rows, scan_seed };
 
-            generate(work, Event::None, in_view)?;
+            offer_event(&mut generator, work, &weights, &context, Event::None, in_view)?;
+            if derive_deaths {
+                derive_death_children(&generator, work, &weights, &context);
+            }
 
             // One birth in a cell (α each), if the child can hold one more object.
             if parent.len() >= N {
@@ -568,7 +608,9 @@ where
                     } else if weights.birth_required() {
                         continue; // a birth that must be detected where it cannot be
                     }
-                    let result = generate(work, Event::Birth { cell: cell as u16 }, in_view + usize::from(detectable));
+                    let event = Event::Birth { cell: cell as u16 };
+                    let result =
+                        offer_event(&mut generator, work, &weights, &context, event, in_view + usize::from(detectable));
                     if detectable {
                         work.matrix.pop_column();
                     }
@@ -576,26 +618,23 @@ where
                 }
             }
 
-            // One death among the objects in the field of view (β each).
-            if weights.deaths_possible() {
-                let mut column = 0usize;
-                for (position, &slot) in parent.slots().iter().enumerate() {
-                    if !work.predicted[slot as usize].in_field_of_view {
-                        continue;
-                    }
+            // One death among the objects in the field of view (β each), each by its own matrix.
+            if weights.deaths_possible() && !derive_deaths {
+                for column in 0..in_view {
                     work.matrix.column(column, &mut work.saved_column);
                     let required = work.matrix.is_required(column);
                     work.matrix.set_column(column, &[T::NEG_INFINITY; Z][..rows], false);
-                    let result = generate(work, Event::Death { object: position as u16 }, in_view - 1);
+                    let event = Event::Death { object: work.column_position[column] };
+                    let result = offer_event(&mut generator, work, &weights, &context, event, in_view - 1);
                     work.matrix.set_column(column, &work.saved_column[..rows], required);
                     result?;
-                    column += 1;
                 }
             }
         }
         if work.top.is_empty() {
             return Err(StepError::NoViableChild);
         }
+        self.last_sampler_steps = self.sampler.sampler().steps_taken() - steps_before;
         Ok(births_skipped)
     }
 
@@ -802,6 +841,121 @@ where
     /// Expected number of objects Σ_h w_h N_h.
     pub fn expected_cardinality(&self) -> T {
         self.hypotheses().fold(T::zero(), |sum, h| sum + h.weight() * T::of_f64(h.len() as f64))
+    }
+}
+
+/// What the child generation of one parent needs to know about it.
+struct ParentContext<T> {
+    index: u16,
+    log_weight: T,
+    in_view: usize,
+    rows: usize,
+    scan_seed: u64,
+}
+
+/// Generates the children of the current matrix for `event` into the selection.
+fn offer_event<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    generator: &mut Generator<'_, T, N, Z, H>,
+    work: &mut Workspace<T, S, D, H, N, Z, K, B>,
+    weights: &WeightModel<T>,
+    parent: &ParentContext<T>,
+    event: Event,
+    child_in_view: usize,
+) -> Result<(), StepError> {
+    let log_probability = weights.event_log_probability(event, parent.in_view);
+    work.matrix.set_baseline(weights.baseline(parent.log_weight, log_probability, child_in_view, parent.rows));
+    work.top.set_context(parent.index, event);
+    // One random stream per (scan, parent, event): a chain's draws do not depend on the others.
+    let event_code = match event {
+        Event::None => 0,
+        Event::Birth { cell } => 1 + u64::from(cell),
+        Event::Death { object } => 1 + B as u64 + u64::from(object),
+    };
+    generator.reseed(mix(parent.scan_seed ^ mix((u64::from(parent.index) << 32) | event_code)));
+    generator.generate(&work.matrix, &mut work.top).map(|_| ()).map_err(|error| match error {
+        GenerateError::BudgetExceeded { budget } => StepError::ChildBudgetExceeded { budget },
+    })
+}
+
+/// Offers the death children derived from the no-event children just generated (see
+/// `generate_children`).
+fn derive_death_children<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    generator: &Generator<'_, T, N, Z, H>,
+    work: &mut Workspace<T, S, D, H, N, Z, K, B>,
+    weights: &WeightModel<T>,
+    parent: &ParentContext<T>,
+) {
+    let Generator::Sampled(sampled) = generator else { return };
+    // ln r = ln β − ln P(no event) − ln(1 − p_D)
+    let log_ratio = weights.event_log_probability(Event::Death { object: 0 }, parent.in_view)
+        - weights.event_log_probability(Event::None, parent.in_view)
+        - weights.finite_miss();
+    for (score, assignment) in sampled.offered(parent.rows) {
+        let mut assigned = [false; N];
+        for &column in assignment {
+            if column != CLUTTER {
+                assigned[column as usize] = true;
+            }
+        }
+        let free = (0..parent.in_view).filter(|&c| !assigned[c]).count();
+        if free == 0 {
+            continue;
+        }
+        let death_score = score + log_ratio;
+        if work.top.selects_by_weight() && !(death_score > work.top.threshold()) {
+            // None of this association's death children can be kept: count their mass at once.
+            work.top.unoffered(death_score + ln(T::of_f64(free as f64)));
+            continue;
+        }
+        for column in (0..parent.in_view).filter(|&c| !assigned[c]) {
+            work.top.set_context(parent.index, Event::Death { object: work.column_position[column] });
+            work.top.offer(death_score, assignment);
+        }
+    }
+}
+
+/// The child generator of a scan.
+enum Generator<'a, T: Real, const N: usize, const Z: usize, const H: usize> {
+    Exhaustive(ExhaustiveChildren),
+    Sampled(&'a mut ClusteredChildren<T, N, Z, H>),
+}
+
+impl<T: Real, const N: usize, const Z: usize, const H: usize> Generator<'_, T, N, Z, H> {
+    fn reseed(&mut self, seed: u64) {
+        if let Generator::Sampled(sampler) = self {
+            sampler.reseed(seed);
+        }
+    }
+}
+
+impl<T: Real, const N: usize, const Z: usize, const H: usize> ChildGenerator<T, N, Z> for Generator<'_, T, N, Z, H> {
+    fn generate<Sink: ChildSink<T>>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        sink: &mut Sink,
+    ) -> Result<u64, GenerateError> {
+        match self {
+            Generator::Exhaustive(exhaustive) => exhaustive.generate(matrix, sink),
+            Generator::Sampled(sampled) => sampled.generate(matrix, sink),
+        }
     }
 }
 

@@ -1,0 +1,522 @@
+//! Adaptive child generation by clusters: beyond the papers (paper 003's future work asks for an adaptive
+//! method).
+//!
+//! Gating makes most entries of an association matrix impossible. Rows and columns connected through
+//! possible entries form clusters that do not interact: a child is one association per cluster, and its
+//! log-weight is the baseline plus the sum of its clusters' log-scores. So:
+//!
+//! 1. **Split** the matrix into clusters (union-find over possible entries). A row with no possible entry
+//!    is clutter in every child; a column with none is missed in every child (or makes every child
+//!    impossible when it is required).
+//! 2. **Solve each cluster**: enumerate it exhaustively when it has at most `exhaustive_limit`
+//!    associations (A_n(m)), else run the Metropolis sampler on it. Either way keep its best `C`
+//!    distinct associations.
+//! 3. **Combine**: the best `C` children of the whole matrix are the best `C` sums of one association per
+//!    cluster; a k-best merge of sorted lists finds them exactly, cluster after cluster.
+//! 4. **Offer** them with their exact log-weight recomputed from the full matrix, and report the mass of
+//!    the children not offered: exact when every cluster was enumerated (Π of the clusters' sums), a lower
+//!    bound otherwise.
+
+use crate::association::{AssociationMatrix, CLUTTER, association_count};
+use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren, GenerateError};
+use crate::real::{LogSumExp, Real, exp, ln};
+use crate::sampler::{MetropolisSampler, SamplerConfig, mix};
+
+const NONE: u16 = u16::MAX;
+
+/// A sink that keeps a cluster's best `C` associations (exhaustive enumeration offers each once) and the
+/// log-sum-exp of all of them.
+struct ClusterSink<'a, T, const C: usize, const Z: usize> {
+    best: &'a mut crate::sampler::BestChildren<T, C, Z>,
+    total: LogSumExp<T>,
+}
+
+impl<T: Real, const C: usize, const Z: usize> ChildSink<T> for ClusterSink<'_, T, C, Z> {
+    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+        self.total.add(log_weight);
+        self.best.insert(log_weight, crate::sampler::association_hash(assignment), assignment);
+    }
+}
+
+/// One entry of a combination stage: its summed log-score, the entry of the previous stage it extends, and
+/// the association of this stage's cluster it adds.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Combination<T> {
+    score: T,
+    previous: u16,
+    choice: u16,
+}
+
+/// Children of a matrix by clusters (see the module documentation). `C` is the number of children kept per
+/// matrix; the tracker uses `C = H`.
+#[derive(Debug, Clone)]
+pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: usize> {
+    config: SamplerConfig,
+    seed: u64,
+    sampler: MetropolisSampler<T, N, Z, C>,
+    /// Scratch matrix of one cluster.
+    cluster: AssociationMatrix<T, N, Z>,
+    /// Union-find parents: rows are nodes 0..Z, columns Z..Z+N.
+    row_root: [u16; Z],
+    column_root: [u16; N],
+    /// Per row / column, its cluster (NONE: alone).
+    row_cluster: [u16; Z],
+    column_cluster: [u16; N],
+    /// Per stage (cluster): the scores of its kept associations, best first.
+    stage_scores: [[T; C]; Z],
+    stage_len: [u16; Z],
+    /// Per kept association of any cluster, its columns on that cluster's rows (full-matrix indices).
+    choices: [[u16; Z]; C],
+    /// Combination stages.
+    stages: [[Combination<T>; C]; Z],
+    combined_len: [u16; Z],
+    /// k-best merge frontier: (score, previous entry, choice).
+    frontier: [Combination<T>; C],
+    leaves: u64,
+    sampled_clusters: u64,
+    enumerated_clusters: u64,
+    /// The children offered by the last `generate`, for callers that derive more children from them.
+    offered_scores: [T; C],
+    offered_assignments: [[u16; Z]; C],
+    offered_len: usize,
+}
+
+impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<T, N, Z, C> {
+    /// A generator with `config`; without `config.clusters` it runs one chain on the whole matrix.
+    pub fn new(config: SamplerConfig, seed: u64) -> Self {
+        Self {
+            config,
+            seed,
+            sampler: MetropolisSampler::new(config, seed),
+            cluster: AssociationMatrix::default(),
+            row_root: [0; Z],
+            column_root: [0; N],
+            row_cluster: [NONE; Z],
+            column_cluster: [NONE; N],
+            stage_scores: [[T::NEG_INFINITY; C]; Z],
+            stage_len: [0; Z],
+            choices: [[CLUTTER; Z]; C],
+            stages: [[Combination::default(); C]; Z],
+            combined_len: [0; Z],
+            frontier: [Combination::default(); C],
+            leaves: 0,
+            sampled_clusters: 0,
+            enumerated_clusters: 0,
+            offered_scores: [T::NEG_INFINITY; C],
+            offered_assignments: [[CLUTTER; Z]; C],
+            offered_len: 0,
+        }
+    }
+
+    /// Sets the seed of the next matrix's samplers.
+    pub fn reseed(&mut self, seed: u64) {
+        self.seed = seed;
+    }
+
+    /// The sampler (for its statistics).
+    pub fn sampler(&self) -> &MetropolisSampler<T, N, Z, C> {
+        &self.sampler
+    }
+
+    /// Clusters solved by enumeration and by sampling so far.
+    pub fn cluster_counts(&self) -> (u64, u64) {
+        (self.enumerated_clusters, self.sampled_clusters)
+    }
+
+    /// The children offered by the last `generate`, as (log-weight, assignment over `rows` rows).
+    pub fn offered(&self, rows: usize) -> impl Iterator<Item = (T, &[u16])> + '_ {
+        (0..self.offered_len).map(move |i| (self.offered_scores[i], &self.offered_assignments[i][..rows]))
+    }
+
+    /// Leaves visited by exhaustive enumeration of clusters so far.
+    pub fn leaves_visited(&self) -> u64 {
+        self.leaves
+    }
+
+    fn node_root(&self, node: usize) -> usize {
+        if node < Z { self.row_root[node] as usize } else { self.column_root[node - Z] as usize }
+    }
+
+    fn set_node_root(&mut self, node: usize, root: usize) {
+        if node < Z {
+            self.row_root[node] = root as u16;
+        } else {
+            self.column_root[node - Z] = root as u16;
+        }
+    }
+
+    fn find(&mut self, mut node: usize) -> usize {
+        // Path halving; depth ≤ Z + N.
+        for _ in 0..(Z + N) {
+            let parent = self.node_root(node);
+            if parent == node {
+                return node;
+            }
+            let grandparent = self.node_root(parent);
+            self.set_node_root(node, grandparent);
+            node = grandparent;
+        }
+        node
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // The smaller index becomes the root, so cluster order follows row order.
+            let (low, high) = if ra < rb { (ra, rb) } else { (rb, ra) };
+            self.set_node_root(high, low);
+        }
+    }
+
+    /// Splits `matrix` into clusters; returns their number, or `None` when a required column can take no
+    /// measurement (no feasible child).
+    fn split(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> Option<usize> {
+        let (rows, columns) = (matrix.rows(), matrix.columns());
+        for row in 0..rows {
+            self.row_root[row] = row as u16;
+        }
+        for column in 0..columns {
+            self.column_root[column] = (Z + column) as u16;
+        }
+        let mut column_possible = [false; N];
+        let mut row_possible = [false; Z];
+        for row in 0..rows {
+            for column in 0..columns {
+                if matrix.entry(row, column) > T::NEG_INFINITY {
+                    row_possible[row] = true;
+                    column_possible[column] = true;
+                    self.union(row, Z + column);
+                }
+            }
+        }
+        for column in 0..columns {
+            if !column_possible[column] && matrix.is_required(column) {
+                return None;
+            }
+        }
+        // Number the clusters by their root (the smallest row of the cluster).
+        let mut count = 0usize;
+        self.row_cluster[..rows].fill(NONE);
+        self.column_cluster[..columns].fill(NONE);
+        for row in 0..rows {
+            if !row_possible[row] {
+                continue;
+            }
+            let root = self.find(row);
+            if root == row {
+                self.row_cluster[row] = count as u16;
+                count += 1;
+            }
+        }
+        for row in 0..rows {
+            if row_possible[row] {
+                let root = self.find(row);
+                self.row_cluster[row] = self.row_cluster[root];
+            }
+        }
+        for column in 0..columns {
+            if column_possible[column] {
+                let root = self.find(Z + column);
+                self.column_cluster[column] = self.row_cluster[root];
+            }
+        }
+        Some(count)
+    }
+
+    /// Solves cluster `index`: fills stage `index`'s scores and the choices table. Returns the log-sum-exp
+    /// of its associations (exact when enumerated) and whether it was sampled.
+    fn solve(&mut self, matrix: &AssociationMatrix<T, N, Z>, index: usize) -> Result<(T, bool), GenerateError> {
+        let (rows, columns) = (matrix.rows(), matrix.columns());
+        let mut cluster_rows = [0u16; Z];
+        let mut cluster_columns = [0u16; N];
+        let (mut m, mut n) = (0usize, 0usize);
+        for row in 0..rows {
+            if self.row_cluster[row] as usize == index {
+                cluster_rows[m] = row as u16;
+                m += 1;
+            }
+        }
+        for column in 0..columns {
+            if self.column_cluster[column] as usize == index {
+                cluster_columns[n] = column as u16;
+                n += 1;
+            }
+        }
+        self.cluster = AssociationMatrix::new(m, 0, T::zero());
+        let mut entries = [T::NEG_INFINITY; Z];
+        for &column in &cluster_columns[..n] {
+            for (local, &row) in cluster_rows[..m].iter().enumerate() {
+                entries[local] = matrix.entry(row as usize, column as usize);
+            }
+            let _ = self.cluster.push_column(&entries[..m], matrix.is_required(column as usize));
+        }
+        let exhaustive = association_count(n as u32, m as u32) <= u128::from(self.config.exhaustive_limit);
+        let total = if exhaustive {
+            self.enumerated_clusters += 1;
+            let mut generator = ExhaustiveChildren::new(self.config.exhaustive_limit.max(1));
+            let best = self.sampler.best_mut();
+            best.clear(m);
+            let mut sink = ClusterSink { best, total: LogSumExp::new() };
+            generator.generate(&self.cluster, &mut sink)?;
+            self.leaves += generator.leaves_visited();
+            sink.total.value()
+        } else {
+            self.sampled_clusters += 1;
+            self.sampler.reseed(mix(self.seed ^ mix(index as u64 + 1)));
+            self.sampler.run(&self.cluster);
+            let mut known = LogSumExp::new();
+            for (score, _) in self.sampler.best().iter() {
+                known.add(score);
+            }
+            known.value()
+        };
+        // Best first into the stage, the columns mapped back to the full matrix.
+        let best = self.sampler.best();
+        let kept = best.len();
+        let mut order = [0u16; C];
+        for (slot, i) in order.iter_mut().zip(0u16..).take(kept) {
+            *slot = i;
+        }
+        let score_of = |i: u16| best.get(i as usize).map_or(T::NEG_INFINITY, |(score, _)| score);
+        order[..kept].sort_unstable_by(|&a, &b| {
+            score_of(b).partial_cmp(&score_of(a)).unwrap_or(core::cmp::Ordering::Equal).then(a.cmp(&b))
+        });
+        for (rank, &item) in order[..kept].iter().enumerate() {
+            let Some((score, assignment)) = best.get(item as usize) else { continue };
+            self.stage_scores[index][rank] = score;
+            for (local, &row) in cluster_rows[..m].iter().enumerate() {
+                let column = assignment.get(local).copied().unwrap_or(CLUTTER);
+                self.choices[rank][row as usize] =
+                    if column == CLUTTER { CLUTTER } else { cluster_columns[column as usize] };
+            }
+        }
+        self.stage_len[index] = kept as u16;
+        Ok((total, !exhaustive))
+    }
+
+    /// Stage `index` = best `C` sums of stage `index − 1` and cluster `index` (k-best merge of two sorted
+    /// lists with a frontier heap of at most `C` entries).
+    fn combine(&mut self, index: usize) {
+        let cluster_len = self.stage_len[index] as usize;
+        if index == 0 {
+            for rank in 0..cluster_len {
+                self.stages[0][rank] =
+                    Combination { score: self.stage_scores[0][rank], previous: 0, choice: rank as u16 };
+            }
+            self.combined_len[0] = cluster_len as u16;
+            return;
+        }
+        let previous_len = self.combined_len[index - 1] as usize;
+        // Frontier: for each previous entry i, the next choice j to pair with it; start with (i, 0).
+        let mut frontier_len = 0usize;
+        if cluster_len > 0 {
+            for i in 0..previous_len {
+                self.frontier[frontier_len] = Combination {
+                    score: self.stages[index - 1][i].score + self.stage_scores[index][0],
+                    previous: i as u16,
+                    choice: 0,
+                };
+                frontier_len += 1;
+            }
+        }
+        let mut out = 0usize;
+        while out < C && frontier_len > 0 {
+            // Take the best of the frontier (ties: lower previous entry, then lower choice).
+            let mut best = 0usize;
+            for f in 1..frontier_len {
+                let (a, b) = (&self.frontier[f], &self.frontier[best]);
+                if a.score > b.score || (a.score == b.score && (a.previous, a.choice) < (b.previous, b.choice)) {
+                    best = f;
+                }
+            }
+            let taken = self.frontier[best];
+            self.stages[index][out] = taken;
+            out += 1;
+            let next_choice = taken.choice as usize + 1;
+            if next_choice < cluster_len {
+                self.frontier[best] = Combination {
+                    score: self.stages[index - 1][taken.previous as usize].score
+                        + self.stage_scores[index][next_choice],
+                    previous: taken.previous,
+                    choice: next_choice as u16,
+                };
+            } else {
+                frontier_len -= 1;
+                self.frontier[best] = self.frontier[frontier_len];
+            }
+        }
+        self.combined_len[index] = out as u16;
+    }
+}
+
+impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, N, Z>
+    for ClusteredChildren<T, N, Z, C>
+{
+    fn generate<K: ChildSink<T>>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        sink: &mut K,
+    ) -> Result<u64, GenerateError> {
+        self.offered_len = 0;
+        let rows = matrix.rows();
+        if !self.config.clusters {
+            // Paper 003: one chain on the whole matrix.
+            self.sampled_clusters += 1;
+            self.sampler.reseed(self.seed);
+            self.sampler.run(matrix);
+            for (score, assignment) in self.sampler.best().iter() {
+                self.offered_scores[self.offered_len] = score;
+                self.offered_assignments[self.offered_len][..rows].copy_from_slice(assignment);
+                self.offered_len += 1;
+                sink.offer(score, assignment);
+            }
+            return Ok(self.offered_len as u64);
+        }
+        let Some(clusters) = self.split(matrix) else { return Ok(0) };
+        let mut log_total = matrix.baseline();
+        // The choices of all clusters share one table: clusters have disjoint rows.
+        for index in 0..clusters {
+            let (total, _) = self.solve(matrix, index)?;
+            log_total += total;
+            if self.stage_len[index] == 0 {
+                return Ok(0); // a cluster with no feasible association
+            }
+            self.combine(index);
+        }
+        // Reconstruct and offer every combination of the last stage.
+        let final_len = if clusters == 0 { 1 } else { self.combined_len[clusters - 1] as usize };
+        let mut offered_total = LogSumExp::new();
+        let mut assignment = [CLUTTER; Z];
+        for entry in 0..final_len {
+            assignment[..rows].fill(CLUTTER);
+            let mut at = entry;
+            for stage in (0..clusters).rev() {
+                let combination = self.stages[stage][at];
+                for row in 0..rows {
+                    if self.row_cluster[row] as usize == stage {
+                        assignment[row] = self.choices[combination.choice as usize][row];
+                    }
+                }
+                at = combination.previous as usize;
+            }
+            let exact = matrix.score(&assignment[..rows]);
+            if exact > T::NEG_INFINITY {
+                offered_total.add(exact);
+                sink.offer(exact, &assignment[..rows]);
+                self.offered_scores[self.offered_len] = exact;
+                self.offered_assignments[self.offered_len] = assignment;
+                self.offered_len += 1;
+            }
+        }
+        // Mass of the children not offered: Π of the clusters' sums minus what was offered.
+        let offered = offered_total.value();
+        if log_total > offered && offered > T::NEG_INFINITY {
+            let rest = log_total + ln(T::one() - exp(offered - log_total));
+            sink.unoffered(rest);
+        }
+        Ok(final_len as u64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::real::LogSumExp;
+    use std::vec::Vec;
+
+    struct Collect {
+        children: Vec<(f64, Vec<u16>)>,
+        unoffered: LogSumExp<f64>,
+    }
+
+    impl ChildSink<f64> for Collect {
+        fn offer(&mut self, w: f64, a: &[u16]) {
+            self.children.push((w, a.to_vec()));
+        }
+        fn unoffered(&mut self, m: f64) {
+            self.unoffered.add(m);
+        }
+    }
+
+    fn sparse_matrix(seed: u64, rows: usize, columns: usize) -> AssociationMatrix<f64, 10, 8> {
+        let mut state = seed;
+        let mut next = || {
+            state = mix(state);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut m = AssociationMatrix::new(rows, columns, -2.0);
+        for c in 0..columns {
+            let entries: Vec<f64> =
+                (0..rows).map(|_| if next() < 0.7 { f64::NEG_INFINITY } else { 10.0 * next() - 4.0 }).collect();
+            m.set_column(c, &entries, false);
+        }
+        m
+    }
+
+    fn exhaustive_top(m: &AssociationMatrix<f64, 10, 8>, c: usize) -> (Vec<(f64, Vec<u16>)>, f64) {
+        let mut all = Collect { children: vec![], unoffered: LogSumExp::new() };
+        ExhaustiveChildren::new(u64::MAX).generate(m, &mut all).unwrap();
+        let mut total = LogSumExp::new();
+        for child in &all.children {
+            total.add(child.0);
+        }
+        all.children.sort_by(|a, b| b.0.total_cmp(&a.0));
+        all.children.truncate(c);
+        (all.children, total.value())
+    }
+
+    #[test]
+    fn clustered_children_equal_the_exhaustive_best_and_account_for_the_rest() {
+        for seed in 0..300 {
+            let m = sparse_matrix(seed, 1 + (seed % 8) as usize, 1 + (seed % 10) as usize);
+            let config = SamplerConfig { exhaustive_limit: u64::MAX, ..SamplerConfig::default() };
+            let mut clustered = ClusteredChildren::<f64, 10, 8, 12>::new(config, seed);
+            let mut got = Collect { children: vec![], unoffered: LogSumExp::new() };
+            clustered.generate(&m, &mut got).unwrap();
+            let (expected, total) = exhaustive_top(&m, 12);
+            let mut got_weights: Vec<f64> = got.children.iter().map(|c| c.0).collect();
+            got_weights.sort_by(|a, b| b.total_cmp(a));
+            let expected_weights: Vec<f64> = expected.iter().map(|c| c.0).collect();
+            assert_eq!(got_weights.len(), expected_weights.len(), "seed {seed}");
+            for (g, e) in got_weights.iter().zip(&expected_weights) {
+                assert!((g - e).abs() < 1e-12, "seed {seed}: {got_weights:?} vs {expected_weights:?}");
+            }
+            for (w, a) in &got.children {
+                assert_eq!(*w, m.score(a), "exact weight");
+            }
+            let distinct: std::collections::BTreeSet<_> = got.children.iter().map(|c| c.1.clone()).collect();
+            assert_eq!(distinct.len(), got.children.len());
+            // Offered + unoffered = the exact total when every cluster is enumerated.
+            let mut all = LogSumExp::new();
+            for (w, _) in &got.children {
+                all.add(*w);
+            }
+            all.add(got.unoffered.value());
+            assert!((all.value() - total).abs() < 1e-9, "seed {seed}: mass {} vs {total}", all.value());
+        }
+    }
+
+    #[test]
+    fn sampled_clusters_find_the_best_children_of_small_problems() {
+        for seed in 0..100 {
+            let m = sparse_matrix(seed + 1000, 6, 8);
+            let config = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::default() };
+            let mut clustered = ClusteredChildren::<f64, 10, 8, 12>::new(config, seed);
+            let mut got = Collect { children: vec![], unoffered: LogSumExp::new() };
+            clustered.generate(&m, &mut got).unwrap();
+            let (expected, _) = exhaustive_top(&m, 1);
+            let best = got.children.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
+            assert!((best - expected[0].0).abs() < 1e-12, "seed {seed}: MAP not found");
+        }
+    }
+
+    #[test]
+    fn a_required_column_that_cannot_be_assigned_gives_no_child() {
+        let mut m = sparse_matrix(5, 3, 3);
+        m.set_column(1, &[f64::NEG_INFINITY; 3], true);
+        let mut clustered = ClusteredChildren::<f64, 10, 8, 12>::new(SamplerConfig::default(), 1);
+        let mut got = Collect { children: vec![], unoffered: LogSumExp::new() };
+        assert_eq!(clustered.generate(&m, &mut got), Ok(0));
+        assert!(got.children.is_empty());
+    }
+}
