@@ -6,6 +6,9 @@
 //!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
 
+// `!(x > 0)` is deliberate: unlike `x <= 0` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod evaluate;
 pub mod metrics;
 pub mod plots;
