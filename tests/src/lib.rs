@@ -130,3 +130,8 @@ pub fn relative_difference(a: f64, b: f64) -> f64 {
     let scale = a.abs().max(b.abs());
     if scale == 0.0 { 0.0 } else { (a - b).abs() / scale }
 }
+
+/// Runs `f` on a thread with a 256 MiB stack: trackers with large capacities hold several MiB inline.
+pub fn with_large_stack<F: FnOnce() + Send + 'static>(f: F) {
+    std::thread::Builder::new().stack_size(256 << 20).spawn(f).expect("spawn").join().expect("test thread panicked");
+}
