@@ -9,8 +9,11 @@
 // `!(x > 0)` is deliberate: unlike `x <= 0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod digest;
 pub mod evaluate;
+pub mod experiment;
 pub mod metrics;
+pub mod perf;
 pub mod plots;
 pub mod reference;
 pub mod rng;
@@ -20,3 +23,4 @@ pub mod scenario;
 pub mod setup;
 pub mod sim;
 pub mod snapshot;
+pub mod soak;

@@ -86,6 +86,52 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
+    /// Reproduce a paper experiment (fifty, fifteen, scaling, debris) or all of them.
+    Experiment {
+        /// fifty, fifteen, scaling, debris or all.
+        name: String,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Seed of the scenario (and the tracker).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Number of seeds to run (seed, seed + 1, ...), in parallel; reports mean and spread.
+        #[arg(long, default_value_t = 1)]
+        runs: u64,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Measure speed and memory side by side in one process; writes a JSON file.
+    Perf {
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Run a long scenario with objects entering and leaving; writes a JSON file of health figures.
+    Soak {
+        /// Number of scans.
+        #[arg(long, default_value_t = 100_000)]
+        scans: u64,
+        /// Seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Replay a scenario with the embedded (f32) tracker and print the digest the QEMU firmware prints.
+    Digest {
+        /// Scenario file.
+        file: PathBuf,
+        /// Scans to replay (from the start); all when omitted.
+        #[arg(long)]
+        scans: Option<usize>,
+    },
     /// Check the R-FISST sampler against exhaustive enumeration on random small problems.
     SamplerCheck {
         /// Number of random cases.
@@ -147,6 +193,24 @@ fn execute(cli: Cli) -> Result<(), Failure> {
             println!("{}", serde_json::to_string_pretty(&brief).unwrap_or_default());
             Ok(())
         }
+        Command::Experiment { name, out, seed, runs, quiet } => {
+            host_sim::experiment::run(&name, &out, seed, runs, quiet).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            Ok(())
+        }
+        Command::Perf { out } => {
+            let report = host_sim::perf::run().map_err(|e| Failure::Input(ScenarioError(e)))?;
+            write_report(&out, &report)
+        }
+        Command::Soak { scans, seed, out, quiet } => {
+            let report = host_sim::soak::run(scans, seed, quiet).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            write_report(&out, &report)
+        }
+        Command::Digest { file, scans } => {
+            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
+            let digest = host_sim::digest::run(&scenario, scans).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            println!("{digest}");
+            Ok(())
+        }
         Command::SamplerCheck { cases, seed, out } => {
             let report = host_sim::sampler_check::run(cases, seed).map_err(|e| Failure::Input(ScenarioError(e)))?;
             let text = serde_json::to_string_pretty(&report).unwrap_or_default();
@@ -156,6 +220,14 @@ fn execute(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
     }
+}
+
+/// Writes a JSON report to `out` and prints it.
+fn write_report(out: &std::path::Path, report: &serde_json::Value) -> Result<(), Failure> {
+    let text = serde_json::to_string_pretty(report).unwrap_or_default();
+    std::fs::write(out, format!("{text}\n")).map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
+    println!("{text}");
+    Ok(())
 }
 
 fn main() -> ExitCode {

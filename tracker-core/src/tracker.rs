@@ -261,14 +261,11 @@ fn split_pair<X>(pair: &mut [X; 2], active: usize) -> (&X, &mut X) {
 
 /// 64-bit FNV-1a of a slot list, to find identical children quickly.
 fn slots_hash(slots: &[u16]) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut hash = Fnv1a::new();
     for &slot in slots {
-        for byte in slot.to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        }
+        hash.write(&slot.to_le_bytes());
     }
-    hash
+    hash.finish()
 }
 
 impl<
@@ -841,6 +838,46 @@ where
     /// Expected number of objects Σ_h w_h N_h.
     pub fn expected_cardinality(&self) -> T {
         self.hypotheses().fold(T::zero(), |sum, h| sum + h.weight() * T::of_f64(h.len() as f64))
+    }
+
+    /// A 64-bit digest (FNV-1a) of everything the tracker exposes: time, scan count, and for every
+    /// hypothesis in order its log-weight and its tracks' labels, means and covariances, as raw bits.
+    /// Two trackers with the same digest agree bit for bit (up to hash collisions); it is how the host and
+    /// an embedded target are compared.
+    pub fn digest(&self) -> u64 {
+        let mut hash = Fnv1a::new();
+        hash.write(&self.time.to_bits().to_le_bytes());
+        hash.write(&self.scans.to_le_bytes());
+        for hypothesis in self.hypotheses() {
+            hash.write(&hypothesis.log_weight().as_f64().to_bits().to_le_bytes());
+            for track in hypothesis.tracks() {
+                hash.write(&track.label.0.to_le_bytes());
+                for value in track.state.mean.iter().chain(track.state.covariance.iter()) {
+                    hash.write(&value.as_f64().to_bits().to_le_bytes());
+                }
+            }
+        }
+        hash.finish()
+    }
+}
+
+/// 64-bit FNV-1a.
+struct Fnv1a(u64);
+
+impl Fnv1a {
+    fn new() -> Self {
+        Fnv1a(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.0 ^= u64::from(byte);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
     }
 }
 
