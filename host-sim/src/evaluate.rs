@@ -9,7 +9,7 @@
 
 use crate::metrics::{LabelSwitches, gospa, ospa};
 use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
-use crate::runner::{Profile, Runner, TrackerKind, build};
+use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario, ScenarioError};
 use crate::setup;
 use crate::snapshot::Snapshot;
@@ -26,8 +26,8 @@ use std::time::Instant;
 pub struct Options {
     /// Capacity profile of the core tracker.
     pub profile: Profile,
-    /// Memory budget of the reference tracker, in bytes.
-    pub reference_budget_bytes: usize,
+    /// Budgets of the reference tracker.
+    pub reference: ReferenceBudget,
     /// Hypotheses written per scan to `scans.jsonl`.
     pub max_hypotheses_out: usize,
     /// No progress bar.
@@ -77,16 +77,18 @@ pub struct ScanRecord {
 }
 
 /// The scored estimates of one scan.
-struct Scored {
-    gospa: f64,
+pub(crate) struct Scored {
+    pub(crate) gospa: f64,
     ospa: f64,
     /// (truth id, label) pairs within the GOSPA cut-off.
     pairs: Vec<(u64, u32)>,
     /// Per MAP track: within the error bound.
     within_bound: Vec<bool>,
+    /// Per true object (in truth order): (id, whether a MAP estimate is within the error bound of it).
+    truth_covered: Vec<(u64, bool)>,
 }
 
-fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Option<Scored> {
+pub(crate) fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Option<Scored> {
     let truth = truth_positions(scenario, k)?;
     let evaluation = &scenario.evaluation;
     let points: Vec<[f64; 2]> = truth.iter().map(|t| t.1).collect();
@@ -99,11 +101,13 @@ fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Option<Scored> {
     for e in bound.assignment.iter().flatten() {
         within_bound[*e] = true;
     }
+    let truth_covered = truth.iter().zip(&bound.assignment).map(|(t, a)| (t.0, a.is_some())).collect();
     Some(Scored {
         gospa: g.distance,
         ospa: ospa(&points, &estimates, evaluation.gospa_cutoff, evaluation.gospa_order),
         pairs,
         within_bound,
+        truth_covered,
     })
 }
 
@@ -133,7 +137,7 @@ fn birth_confirmations(
     }
 }
 
-fn progress(scans: usize, quiet: bool, message: &'static str) -> ProgressBar {
+pub(crate) fn progress(scans: usize, quiet: bool, message: &'static str) -> ProgressBar {
     if quiet || !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
@@ -149,7 +153,7 @@ fn io_error(path: &Path, e: impl std::fmt::Display) -> ScenarioError {
     ScenarioError(format!("{}: {e}", path.display()))
 }
 
-fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), ScenarioError> {
+pub(crate) fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), ScenarioError> {
     let text = serde_json::to_string_pretty(value).map_err(|e| io_error(path, e))?;
     std::fs::write(path, text + "\n").map_err(|e| io_error(path, e))
 }
@@ -216,7 +220,7 @@ pub fn run(
     out: &Path,
 ) -> Result<(serde_json::Value, bool), ScenarioError> {
     std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
-    let mut runner = build(kind, options.profile, scenario, options.reference_budget_bytes)?;
+    let mut runner = build(kind, options.profile, scenario, options.reference)?;
     let scans_path = out.join("scans.jsonl");
     let mut scans_file =
         std::io::BufWriter::new(std::fs::File::create(&scans_path).map_err(|e| io_error(&scans_path, e))?);
@@ -231,6 +235,8 @@ pub fn run(
     let mut switches = LabelSwitches::new();
     let mut confirmed: HashMap<u64, Option<usize>> = HashMap::new();
     let mut peak_hypotheses = 0;
+    let fov = setup::region(&scenario.sensor.field_of_view);
+    let (mut in_view_misses, mut in_view_red_stars) = (0usize, 0usize);
     let bar = progress(n, options.quiet, kind.name());
     for (k, scan) in scenario.scans.iter().enumerate() {
         let zs = setup::measurements(scan);
@@ -253,6 +259,25 @@ pub fn run(
         };
         peak_hypotheses = peak_hypotheses.max(snapshot.hypotheses.len());
         let map = snapshot.map_tracks();
+        // Paper 003's "no red stars", restricted to what the sensor sees: an object in the field of view
+        // whose track is confirmed (prior objects from the start, births from their confirmation) must
+        // have a MAP estimate within the error bound, and no MAP estimate in the field of view may be
+        // outside the bound of every true object.
+        if let (Some(s), Some(truth)) = (&scored, truth_positions(scenario, k)) {
+            let born: HashMap<u64, bool> =
+                scenario.truth.iter().flat_map(|t| t.objects.iter().map(|o| (o.id, !o.in_prior))).collect();
+            for ((id, covered), (_, position)) in s.truth_covered.iter().zip(&truth) {
+                let confirmed_track = !born.get(id).copied().unwrap_or(false) || confirmed.get(id).copied().flatten().is_some_and(|c| c <= k);
+                if confirmed_track && !covered && fov.contains(&nalgebra::SVector::<f64, 2>::from(*position)) {
+                    in_view_misses += 1;
+                }
+            }
+            for (t, within) in map.iter().zip(&s.within_bound) {
+                if !within && fov.contains(&nalgebra::SVector::<f64, 2>::new(t.mean[0], t.mean[1])) {
+                    in_view_red_stars += 1;
+                }
+            }
+        }
         let within: Vec<bool> = scored.as_ref().map(|s| s.within_bound.clone()).unwrap_or_default();
         for (i, t) in map.iter().enumerate() {
             let existence = snapshot.label_existence().iter().find(|e| e.0 == t.label).map_or(0.0, |e| e.1);
@@ -317,6 +342,8 @@ pub fn run(
         "births_confirmed": births_confirmed,
         "birth_confirmation_scans": confirmed.iter().map(|(id, k)| json!({"object": id, "scan": k})).collect::<Vec<_>>(),
         "label_switches": switches.total(),
+        "in_view_misses_after_confirmation": in_view_misses,
+        "in_view_red_stars": in_view_red_stars,
         "mean_ms_per_scan": mean(&ms),
         "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
         "peak_hypotheses": peak_hypotheses,
@@ -435,8 +462,8 @@ pub fn compare(
 ) -> Result<serde_json::Value, ScenarioError> {
     std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
     let mut trackers: [Box<dyn Runner>; 2] = [
-        build(bounded, options.profile, scenario, options.reference_budget_bytes)?,
-        build(TrackerKind::Reference, options.profile, scenario, options.reference_budget_bytes)?,
+        build(bounded, options.profile, scenario, options.reference)?,
+        build(TrackerKind::Reference, options.profile, scenario, options.reference)?,
     ];
     let bar = progress(scenario.scans.len(), options.quiet, "compare");
     let mut per_scan = vec![];

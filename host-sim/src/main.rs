@@ -28,6 +28,10 @@ struct Common {
     /// lowest-weight children and says so.
     #[arg(long, default_value_t = 4096)]
     reference_budget_mib: usize,
+    /// Children the reference may enumerate per scan; beyond it the scan is rejected (the reference
+    /// "breaks", as exhaustive enumeration does in paper 003 §V-B).
+    #[arg(long, default_value_t = 1_000_000_000)]
+    reference_max_children: u64,
     /// Hypotheses written per scan to scans.jsonl.
     #[arg(long, default_value_t = 100)]
     max_hypotheses_out: usize,
@@ -40,7 +44,10 @@ impl Common {
     fn options(self) -> Options {
         Options {
             profile: self.profile,
-            reference_budget_bytes: self.reference_budget_mib.saturating_mul(1 << 20),
+            reference: host_sim::runner::ReferenceBudget {
+                bytes: self.reference_budget_mib.saturating_mul(1 << 20),
+                children: self.reference_max_children,
+            },
             max_hypotheses_out: self.max_hypotheses_out,
             quiet: self.quiet,
         }

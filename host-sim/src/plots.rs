@@ -2,8 +2,9 @@
 //! charts (linear or log10 axes). Every function writes both `<stem>.png` and `<stem>.svg`.
 //!
 //! Text is rendered with a vendored DejaVu Sans font (registered with plotters' `ab_glyph` backend), so no system
-//! font libraries are needed. Non-finite values (and values beyond ±1e300, or non-positive values on log axes) are
-//! skipped; empty or degenerate data still yields a valid, labelled figure.
+//! font libraries are needed. Points that cannot be drawn are skipped: non-finite values, magnitudes above 1e300, and
+//! on log axes values outside [1e-150, 1e150] (including non-positive ones). Empty or degenerate data still yields a
+//! valid, labelled figure.
 
 use std::fmt::Display;
 use std::ops::Range;
@@ -12,6 +13,7 @@ use std::sync::OnceLock;
 
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{FontStyle, register_font};
@@ -74,7 +76,9 @@ pub enum Scale {
 /// Writes the panels side by side (one row, up to 4 panels; more wrap to further rows), equal aspect ratio per panel,
 /// a legend: truth (blue dots), within bound (green circles), outside bound (red stars/crosses), FOV (black lines).
 ///
-/// Each panel's axes fit its points, its central body and its sensor origin; FOV lines are clipped to that view.
+/// Panels are 600x600 px with the legend in a strip below. Each panel's axes fit its points, its central body and its
+/// sensor origin (the whole FOV only when there is nothing else); FOV lines are clipped to that view. Outside-bound
+/// estimates are drawn as red stars.
 pub fn plot_snapshots(stem: &Path, panels: &[SnapshotPanel]) -> Result<(), String> {
     ensure_font_registered()?;
     write_png_and_svg(stem, &SnapshotFigure::new(panels)?)
@@ -82,7 +86,8 @@ pub fn plot_snapshots(stem: &Path, panels: &[SnapshotPanel]) -> Result<(), Strin
 
 /// Bar charts of hypothesis weights, one panel per snapshot (paper Fig. 6): x = hypothesis rank 1..n, y = weight in [0,1].
 ///
-/// Panels are laid out like [`plot_snapshots`]; non-finite weights leave their bar out.
+/// Weights are sorted into descending order (rank 1 = most likely); non-finite weights are dropped. The y axis grows
+/// beyond [0, 1] only if a weight does. Panels are laid out like [`plot_snapshots`], about 500x420 px each.
 pub fn plot_hypothesis_weights(stem: &Path, panels: &[(String, Vec<f64>)]) -> Result<(), String> {
     ensure_font_registered()?;
     write_png_and_svg(stem, &WeightsFigure { panels })
@@ -91,6 +96,9 @@ pub fn plot_hypothesis_weights(stem: &Path, panels: &[(String, Vec<f64>)]) -> Re
 /// A line chart of several series with a legend (used for expected number of objects over time, GOSPA over time,
 /// and a log-log timing plot of children generation time vs number of possible children). With Log10 scales, points
 /// with non-positive coordinates are skipped.
+///
+/// The chart is 1200x800 px. Series take colours from a fixed 10-colour palette in order (cycling after ten); invalid
+/// points break a line, and isolated points get a marker. The legend goes in the corner with the fewest points.
 pub fn plot_series(
     stem: &Path,
     title: &str,
@@ -113,12 +121,14 @@ const FONT_BYTES: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Largest magnitude drawn; keeps axis spans finite.
 const MAX_PLOTTABLE: f64 = 1e300;
+/// Log axes show values in [1/this, this]: plotters loops forever once an axis's end/start ratio overflows.
+const MAX_LOG_PLOTTABLE: f64 = 1e150;
 /// Largest canvas side in pixels, to refuse absurd allocations.
 const MAX_CANVAS_SIDE: u32 = 30_000;
 /// Panels per row in multi-panel figures.
 const PANELS_PER_ROW: usize = 4;
 
-/// Tableau 10: distinct, colour-blind-friendly series colours.
+/// Tableau 10: distinct series colours.
 const PALETTE: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
@@ -163,13 +173,10 @@ fn path_with_extension(stem: &Path, extension: &str) -> PathBuf {
     PathBuf::from(path)
 }
 
+/// Renders `figure` to `<stem>.png` and `<stem>.svg`, creating the parent directory if needed.
 fn write_png_and_svg(stem: &Path, figure: &impl Figure) -> Result<(), String> {
     if stem.as_os_str().is_empty() {
         return Err("plots: empty output path".to_string());
-    }
-    if let Some(parent) = stem.parent().filter(|parent| !parent.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .map_err(|e| format!("plots: cannot create directory {}: {e}", parent.display()))?;
     }
     let size = figure.canvas_size();
     if size.0 > MAX_CANVAS_SIDE || size.1 > MAX_CANVAS_SIDE {
@@ -180,24 +187,23 @@ fn write_png_and_svg(stem: &Path, figure: &impl Figure) -> Result<(), String> {
             size.1
         ));
     }
+    if let Some(parent) = stem.parent().filter(|parent| !parent.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .map_err(|e| format!("plots: cannot create directory {}: {e}", parent.display()))?;
+    }
 
     let png_path = path_with_extension(stem, "png");
-    let png_result = (|| {
-        let root = BitMapBackend::new(&png_path, size).into_drawing_area();
-        root.fill(&WHITE).map_err(to_message)?;
-        figure.draw_on(&root)?;
-        root.present().map_err(to_message)
-    })();
-    png_result.map_err(|e| format!("plots: writing {} failed: {e}", png_path.display()))?;
-
+    render(BitMapBackend::new(&png_path, size).into_drawing_area(), figure)
+        .map_err(|e| format!("plots: writing {} failed: {e}", png_path.display()))?;
     let svg_path = path_with_extension(stem, "svg");
-    let svg_result = (|| {
-        let root = SVGBackend::new(&svg_path, size).into_drawing_area();
-        root.fill(&WHITE).map_err(to_message)?;
-        figure.draw_on(&root)?;
-        root.present().map_err(to_message)
-    })();
-    svg_result.map_err(|e| format!("plots: writing {} failed: {e}", svg_path.display()))
+    render(SVGBackend::new(&svg_path, size).into_drawing_area(), figure)
+        .map_err(|e| format!("plots: writing {} failed: {e}", svg_path.display()))
+}
+
+fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, figure: &impl Figure) -> Result<(), String> {
+    root.fill(&WHITE).map_err(to_message)?;
+    figure.draw_on(&root)?;
+    root.present().map_err(to_message)
 }
 
 fn is_plottable(value: f64) -> bool {
@@ -207,7 +213,7 @@ fn is_plottable(value: f64) -> bool {
 fn is_plottable_on(scale: Scale, value: f64) -> bool {
     match scale {
         Scale::Linear => is_plottable(value),
-        Scale::Log10 => is_plottable(value) && value >= 1.0 / MAX_PLOTTABLE,
+        Scale::Log10 => (1.0 / MAX_LOG_PLOTTABLE..=MAX_LOG_PLOTTABLE).contains(&value),
     }
 }
 
@@ -237,17 +243,30 @@ impl Bounds {
 /// Tick labels: plain decimals for moderate magnitudes, `1.5e7` style otherwise, never float noise.
 fn format_tick(value: &f64) -> String {
     let value = *value;
-    if value == 0.0 || !value.is_finite() {
-        return if value.is_nan() { String::new() } else { "0".to_string() };
+    if !value.is_finite() {
+        return String::new();
+    }
+    if value == 0.0 {
+        return "0".to_string();
     }
     let magnitude = value.abs().log10().floor();
     if !(-3.0..5.0).contains(&magnitude) {
-        let text = format!("{value:.4e}");
-        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
-        return format!("{}e{exponent}", trim_decimal_zeros(mantissa));
+        return format_scientific(&value);
     }
     let decimals = (5.0 - magnitude).clamp(0.0, 9.0) as usize;
     trim_decimal_zeros(&format!("{value:.decimals$}")).to_string()
+}
+
+/// `1e7`, `2.5e-4`: used for all ticks of log axes spanning many decades, so labels look alike.
+fn format_scientific(value: &f64) -> String {
+    let text = format!("{value:.4e}");
+    let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+    format!("{}e{exponent}", trim_decimal_zeros(mantissa))
+}
+
+/// Tick formatter for an axis: scientific throughout for log axes spanning four or more decades.
+fn tick_formatter(scale: Scale, range: &Range<f64>) -> fn(&f64) -> String {
+    if scale == Scale::Log10 && (range.end / range.start).log10() >= 4.0 { format_scientific } else { format_tick }
 }
 
 fn trim_decimal_zeros(text: &str) -> &str {
@@ -284,11 +303,11 @@ fn log_axis(data: Option<Range<f64>>) -> Range<f64> {
         low = low.floor();
         high = high.ceil();
     }
-    let limit = MAX_PLOTTABLE.log10();
+    let limit = MAX_LOG_PLOTTABLE.log10() + 2.0;
     10f64.powf(low.clamp(-limit, limit))..10f64.powf(high.clamp(-limit, limit))
 }
 
-/// Lays out `count` panels of `panel_size` in rows of at most [`PANELS_PER_ROW`]; returns (columns, rows).
+/// Grid for `count` panels in rows of at most [`PANELS_PER_ROW`] (at least one cell); returns (columns, rows).
 fn panel_grid(count: usize) -> (usize, usize) {
     let columns = count.clamp(1, PANELS_PER_ROW);
     (columns, count.max(1).div_ceil(columns))
@@ -352,8 +371,13 @@ fn truth_marker<C>(at: C) -> Circle<C, i32> {
     Circle::new(at, TRUTH_DOT_RADIUS, TRUTH_COLOR.filled())
 }
 
-fn within_bound_marker<C>(at: C) -> Circle<C, i32> {
-    Circle::new(at, WITHIN_CIRCLE_RADIUS, WITHIN_BOUND_COLOR.stroke_width(2))
+/// A circle positioned in pixel offsets from a composed element's anchor.
+type PixelCircle = Circle<(i32, i32), i32>;
+
+/// A 2 px ring; two 1 px circles, because plotters' bitmap backend leaves gaps in thick circle outlines.
+fn within_bound_marker<C, DB: DrawingBackend>(at: C) -> ComposedElement<C, DB, PixelCircle, PixelCircle> {
+    let ring = |radius| Circle::new((0, 0), radius, WITHIN_BOUND_COLOR.stroke_width(1));
+    EmptyElement::at(at) + ring(WITHIN_CIRCLE_RADIUS) + ring(WITHIN_CIRCLE_RADIUS - 1)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -369,6 +393,7 @@ const LEGEND_FONT_SIZE: u32 = 18;
 const LEGEND_LINE_HEIGHT: u32 = 32;
 const LEGEND_SYMBOL_WIDTH: u32 = 34;
 const LEGEND_ENTRY_GAP: u32 = 34;
+const LEGEND_TEXT_GAP: u32 = 8;
 const LEGEND_PADDING: u32 = 12;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -426,18 +451,20 @@ impl<'a> SnapshotFigure<'a> {
 /// Flows legend entries into lines no wider than `width`.
 fn layout_legend(symbols: &[LegendSymbol], width: u32) -> Result<Vec<Vec<PlacedLegendEntry>>, String> {
     let font = (FONT, LEGEND_FONT_SIZE).into_font();
-    let mut lines: Vec<Vec<PlacedLegendEntry>> = vec![Vec::new()];
+    let mut lines = Vec::new();
+    let mut line: Vec<PlacedLegendEntry> = Vec::new();
     let mut x = LEGEND_PADDING;
     for &symbol in symbols {
         let (text_width, _) = font.box_size(symbol.label()).map_err(to_message)?;
-        let entry_width = LEGEND_SYMBOL_WIDTH + 8 + text_width;
-        if x > LEGEND_PADDING && x + entry_width > width.saturating_sub(LEGEND_PADDING) {
-            lines.push(Vec::new());
+        let entry_width = LEGEND_SYMBOL_WIDTH + LEGEND_TEXT_GAP + text_width;
+        if !line.is_empty() && x + entry_width > width.saturating_sub(LEGEND_PADDING) {
+            lines.push(std::mem::take(&mut line));
             x = LEGEND_PADDING;
         }
-        lines.last_mut().expect("lines starts non-empty").push(PlacedLegendEntry { symbol, x });
+        line.push(PlacedLegendEntry { symbol, x });
         x += entry_width + LEGEND_ENTRY_GAP;
     }
+    lines.push(line);
     Ok(lines)
 }
 
@@ -468,33 +495,35 @@ fn draw_snapshot_legend<DB: DrawingBackend>(
         let y = (LEGEND_PADDING + row as u32 * LEGEND_LINE_HEIGHT + LEGEND_LINE_HEIGHT / 2) as i32;
         for entry in line {
             let x = entry.x as i32;
-            let symbol_center = (x + LEGEND_SYMBOL_WIDTH as i32 / 2, y);
-            let drawn = match entry.symbol {
-                LegendSymbol::Truth => area.draw(&truth_marker(symbol_center)),
-                LegendSymbol::WithinBound => area.draw(&within_bound_marker(symbol_center)),
-                LegendSymbol::OutsideBound => area.draw(&(EmptyElement::at(symbol_center) + star_marker())),
-                LegendSymbol::Fov => area.draw(&PathElement::new(
-                    vec![(x, y), (x + LEGEND_SYMBOL_WIDTH as i32, y)],
-                    FOV_COLOR.stroke_width(2),
-                )),
-                LegendSymbol::CentralBody => area.draw(&Rectangle::new(
-                    [(x + 4, y - 9), (x + LEGEND_SYMBOL_WIDTH as i32 - 4, y + 9)],
-                    BODY_FILL.filled(),
-                )),
-            };
-            drawn.map_err(to_message)?;
-            if entry.symbol == LegendSymbol::CentralBody {
-                area.draw(&Rectangle::new(
-                    [(x + 4, y - 9), (x + LEGEND_SYMBOL_WIDTH as i32 - 4, y + 9)],
-                    BODY_EDGE.stroke_width(1),
-                ))
-                .map_err(to_message)?;
-            }
-            let label = Text::new(entry.symbol.label(), (x + LEGEND_SYMBOL_WIDTH as i32 + 8, y), text_style.clone());
-            area.draw(&label).map_err(to_message)?;
+            draw_legend_symbol(area, entry.symbol, x, y).map_err(to_message)?;
+            // +2 px: plotters' ab_glyph text sits a little high in PNGs (SVG is centred by the viewer).
+            let text_x = x + (LEGEND_SYMBOL_WIDTH + LEGEND_TEXT_GAP) as i32;
+            area.draw(&Text::new(entry.symbol.label(), (text_x, y + 2), text_style.clone())).map_err(to_message)?;
         }
     }
     Ok(())
+}
+
+/// Draws `symbol` in the legend slot starting at `x`, vertically centred on `y`.
+fn draw_legend_symbol<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    symbol: LegendSymbol,
+    x: i32,
+    y: i32,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let width = LEGEND_SYMBOL_WIDTH as i32;
+    let center = (x + width / 2, y);
+    match symbol {
+        LegendSymbol::Truth => area.draw(&truth_marker(center)),
+        LegendSymbol::WithinBound => area.draw(&within_bound_marker(center)),
+        LegendSymbol::OutsideBound => area.draw(&(EmptyElement::at(center) + star_marker())),
+        LegendSymbol::Fov => area.draw(&PathElement::new(vec![(x, y), (x + width, y)], FOV_COLOR.stroke_width(2))),
+        LegendSymbol::CentralBody => {
+            let swatch = [(x + 4, y - 9), (x + width - 4, y + 9)];
+            area.draw(&Rectangle::new(swatch, BODY_FILL.filled()))?;
+            area.draw(&Rectangle::new(swatch, BODY_EDGE.stroke_width(1)))
+        }
+    }
 }
 
 fn plottable_point(point: &[f64; 2]) -> Option<(f64, f64)> {
@@ -561,7 +590,23 @@ fn clip_segment(a: (f64, f64), b: (f64, f64), x: &Range<f64>, y: &Range<f64>) ->
             }
         }
     }
-    Some(((a.0 + t0 * dx, a.1 + t0 * dy), (a.0 + t1 * dx, a.1 + t1 * dy)))
+    // Unclipped ends are returned exactly, so consecutive pieces of a polyline can be rejoined.
+    let start = if t0 == 0.0 { a } else { (a.0 + t0 * dx, a.1 + t0 * dy) };
+    let end = if t1 == 1.0 { b } else { (a.0 + t1 * dx, a.1 + t1 * dy) };
+    Some((start, end))
+}
+
+/// The visible pieces of a polyline, each still a polyline (so joins stay smooth).
+fn clip_polyline(points: &[(f64, f64)], x: &Range<f64>, y: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
+    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+    for pair in points.windows(2) {
+        let Some((start, end)) = clip_segment(pair[0], pair[1], x, y) else { continue };
+        match pieces.last_mut() {
+            Some(piece) if piece.last() == Some(&start) => piece.push(end),
+            _ => pieces.push(vec![start, end]),
+        }
+    }
+    pieces
 }
 
 /// Bounds that must be visible in a snapshot panel.
@@ -631,7 +676,7 @@ fn draw_snapshot_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel:
         .y_label_formatter(&format_tick)
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
-        .light_line_style(WHITE)
+        .max_light_lines(0)
         .bold_line_style(BLACK.mix(0.12))
         .draw()
         .map_err(to_message)?;
@@ -645,15 +690,12 @@ fn draw_snapshot_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel:
     }
 
     if let Some(fov) = valid_fov(&panel.fov) {
-        let visible_segments: Vec<_> = fov_polylines(&fov)
+        let visible_pieces = fov_polylines(&fov)
             .iter()
-            .flat_map(|polyline| polyline.windows(2).map(|pair| (pair[0], pair[1])))
-            .filter_map(|(a, b)| clip_segment(a, b, &x_range, &y_range))
-            .collect();
+            .flat_map(|polyline| clip_polyline(polyline, &x_range, &y_range))
+            .collect::<Vec<_>>();
         chart
-            .draw_series(
-                visible_segments.into_iter().map(|(a, b)| PathElement::new(vec![a, b], FOV_COLOR.stroke_width(2))),
-            )
+            .draw_series(visible_pieces.into_iter().map(|piece| PathElement::new(piece, FOV_COLOR.stroke_width(2))))
             .map_err(to_message)?;
     }
 
@@ -706,6 +748,13 @@ fn format_rank_tick(value: &f64) -> String {
     if (value - value.round()).abs() < 1e-6 { format!("{}", value.round() as i64) } else { String::new() }
 }
 
+/// (rank, weight) bars: drawable weights in descending order, ranks from 1.
+fn ranked_bars(weights: &[f64]) -> Vec<(f64, f64)> {
+    let mut ranked: Vec<f64> = weights.iter().copied().filter(|&weight| is_plottable(weight)).collect();
+    ranked.sort_by(|a, b| b.total_cmp(a));
+    ranked.into_iter().enumerate().map(|(index, weight)| ((index + 1) as f64, weight)).collect()
+}
+
 fn draw_weights_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     title: &str,
@@ -714,16 +763,11 @@ fn draw_weights_panel<DB: DrawingBackend>(
     let (title_area, chart_area) = area.split_vertically(PANEL_TITLE_HEIGHT);
     draw_panel_title(&title_area, title)?;
 
-    let bars: Vec<(f64, f64)> = weights
-        .iter()
-        .enumerate()
-        .filter(|(_, weight)| is_plottable(**weight))
-        .map(|(index, &weight)| ((index + 1) as f64, weight))
-        .collect();
-    let rank_count = weights.len().max(1);
+    let bars = ranked_bars(weights);
+    let rank_count = bars.len().max(1);
     let low = bars.iter().map(|&(_, w)| w).fold(0.0, f64::min);
     let high = bars.iter().map(|&(_, w)| w).fold(1.0, f64::max);
-    let y_range = if low < 0.0 || high > 1.0 { linear_axis(Some(low..high)) } else { 0.0..1.0 };
+    let y_range = if low < 0.0 || high > 1.0 { linear_axis(Some(low..high)) } else { 0.0..1.05 };
 
     let mut chart = ChartBuilder::on(&chart_area)
         .margin(CHART_MARGIN)
@@ -742,7 +786,7 @@ fn draw_weights_panel<DB: DrawingBackend>(
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .disable_x_mesh()
-        .light_line_style(WHITE)
+        .max_light_lines(0)
         .bold_line_style(BLACK.mix(0.12))
         .draw()
         .map_err(to_message)?;
@@ -777,15 +821,18 @@ impl LineChart<'_> {
         self.series
             .iter()
             .map(|series| {
-                let mut runs = vec![Vec::new()];
+                let mut runs = Vec::new();
+                let mut run = Vec::new();
                 for &(x, y) in &series.points {
                     if is_plottable_on(self.x_scale, x) && is_plottable_on(self.y_scale, y) {
-                        runs.last_mut().expect("runs starts non-empty").push((x, y));
-                    } else if runs.last().is_some_and(|run| !run.is_empty()) {
-                        runs.push(Vec::new());
+                        run.push((x, y));
+                    } else if !run.is_empty() {
+                        runs.push(std::mem::take(&mut run));
                     }
                 }
-                runs.retain(|run| !run.is_empty());
+                if !run.is_empty() {
+                    runs.push(run);
+                }
                 runs
             })
             .collect()
@@ -810,7 +857,9 @@ impl Figure for LineChart<'_> {
         let x_range = axis(self.x_scale, bounds.as_ref().map(|b| b.x.clone()));
         let y_range = axis(self.y_scale, bounds.as_ref().map(|b| b.y.clone()));
         let legend_position = emptiest_corner(&runs, self, &x_range, &y_range);
-        let content = LineChartContent { chart: self, runs: &runs, legend_position };
+        let x_tick_format = tick_formatter(self.x_scale, &x_range);
+        let y_tick_format = tick_formatter(self.y_scale, &y_range);
+        let content = LineChartContent { chart: self, runs: &runs, legend_position, x_tick_format, y_tick_format };
         match (self.x_scale, self.y_scale) {
             (Scale::Linear, Scale::Linear) => content.draw(root, x_range, y_range),
             (Scale::Linear, Scale::Log10) => content.draw(root, x_range, y_range.log_scale()),
@@ -858,6 +907,8 @@ struct LineChartContent<'a> {
     chart: &'a LineChart<'a>,
     runs: &'a [Vec<Vec<(f64, f64)>>],
     legend_position: SeriesLabelPosition,
+    x_tick_format: fn(&f64) -> String,
+    y_tick_format: fn(&f64) -> String,
 }
 
 impl LineChartContent<'_> {
@@ -882,8 +933,8 @@ impl LineChartContent<'_> {
             .y_desc(self.chart.y_label)
             .x_labels(10)
             .y_labels(10)
-            .x_label_formatter(&format_tick)
-            .y_label_formatter(&format_tick)
+            .x_label_formatter(&self.x_tick_format)
+            .y_label_formatter(&self.y_tick_format)
             .label_style((FONT, 17))
             .axis_desc_style((FONT, 20))
             .light_line_style(BLACK.mix(0.04))
@@ -931,5 +982,340 @@ impl LineChartContent<'_> {
                 .map_err(to_message)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PNG_SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
+
+    /// A fresh directory under the system temp dir, removed when dropped.
+    struct TestDir(PathBuf);
+
+    impl TestDir {
+        fn new(test_name: &str) -> Self {
+            let path = std::env::temp_dir().join(format!("plots-test-{}-{test_name}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&path);
+            std::fs::create_dir_all(&path).expect("create test dir");
+            Self(path)
+        }
+
+        fn stem(&self, name: &str) -> PathBuf {
+            self.0.join(name)
+        }
+    }
+
+    impl Drop for TestDir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// Checks both files exist and look like a PNG and an SVG; returns the PNG's (width, height).
+    fn assert_png_and_svg(stem: &Path) -> (u32, u32) {
+        let png = std::fs::read(path_with_extension(stem, "png")).expect("png written");
+        assert!(png.len() > 100, "png too small");
+        assert_eq!(png[..8], PNG_SIGNATURE);
+        let svg = std::fs::read_to_string(path_with_extension(stem, "svg")).expect("svg written");
+        assert!(svg.contains("<svg"));
+        let be_u32 = |at: usize| u32::from_be_bytes(png[at..at + 4].try_into().expect("4 bytes"));
+        (be_u32(16), be_u32(20))
+    }
+
+    fn example_panel(title: &str) -> SnapshotPanel {
+        let truth: Vec<[f64; 2]> =
+            (0..5).map(|i| f64::from(i) * 0.6).map(|a| [42_164.0 * a.cos(), 42_164.0 * a.sin()]).collect();
+        SnapshotPanel {
+            title: title.to_string(),
+            estimates_within_bound: truth.iter().take(3).map(|p| [p[0] + 300.0, p[1] - 200.0]).collect(),
+            estimates_outside_bound: truth.iter().skip(3).map(|p| [p[0] + 5_000.0, p[1]]).collect(),
+            truth,
+            fov: Some(FovLines {
+                origin: [6_378.137, 0.0],
+                look_direction: 0.8,
+                half_angle: 0.25,
+                max_range: 60_000.0,
+            }),
+            unit: "km".to_string(),
+            central_body_radius: Some(6_378.137),
+        }
+    }
+
+    fn series(name: &str, points: Vec<(f64, f64)>, markers: bool) -> Series {
+        Series { name: name.to_string(), points, markers }
+    }
+
+    #[test]
+    fn snapshots_normal_data() {
+        let dir = TestDir::new("snapshots-normal");
+        let stem = dir.stem("snapshots");
+        plot_snapshots(&stem, &[example_panel("k = 1"), example_panel("k = 2")]).unwrap();
+        let (width, height) = assert_png_and_svg(&stem);
+        assert_eq!(width, 2 * SNAPSHOT_PANEL_SIDE);
+        assert!(height > SNAPSHOT_PANEL_SIDE, "legend strip below the panels");
+    }
+
+    #[test]
+    fn snapshots_wrap_after_four_panels() {
+        let dir = TestDir::new("snapshots-wrap");
+        let stem = dir.stem("wrapped");
+        let panels: Vec<_> = (0..5).map(|k| example_panel(&format!("k = {k}"))).collect();
+        plot_snapshots(&stem, &panels).unwrap();
+        let (width, height) = assert_png_and_svg(&stem);
+        assert_eq!(width, 4 * SNAPSHOT_PANEL_SIDE);
+        assert!(height > 2 * SNAPSHOT_PANEL_SIDE);
+    }
+
+    #[test]
+    fn snapshots_empty_data() {
+        let dir = TestDir::new("snapshots-empty");
+        plot_snapshots(&dir.stem("no_panels"), &[]).unwrap();
+        assert_png_and_svg(&dir.stem("no_panels"));
+        plot_snapshots(&dir.stem("empty_panel"), &[SnapshotPanel::default()]).unwrap();
+        assert_png_and_svg(&dir.stem("empty_panel"));
+        let fov_only = SnapshotPanel { fov: example_panel("").fov, ..SnapshotPanel::default() };
+        plot_snapshots(&dir.stem("fov_only"), &[fov_only]).unwrap();
+        assert_png_and_svg(&dir.stem("fov_only"));
+    }
+
+    #[test]
+    fn snapshots_single_point() {
+        let dir = TestDir::new("snapshots-single");
+        let at_origin = SnapshotPanel { truth: vec![[0.0, 0.0]], ..SnapshotPanel::default() };
+        let far_away = SnapshotPanel { estimates_outside_bound: vec![[4.2e4, -1.0e3]], ..SnapshotPanel::default() };
+        plot_snapshots(&dir.stem("single"), &[at_origin, far_away]).unwrap();
+        assert_png_and_svg(&dir.stem("single"));
+    }
+
+    #[test]
+    fn snapshots_skip_nan_and_inf() {
+        let dir = TestDir::new("snapshots-nan");
+        let mut panel = example_panel("with NaN");
+        panel.truth.push([f64::NAN, 1.0]);
+        panel.estimates_within_bound.push([f64::INFINITY, 0.0]);
+        panel.estimates_outside_bound.push([1.0, f64::NEG_INFINITY]);
+        let broken_fov = SnapshotPanel {
+            truth: vec![[f64::NAN, f64::NAN]],
+            fov: Some(FovLines { origin: [0.0, 0.0], look_direction: f64::NAN, half_angle: 0.1, max_range: 1.0 }),
+            central_body_radius: Some(f64::NAN),
+            ..SnapshotPanel::default()
+        };
+        plot_snapshots(&dir.stem("nan"), &[panel, broken_fov]).unwrap();
+        assert_png_and_svg(&dir.stem("nan"));
+    }
+
+    #[test]
+    fn weights_normal_data() {
+        let dir = TestDir::new("weights-normal");
+        let panels = vec![
+            ("k = 1".to_string(), vec![0.7, 0.2, 0.1]),
+            ("k = 2".to_string(), (1..=40).map(|i| 0.5_f64.powi(i)).collect()),
+        ];
+        plot_hypothesis_weights(&dir.stem("weights"), &panels).unwrap();
+        let (width, _) = assert_png_and_svg(&dir.stem("weights"));
+        assert_eq!(width, 2 * WEIGHT_PANEL_SIZE.0);
+    }
+
+    #[test]
+    fn weights_are_ranked_in_descending_order() {
+        let bars = ranked_bars(&[0.1, f64::NAN, 0.6, 0.3, f64::INFINITY]);
+        assert_eq!(bars, vec![(1.0, 0.6), (2.0, 0.3), (3.0, 0.1)]);
+        assert!(ranked_bars(&[]).is_empty());
+    }
+
+    #[test]
+    fn weights_empty_single_and_nan() {
+        let dir = TestDir::new("weights-edge");
+        plot_hypothesis_weights(&dir.stem("no_panels"), &[]).unwrap();
+        assert_png_and_svg(&dir.stem("no_panels"));
+        plot_hypothesis_weights(&dir.stem("no_weights"), &[("empty".to_string(), vec![])]).unwrap();
+        assert_png_and_svg(&dir.stem("no_weights"));
+        plot_hypothesis_weights(&dir.stem("single"), &[("one".to_string(), vec![1.0])]).unwrap();
+        assert_png_and_svg(&dir.stem("single"));
+        let odd = vec![f64::NAN, 0.5, f64::INFINITY, 1.7, -0.2];
+        plot_hypothesis_weights(&dir.stem("nan"), &[("odd".to_string(), odd), ("all NaN".to_string(), vec![f64::NAN])])
+            .unwrap();
+        assert_png_and_svg(&dir.stem("nan"));
+    }
+
+    #[test]
+    fn series_normal_data() {
+        let dir = TestDir::new("series-normal");
+        let truth = series("Truth", (0..50).map(|k| (f64::from(k), if k < 20 { 3.0 } else { 5.0 })).collect(), false);
+        let estimate = series("Estimate", (0..50).map(|k| (f64::from(k), 3.0 + f64::from(k) / 25.0)).collect(), true);
+        plot_series(
+            &dir.stem("series"),
+            "Objects",
+            "Time [s]",
+            "Count",
+            Scale::Linear,
+            Scale::Linear,
+            &[truth, estimate],
+        )
+        .unwrap();
+        assert_eq!(assert_png_and_svg(&dir.stem("series")), LINE_CHART_SIZE);
+    }
+
+    #[test]
+    fn series_empty_data() {
+        let dir = TestDir::new("series-empty");
+        for (x_scale, y_scale) in [(Scale::Linear, Scale::Linear), (Scale::Log10, Scale::Log10)] {
+            let stem = dir.stem(&format!("empty_{x_scale:?}_{y_scale:?}"));
+            plot_series(&stem, "No series", "x", "y", x_scale, y_scale, &[]).unwrap();
+            assert_png_and_svg(&stem);
+            let stem = dir.stem(&format!("empty_points_{x_scale:?}_{y_scale:?}"));
+            plot_series(&stem, "Empty series", "x", "y", x_scale, y_scale, &[series("nothing", vec![], true)]).unwrap();
+            assert_png_and_svg(&stem);
+        }
+    }
+
+    #[test]
+    fn series_single_point() {
+        let dir = TestDir::new("series-single");
+        for (x_scale, y_scale) in [(Scale::Linear, Scale::Linear), (Scale::Log10, Scale::Log10)] {
+            let stem = dir.stem(&format!("single_{x_scale:?}"));
+            plot_series(&stem, "One point", "x", "y", x_scale, y_scale, &[series("one", vec![(5.0, 5.0)], false)])
+                .unwrap();
+            assert_png_and_svg(&stem);
+        }
+        let stem = dir.stem("constant");
+        let flat = series("flat", vec![(1.0, 0.0), (2.0, 0.0), (3.0, 0.0)], false);
+        plot_series(&stem, "Flat zero", "x", "y", Scale::Linear, Scale::Linear, &[flat]).unwrap();
+        assert_png_and_svg(&stem);
+    }
+
+    #[test]
+    fn series_skip_nan_inf_and_non_positive_on_log_axes() {
+        let dir = TestDir::new("series-nan");
+        let points = vec![(0.0, 1.0), (1.0, f64::NAN), (2.0, 3.0), (f64::INFINITY, 4.0), (4.0, -5.0), (5.0, 6.0)];
+        let noisy = series("noisy", points, true);
+        let all_nan = series("all NaN", vec![(f64::NAN, f64::NAN); 3], false);
+        for (x_scale, y_scale) in [(Scale::Linear, Scale::Linear), (Scale::Log10, Scale::Log10)] {
+            let stem = dir.stem(&format!("nan_{x_scale:?}"));
+            plot_series(&stem, "NaN", "x", "y", x_scale, y_scale, &[noisy.clone(), all_nan.clone()]).unwrap();
+            assert_png_and_svg(&stem);
+        }
+        let only_non_positive = series("negative", vec![(-1.0, -1.0), (0.0, 0.0)], false);
+        let stem = dir.stem("non_positive_log");
+        plot_series(&stem, "Nothing positive", "x", "y", Scale::Log10, Scale::Log10, &[only_non_positive]).unwrap();
+        assert_png_and_svg(&stem);
+    }
+
+    #[test]
+    fn series_log_scales_with_wide_range() {
+        let dir = TestDir::new("series-log");
+        let children: Vec<f64> = (1..=33).map(|e| 10_f64.powi(e)).collect();
+        let timing = series("time", children.iter().map(|&n| (n, 1e-6 * n.powf(0.05))).collect(), true);
+        let linear = series("linear", children.iter().map(|&n| (n, 1e-9 * n)).collect(), false);
+        let stem = dir.stem("loglog");
+        plot_series(&stem, "Timing", "Possible children", "Time [s]", Scale::Log10, Scale::Log10, &[timing, linear])
+            .unwrap();
+        assert_png_and_svg(&stem);
+        let stem = dir.stem("semilog");
+        let decay = series("decay", (0..20).map(|k| (f64::from(k), 10_f64.powi(-k))).collect(), false);
+        plot_series(&stem, "Semi-log", "k", "value", Scale::Linear, Scale::Log10, &[decay]).unwrap();
+        assert_png_and_svg(&stem);
+    }
+
+    #[test]
+    fn series_extreme_magnitudes_do_not_hang_or_panic() {
+        let dir = TestDir::new("series-extreme");
+        let extreme = series("extreme", vec![(-1e300, 1e-300), (1e300, 1e300), (f64::MAX, f64::MIN_POSITIVE)], false);
+        let near = series("near", vec![(1e9, 1.0), (1e9 + 1e-7, 1.0 + 1e-12)], false);
+        let log_limits = series("log limits", vec![(1e-150, 1e150), (1e150, 1e-150), (1e-300, 1e300)], true);
+        for (x_scale, y_scale) in
+            [(Scale::Linear, Scale::Linear), (Scale::Linear, Scale::Log10), (Scale::Log10, Scale::Log10)]
+        {
+            let stem = dir.stem(&format!("extreme_{x_scale:?}_{y_scale:?}"));
+            plot_series(
+                &stem,
+                "Extreme",
+                "x",
+                "y",
+                x_scale,
+                y_scale,
+                &[extreme.clone(), near.clone(), log_limits.clone()],
+            )
+            .unwrap();
+            assert_png_and_svg(&stem);
+        }
+    }
+
+    #[test]
+    fn unwritable_destination_is_an_error() {
+        let dir = TestDir::new("unwritable");
+        let blocker = dir.stem("blocker");
+        std::fs::write(&blocker, b"a file, not a directory").unwrap();
+        let error = plot_series(&blocker.join("chart"), "t", "x", "y", Scale::Linear, Scale::Linear, &[]).unwrap_err();
+        assert!(error.contains("blocker"), "message names the path: {error}");
+        assert!(plot_hypothesis_weights(Path::new(""), &[]).is_err());
+    }
+
+    #[test]
+    fn absurd_panel_counts_are_refused() {
+        let dir = TestDir::new("too-many");
+        let panels = vec![SnapshotPanel::default(); 400];
+        let error = plot_snapshots(&dir.stem("huge"), &panels).unwrap_err();
+        assert!(error.contains("px"), "{error}");
+    }
+
+    #[test]
+    fn output_paths_append_extensions() {
+        assert_eq!(path_with_extension(Path::new("out/run.v2/gospa"), "png"), PathBuf::from("out/run.v2/gospa.png"));
+        assert_eq!(path_with_extension(Path::new("fig.final"), "svg"), PathBuf::from("fig.final.svg"));
+    }
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(format_tick(&0.0), "0");
+        assert_eq!(format_tick(&0.30000000000000004), "0.3");
+        assert_eq!(format_tick(&-20_000.0), "-20000");
+        assert_eq!(format_tick(&1.0000000000000001e7), "1e7");
+        assert_eq!(format_tick(&2.5e-4), "2.5e-4");
+        assert_eq!(format_scientific(&1000.0), "1e3");
+        assert_eq!(format_rank_tick(&3.0), "3");
+        assert_eq!(format_rank_tick(&2.5), "");
+    }
+
+    #[test]
+    fn axes_are_widened_and_padded() {
+        let single = linear_axis(Some(5.0..5.0));
+        assert!(single.start < 5.0 && single.end > 5.0);
+        let zero = linear_axis(Some(0.0..0.0));
+        assert!(zero.start < 0.0 && zero.end > 0.0);
+        let padded = linear_axis(Some(0.0..10.0));
+        assert!(padded.start < 0.0 && padded.end > 10.0);
+        assert_eq!(linear_axis(None), 0.0..1.0);
+
+        // Log axes always contain a power of ten.
+        for data in [2.0..8.0, 3.0..3.0, 1e1..1e33, 0.02..0.03] {
+            let axis = log_axis(Some(data.clone()));
+            assert!(axis.start < data.start && axis.end > data.end, "{axis:?} frames {data:?}");
+            assert!(axis.end.log10().floor() >= axis.start.log10().ceil(), "{axis:?} holds a power of ten");
+        }
+    }
+
+    #[test]
+    fn snapshot_axes_have_equal_units_per_pixel() {
+        let bounds = Bounds { x: -10.0..30.0, y: 0.0..5.0 };
+        let (x, y) = equal_aspect_ranges(Some(bounds), (500, 400));
+        let (x_per_pixel, y_per_pixel) = ((x.end - x.start) / 500.0, (y.end - y.start) / 400.0);
+        assert!((x_per_pixel - y_per_pixel).abs() < 1e-12 * x_per_pixel);
+        assert!(x.start < -10.0 && x.end > 30.0 && y.start < 0.0 && y.end > 5.0);
+        let (x, y) = equal_aspect_ranges(Some(Bounds::around(7.0, 7.0)), (500, 500));
+        assert!(x.start < 7.0 && x.end > 7.0 && y.start < 7.0 && y.end > 7.0);
+    }
+
+    #[test]
+    fn segments_and_polylines_are_clipped_to_the_view() {
+        let (x, y) = (0.0..10.0, 0.0..10.0);
+        assert_eq!(clip_segment((-5.0, 5.0), (15.0, 5.0), &x, &y), Some(((0.0, 5.0), (10.0, 5.0))));
+        assert_eq!(clip_segment((1.0, 1.0), (2.0, 2.0), &x, &y), Some(((1.0, 1.0), (2.0, 2.0))));
+        assert_eq!(clip_segment((-5.0, -5.0), (-1.0, 20.0), &x, &y), None);
+        let pieces =
+            clip_polyline(&[(-1.0, 5.0), (2.0, 5.0), (4.0, 6.0), (20.0, 6.0), (20.0, 8.0), (5.0, 8.0)], &x, &y);
+        assert_eq!(pieces, vec![vec![(0.0, 5.0), (2.0, 5.0), (4.0, 6.0), (10.0, 6.0)], vec![(10.0, 8.0), (5.0, 8.0)]]);
     }
 }

@@ -72,6 +72,7 @@ pub struct ReferenceTracker<M> {
     time: f64,
     next_label: u32,
     budget_bytes: usize,
+    max_children: u64,
     budget_scans: Vec<usize>,
     scans: usize,
 }
@@ -143,9 +144,17 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             time,
             next_label,
             budget_bytes,
+            max_children: u64::MAX,
             budget_scans: vec![],
             scans: 0,
         })
+    }
+
+    /// Bounds the children enumerated per scan: beyond it the scan fails with
+    /// [`StepError::ChildBudgetExceeded`] and the tracker is unchanged (the reference is then "broken",
+    /// as exhaustive enumeration is in paper 003 §V-B).
+    pub fn set_max_children(&mut self, max_children: u64) {
+        self.max_children = max_children;
     }
 
     /// Scans (1-based) at which the memory budget forced dropping children.
@@ -270,7 +279,11 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                 );
                 let mut assignment = vec![CLUTTER; rows];
                 let mut used = vec![false; matrix.len()];
-                enumerate(&matrix, 0, baseline, &mut assignment, &mut used, &mut |log_weight, assignment| {
+                let limit = self.max_children;
+                let complete = enumerate(&matrix, 0, baseline, &mut assignment, &mut used, &mut |log_weight, assignment| {
+                    if count >= limit {
+                        return false;
+                    }
                     total.add(log_weight);
                     count += 1;
                     children.push(Child {
@@ -283,7 +296,11 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                         keep_best(&mut children, max_children);
                         budget_reached = true;
                     }
+                    true
                 });
+                if !complete {
+                    return Err(StepError::ChildBudgetExceeded { budget: limit });
+                }
             }
         }
         if children.is_empty() {
@@ -434,33 +451,37 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
 }
 
 /// Calls `offer` with every association of rows `row..` (clutter first, then each unused column with a
-/// finite entry), skipping children that leave a required column unassigned.
+/// finite entry), skipping children that leave a required column unassigned. Stops, returning `false`,
+/// as soon as `offer` returns `false`.
 fn enumerate(
     matrix: &[(Vec<f64>, bool)],
     row: usize,
     value: f64,
     assignment: &mut Vec<u16>,
     used: &mut Vec<bool>,
-    offer: &mut dyn FnMut(f64, &[u16]),
-) {
+    offer: &mut dyn FnMut(f64, &[u16]) -> bool,
+) -> bool {
     if row == assignment.len() {
         let complete = matrix.iter().zip(used.iter()).all(|((_, required), used)| !required || *used);
-        if complete {
-            offer(value, assignment);
-        }
-        return;
+        return !complete || offer(value, assignment);
     }
     assignment[row] = CLUTTER;
-    enumerate(matrix, row + 1, value, assignment, used, offer);
+    if !enumerate(matrix, row + 1, value, assignment, used, offer) {
+        return false;
+    }
     for (column, (entries, _)) in matrix.iter().enumerate() {
         if !used[column] && entries[row] > f64::NEG_INFINITY {
             used[column] = true;
             assignment[row] = column as u16;
-            enumerate(matrix, row + 1, value + entries[row], assignment, used, offer);
+            let go_on = enumerate(matrix, row + 1, value + entries[row], assignment, used, offer);
             used[column] = false;
+            if !go_on {
+                return false;
+            }
         }
     }
     assignment[row] = CLUTTER;
+    true
 }
 
 /// Keeps the `keep` children of largest weight (ties: earlier first), in enumeration order.

@@ -37,7 +37,7 @@ impl TrackerKind {
 /// Capacity profile of the core tracker.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
 pub enum Profile {
-    /// H = 32, N = 64, Z = 16, K = 256, B = 8: the embedded default (tracker-core's `ssa_caps`).
+    /// H = 32, N = 64, Z = 32, K = 256, B = 8: the embedded default (tracker-core's `ssa_caps`).
     #[default]
     Embedded,
     /// H = 256, N = 128, Z = 64, K = 4096, B = 16.
@@ -154,10 +154,26 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
     }
 }
 
+/// The unbounded reference's budgets: memory (beyond it the lowest-weight children are dropped) and
+/// children enumerated per scan (beyond it the scan fails: the reference is broken there).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReferenceBudget {
+    /// Bytes of children and hypotheses.
+    pub bytes: usize,
+    /// Children enumerated per scan.
+    pub children: u64,
+}
+
+impl Default for ReferenceBudget {
+    fn default() -> Self {
+        Self { bytes: 4 << 30, children: 1_000_000_000 }
+    }
+}
+
 fn reference_runner<M>(
     scenario: &Scenario,
     motion: M,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
     max_objects: usize,
 ) -> Result<Box<dyn Runner>, ScenarioError>
 where
@@ -166,9 +182,10 @@ where
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
-    let tracker =
-        ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget_bytes, max_objects)
+    let mut tracker =
+        ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes, max_objects)
             .map_err(ScenarioError)?;
+    tracker.set_max_children(budget.children);
     Ok(Box::new(ReferenceRunner { tracker }))
 }
 
@@ -197,20 +214,20 @@ pub fn build(
     kind: TrackerKind,
     profile: Profile,
     scenario: &Scenario,
-    reference_budget_bytes: usize,
+    reference: ReferenceBudget,
 ) -> Result<Box<dyn Runner>, ScenarioError> {
     let children = if kind == TrackerKind::Rfisst { setup::sampled(scenario) } else { setup::exhaustive(scenario) };
     match (kind, scenario.motion) {
         (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => reference_runner(
             scenario,
             setup::two_body(&scenario.motion).expect("two-body"),
-            reference_budget_bytes,
+            reference,
             profile.caps().1,
         ),
         (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
             scenario,
             setup::constant_velocity(&scenario.motion).expect("constant velocity"),
-            reference_budget_bytes,
+            reference,
             profile.caps().1,
         ),
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {

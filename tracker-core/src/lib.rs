@@ -75,7 +75,7 @@ pub mod ssa_caps {
     /// N: objects per hypothesis (50 objects with room for births).
     pub const OBJECTS: usize = 64;
     /// Z: measurements per scan.
-    pub const MEASUREMENTS: usize = 16;
+    pub const MEASUREMENTS: usize = 32;
     /// K: tracks in the shared store.
     pub const TRACKS: usize = 256;
     /// B: birth cells.
