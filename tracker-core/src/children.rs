@@ -23,6 +23,7 @@ pub trait ChildSink<T> {
 
 /// Why a generator stopped early.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum GenerateError {
     /// The configured number of children per scan was reached before the enumeration finished.
     BudgetExceeded {

@@ -9,6 +9,8 @@ use crate::sensor::Sensor;
 
 /// Whether a born object may go undetected in the scan it is born (digest §1.1, [000] (34)–(43)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BirthDetection {
     /// Paper 000's "all births detected" heuristic: a birth child must assign a measurement to the born
     /// object. **The default.** Every child with an undetected birth weighs at most (1 − p_D) α / P(no
@@ -25,6 +27,7 @@ pub enum BirthDetection {
 /// R-FISST's first-order birth model: per scan at most one birth, in one of the cells, each with
 /// probability α ([003] §II-C; digest §4.4 "Event probabilities").
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BirthModel<T: Real, const S: usize, const B: usize> {
     /// α: probability of a birth in each cell per scan.
     pub probability: T,
@@ -43,6 +46,8 @@ impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
 
 /// How the children of each parent are produced.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ChildGeneration {
     /// Every child with non-zero weight (HOMHT-style), at most `max_children_per_scan` leaves of the
     /// enumeration per scan; more is [`crate::StepError::ChildBudgetExceeded`].
@@ -64,6 +69,8 @@ impl Default for ChildGeneration {
 
 /// What to do when the kept children need more distinct tracks than the track store holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum StoreOverflow {
     /// Drop the lowest-weight children that do not fit (like H∞ pruning) and report how many in
     /// [`crate::StepReport::children_dropped_for_store`]. The best child always fits (the store holds at
@@ -76,6 +83,8 @@ pub enum StoreOverflow {
 
 /// How the H∞ hypotheses are chosen among the children (paper 003 §III-A).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Selection {
     /// The H∞ children of largest weight. **The default.**
     #[default]
@@ -88,6 +97,7 @@ pub enum Selection {
 
 /// The complete configuration of a tracker.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     /// How objects move.
     pub motion: M,
@@ -110,4 +120,39 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub store_overflow: StoreOverflow,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
     pub seed: u64,
+}
+
+#[cfg(all(test, feature = "serde"))]
+mod tests {
+    use super::*;
+    use crate::model::{PositionMeasurement, TwoBody};
+    use crate::sensor::Region;
+
+    #[test]
+    fn configuration_round_trips_through_serde() {
+        let mut cells = heapless::Vec::<Gaussian<f64, 4>, 2>::new();
+        let _ = cells.push(Gaussian {
+            mean: nalgebra::SVector::from([1.0, 2.0, 3.0, 4.0]),
+            covariance: nalgebra::SMatrix::identity(),
+        });
+        let config: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, 2> = Config {
+            motion: TwoBody { mu: 398_600.0, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 100 },
+            measurement: PositionMeasurement::isotropic(0.5),
+            sensor: Sensor {
+                detection_probability: 0.9,
+                clutter_rate: 1.0,
+                field_of_view: Region::Rectangle { min: [0.0, 0.0], max: [1.0, 1.0] },
+            },
+            birth: BirthModel { probability: 0.01, cells, detection: BirthDetection::AllowUndetected },
+            death_probability: 0.001,
+            gate: Some(25.0),
+            children: ChildGeneration::Sampled(crate::sampler::SamplerConfig::default()),
+            selection: Selection::SampledByWeight,
+            store_overflow: StoreOverflow::Error,
+            seed: 42,
+        };
+        let text = serde_json::to_string(&config).unwrap();
+        let back: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, 2> = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, config);
+    }
 }

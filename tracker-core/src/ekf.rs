@@ -16,6 +16,7 @@ use nalgebra::{Cholesky, SMatrix, SVector};
 
 /// A Gaussian density N(mean, covariance): the pdf of one object under one hypothesis.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gaussian<T: Real, const S: usize> {
     /// Mean x̂.
     pub mean: SVector<T, S>,
@@ -31,6 +32,7 @@ impl<T: Real, const S: usize> Default for Gaussian<T, S> {
 
 /// Why an EKF operation failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum NumericalError {
     /// A covariance that must be positive definite (S, or a prior covariance) is not.
     NotPositiveDefinite,

@@ -8,6 +8,7 @@ use crate::store::TrackLabel;
 
 /// A configuration or prior that cannot be used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ConfigError {
     /// The motion model rejected its parameters.
     Motion(&'static str),
@@ -115,6 +116,7 @@ impl core::error::Error for ConfigError {}
 
 /// Why a scan was rejected. The tracker is unchanged after any of these.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum StepError {
     /// More measurements than the capacity `Z`.
     TooManyMeasurements {

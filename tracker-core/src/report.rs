@@ -2,6 +2,8 @@
 
 /// Summary of one processed scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepReport<T> {
     /// Number of scans processed so far, this one included.
     pub scan: u64,

@@ -46,6 +46,8 @@ const NONE: u16 = u16::MAX;
 
 /// The proposal of the Metropolis chain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Proposal {
     /// Paper 003: a random row takes a random column; a conflicting measurement goes to clutter.
     Paper,
@@ -60,6 +62,8 @@ pub enum Proposal {
 
 /// Budget and moves of the sampler.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SamplerConfig {
     /// Steps per chain before recording.
     pub burn_in: u32,

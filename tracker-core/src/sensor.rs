@@ -13,6 +13,8 @@ use nalgebra::SVector;
 ///
 /// `Rectangle` and `Sector` read the first two components of a measurement as a planar position.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Region<T> {
     /// No boundary: every object is detectable and clutter spreads over an abstract `volume`
     /// (for exactness tests that follow the papers' single-volume examples).
@@ -115,6 +117,8 @@ impl<T: Real> Region<T> {
 
 /// Detection and clutter model of the single sensor.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Sensor<T> {
     /// Probability of detection p_D of an object inside the field of view, in (0, 1].
     pub detection_probability: T,

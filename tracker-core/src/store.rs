@@ -11,6 +11,8 @@ use crate::real::Real;
 /// The identity of an object: the same across scans and across hypotheses. Prior objects carry the
 /// labels the caller gives them; every birth gets a fresh label.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TrackLabel(pub u32);
 
 impl core::fmt::Display for TrackLabel {

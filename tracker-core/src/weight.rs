@@ -21,6 +21,8 @@ use nalgebra::SVector;
 
 /// The birth/death event of a child.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Event {
     /// No birth and no death: probability 1 − M_b α − M_d β.
     #[default]

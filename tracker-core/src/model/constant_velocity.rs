@@ -16,6 +16,8 @@ use nalgebra::{SMatrix, SVector};
 /// assert_eq!(p.state, SVector::from([2.0, 4.0, 1.0, 2.0]));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ConstantVelocity<T> {
     /// Power spectral density q of the white acceleration noise (position units² / s³).
     pub acceleration_noise: T,

@@ -25,6 +25,7 @@ use nalgebra::{SMatrix, SVector};
 
 /// Why a model could not produce a prediction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ModelError {
     /// The time step needs more integrator sub-steps than the model allows.
     TimeStepTooLarge,

@@ -15,6 +15,7 @@ use nalgebra::{SMatrix, SVector};
 /// assert_eq!(sensor.noise_covariance(), SMatrix::<f64, 2, 2>::identity() * 0.25);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PositionMeasurement<T: Real> {
     /// Measurement noise covariance R (symmetric positive definite).
     pub noise: SMatrix<T, 2, 2>,

@@ -26,6 +26,8 @@ use nalgebra::{SMatrix, SVector};
 /// assert!((p.state[0] - r).abs() < 1e-3 && p.state[1].abs() < 1e-3);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TwoBody<T> {
     /// Gravitational parameter μ (length³ / s²; 398600.4418 km³/s² for the Earth).
     pub mu: T,
