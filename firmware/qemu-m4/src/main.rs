@@ -1,0 +1,200 @@
+//! QEMU replay firmware for the Cortex-M4F (`mps2-an386`): runs a recorded host-sim scenario through
+//! tracker-core's `SsaTracker<f32>` and prints, over semihosting, the same digest text as
+//! `host-sim digest` plus SysTick counts per scan and the stack high-water mark.
+//!
+//! Lines starting with `scan ` or `final ` are the digest text, compared byte for byte with the host's by
+//! `scripts/qemu-check.sh`; every other line starts with `qemu-m4:` or `ticks `. The exit status is 0 when
+//! every scan was replayed (rejected scans are part of the digest text), 1 when the tracker could not be
+//! built, on a panic or on a fault. See docs/embedded.md.
+#![no_std]
+#![no_main]
+
+mod cycles;
+mod scenario;
+mod stack;
+
+use cortex_m_rt::{ExceptionFrame, entry, exception};
+use cortex_m_semihosting::{debug, hprintln};
+use tracker_core::{ConfigError, SsaTracker, StepError};
+
+/// Scans replayed.
+const SCANS: usize = scenario::SCANS.len();
+
+/// What one scan gave.
+#[derive(Clone, Copy)]
+struct Record {
+    /// `Tracker::digest` after the scan.
+    digest: u64,
+    /// Hypotheses and tracks kept, or why the scan was rejected.
+    outcome: Result<(usize, usize), StepError>,
+    /// SysTick ticks taken by `step`.
+    ticks: u64,
+}
+
+impl Record {
+    const EMPTY: Record = Record { digest: 0, outcome: Ok((0, 0)), ticks: 0 };
+}
+
+/// Iterations of the calibration loop (2 instructions each).
+const CALIBRATION_ITERATIONS: u32 = 1_000_000;
+
+#[entry]
+fn main() -> ! {
+    let status = run();
+    exit(status)
+}
+
+fn run() -> debug::ExitStatus {
+    hprintln!(
+        "qemu-m4: scenario {:?}: replaying {} of {} scans through SsaTracker<f32> ({} bytes, static)",
+        scenario::NAME,
+        SCANS,
+        scenario::SCANS_IN_FILE,
+        core::mem::size_of::<SsaTracker<f32>>()
+    );
+    let Some(mut peripherals) = cortex_m::Peripherals::take() else {
+        hprintln!("qemu-m4: error: core peripherals already taken");
+        return debug::EXIT_FAILURE;
+    };
+    cycles::start(&mut peripherals.SYST);
+    hprintln!(
+        "qemu-m4: calibration: {} instructions took {} ticks",
+        2 * u64::from(CALIBRATION_ITERATIONS),
+        cycles::calibrate(CALIBRATION_ITERATIONS)
+    );
+
+    let tracker = match build() {
+        Ok(tracker) => tracker,
+        Err(Some(error)) => {
+            hprintln!("qemu-m4: error: tracker configuration: {}", error);
+            return debug::EXIT_FAILURE;
+        }
+        Err(None) => {
+            hprintln!("qemu-m4: error: the tracker was already built");
+            return debug::EXIT_FAILURE;
+        }
+    };
+    let build_stack = stack::high_water();
+
+    // Replay first, print afterwards: the ticks and the stack measured during the scans are the tracker's
+    // alone, with no semihosting in between.
+    let Some(records) = records() else {
+        hprintln!("qemu-m4: error: the record table was already taken");
+        return debug::EXIT_FAILURE;
+    };
+    stack::paint();
+    let call_depth = stack::depth();
+    for (record, scan) in records.iter_mut().zip(&scenario::SCANS) {
+        let start = cycles::now();
+        let outcome = tracker.step(scan.time, scan.measurements);
+        record.ticks = cycles::now() - start;
+        record.outcome = outcome.map(|report| (report.hypotheses, report.tracks));
+        record.digest = tracker.digest();
+    }
+    let scan_stack = stack::high_water();
+
+    let mut running = Fnv1a::new();
+    for (index, record) in records.iter().enumerate() {
+        running.write(&record.digest.to_le_bytes());
+        match record.outcome {
+            Ok((hypotheses, tracks)) => {
+                hprintln!("scan {} hypotheses {} tracks {} digest {:016x}", index, hypotheses, tracks, record.digest)
+            }
+            Err(error) => hprintln!("scan {} error {} digest {:016x}", index, error, record.digest),
+        }
+        hprintln!("ticks {} {}", index, record.ticks);
+    }
+    hprintln!("final scans {} digest {:016x}", SCANS, running.finish());
+
+    if SCANS > 0 {
+        let total: u64 = records.iter().map(|record| record.ticks).sum();
+        // The records are printed: sort them by ticks for the median.
+        records.sort_unstable_by_key(|record| record.ticks);
+        let ticks = |index: usize| records[index].ticks;
+        let middle = SCANS / 2;
+        let median = if SCANS % 2 == 1 { ticks(middle) } else { (ticks(middle - 1) + ticks(middle)) / 2 };
+        hprintln!(
+            "qemu-m4: ticks per scan (step only): min {} median {} max {} total {}",
+            ticks(0),
+            median,
+            ticks(SCANS - 1),
+            total
+        );
+    }
+    hprintln!(
+        "qemu-m4: stack ({} bytes): start-up with building the tracker {} bytes; scans {} bytes, of which step and \
+         digest {} bytes",
+        stack::size(),
+        build_stack,
+        scan_stack,
+        scan_stack.saturating_sub(call_depth)
+    );
+    debug::EXIT_SUCCESS
+}
+
+/// Builds the tracker straight into a static (.bss): it is far too large for a small stack. `new` returns
+/// it by value, so building it still takes stack once; not inlined, so that this stack is given back before
+/// the scans. `Err(None)` when called twice.
+#[inline(never)]
+fn build() -> Result<&'static mut SsaTracker<f32>, Option<ConfigError>> {
+    let built = cortex_m::singleton!(
+        : Result<SsaTracker<f32>, ConfigError> =
+            SsaTracker::<f32>::new(scenario::config(), &scenario::PRIOR, scenario::PRIOR_TIME)
+    )
+    .ok_or(None)?;
+    built.as_mut().map_err(|error| Some(*error))
+}
+
+/// The table of per-scan records, in a static. Not inlined, so that its initial value is built on a stack frame
+/// that is given back before the scans. `None` when called twice.
+#[inline(never)]
+fn records() -> Option<&'static mut [Record; SCANS]> {
+    cortex_m::singleton!(: [Record; SCANS] = [Record::EMPTY; SCANS])
+}
+
+/// Ends the QEMU run with `status`.
+fn exit(status: debug::ExitStatus) -> ! {
+    debug::exit(status);
+    // Only reached without a semihosting host.
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// 64-bit FNV-1a, as `host-sim digest` folds the per-scan digests.
+struct Fnv1a(u64);
+
+impl Fnv1a {
+    fn new() -> Self {
+        Fnv1a(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.0 ^= u64::from(byte);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    hprintln!("qemu-m4: panic: {}", info);
+    exit(debug::EXIT_FAILURE)
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    hprintln!("qemu-m4: hard fault at pc {:#010x}", frame.pc());
+    exit(debug::EXIT_FAILURE)
+}
+
+#[exception]
+unsafe fn DefaultHandler(irq: i16) {
+    hprintln!("qemu-m4: unexpected exception {}", irq);
+    exit(debug::EXIT_FAILURE)
+}
