@@ -1,7 +1,19 @@
 //! Shared inputs of the benches: fixed association matrices and scenarios, built deterministically so that
 //! every run measures the same work.
+//!
+//! - [`crossing_matrix`]: a dense crossing as one association matrix (the sampler benches).
+//! - [`worst_case`]: a tracker at its caps with a scan that fills them (the instruction-count benches):
+//!   H prior hypotheses of (N − 1) objects over K distinct tracks, and Z measurements that are all inside
+//!   the gate of every object and every birth cell, so every association matrix is dense.
 
+use nalgebra::{SMatrix, SVector};
 use tracker_core::association::AssociationMatrix;
+use tracker_core::config::{ChildGeneration, Selection};
+use tracker_core::sampler::SamplerConfig;
+use tracker_core::{
+    BirthDetection, BirthModel, Config, Gaussian, MotionModel, PositionMeasurement, PriorHypothesis, PriorObject, Real,
+    Region, Sensor, StepError, StepReport, StoreOverflow, TrackLabel, Tracker, TwoBody,
+};
 
 /// SplitMix64 step, for deterministic bench inputs.
 pub fn splitmix(state: &mut u64) -> u64 {
@@ -10,6 +22,11 @@ pub fn splitmix(state: &mut u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
+}
+
+/// A uniform draw in [0, 1) from [`splitmix`].
+pub fn uniform(state: &mut u64) -> f64 {
+    (splitmix(state) >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// A `rows × columns` association matrix like a dense crossing: each measurement is inside the gate of
@@ -37,4 +54,203 @@ pub fn crossing_matrix<const N: usize, const Z: usize>(
         m.set_column(column, entries, false);
     }
     m
+}
+
+/// Earth's gravitational parameter μ (km³/s²), as in the SSA scenarios.
+pub const EARTH_MU: f64 = 398_600.441_8;
+
+/// Range (km) along the boresight of the worst-case cluster of objects.
+const CLUSTER_RANGE: f64 = 7_000.0;
+
+/// Seconds from the prior to the worst-case scan (one SSA scan interval).
+pub const WORST_CASE_DT: f64 = 60.0;
+
+/// The two-body model of the SSA scenarios (host-sim's `fifty-birth-death`).
+pub fn ssa_motion<T: Real>() -> TwoBody<T> {
+    TwoBody {
+        mu: T::of_f64(EARTH_MU),
+        acceleration_noise: T::of_f64(1e-13),
+        max_step: T::of_f64(20.0),
+        max_substeps: 20_000,
+    }
+}
+
+/// The state (x, y, vx, vy) of a circular orbit at the worst-case cluster at the prior time.
+fn cluster_state() -> [f64; 4] {
+    let look = 15f64.to_radians();
+    let (c, s) = (look.cos(), look.sin());
+    let v = (EARTH_MU / CLUSTER_RANGE).sqrt();
+    [CLUSTER_RANGE * c, CLUSTER_RANGE * s, -v * s, v * c]
+}
+
+fn gaussian<T: Real>(mean: [f64; 4], variances: [f64; 4]) -> Gaussian<T, 4> {
+    Gaussian {
+        mean: SVector::from(mean.map(T::of_f64)),
+        covariance: SMatrix::from_diagonal(&SVector::from(variances.map(T::of_f64))),
+    }
+}
+
+/// The default SSA configuration (host-sim's `fifty-birth-death` parameters: p_D 0.95, one clutter return
+/// per scan over the 30° sector out to 30,000 km, gate 25, α = 1e-3 in `cells` birth cells, β = 1e-4, R-FISST
+/// sampled children with the default sampler), with every birth cell centred on the worst-case cluster at
+/// the scan time.
+pub fn worst_case_config<T: Real, const B: usize>(cells: usize) -> Config<T, TwoBody<T>, PositionMeasurement<T>, 4, B> {
+    let motion = ssa_motion::<f64>();
+    let centre = motion
+        .propagate(&SVector::from(cluster_state()), WORST_CASE_DT)
+        .map(|p| p.state)
+        .unwrap_or_else(|_| SVector::from(cluster_state()));
+    let mut birth_cells = heapless::Vec::new();
+    for _ in 0..cells.min(B) {
+        let _ = birth_cells.push(gaussian([centre[0], centre[1], centre[2], centre[3]], [400.0, 400.0, 1e-2, 1e-2]));
+    }
+    Config {
+        motion: ssa_motion(),
+        measurement: PositionMeasurement::isotropic(T::of_f64(0.5)),
+        sensor: Sensor {
+            detection_probability: T::of_f64(0.95),
+            clutter_rate: T::of_f64(1.0),
+            field_of_view: Region::Sector {
+                origin: [T::zero(), T::zero()],
+                look_direction: T::of_f64(15f64.to_radians()),
+                half_angle: T::of_f64(15f64.to_radians()),
+                max_range: T::of_f64(30_000.0),
+            },
+        },
+        birth: BirthModel { probability: T::of_f64(1e-3), cells: birth_cells, detection: BirthDetection::AllDetected },
+        death_probability: T::of_f64(1e-4),
+        gate: Some(T::of_f64(25.0)),
+        children: ChildGeneration::Sampled(SamplerConfig::default()),
+        selection: Selection::TopWeight,
+        store_overflow: StoreOverflow::PruneChildren,
+        seed: 1,
+    }
+}
+
+/// A two-body tracker with position measurements and the given capacities (the SSA tracker's shape).
+pub type TwoBodyTracker<T, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<T, TwoBody<T>, PositionMeasurement<T>, 4, 2, H, N, Z, K, B>;
+
+/// A tracker at its caps and the scan that fills them (see [`worst_case`]).
+pub struct WorstCase<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+    /// The tracker, boxed (it is large).
+    pub tracker: Box<TwoBodyTracker<T, H, N, Z, K, B>>,
+    /// Z measurements, all inside every gate.
+    pub measurements: Vec<SVector<T, 2>>,
+    /// Time of the scan.
+    pub time: f64,
+}
+
+impl<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
+    WorstCase<T, H, N, Z, K, B>
+{
+    /// Processes the worst-case scan.
+    ///
+    /// # Errors
+    /// The tracker's.
+    pub fn step(&mut self) -> Result<StepReport<T>, StepError> {
+        self.tracker.step(self.time, &self.measurements)
+    }
+}
+
+/// The worst case of a two-body tracker at capacities (H, N, Z, K, B) in the default SSA configuration:
+///
+/// - the prior holds H hypotheses of `objects` objects each (at most N; N − 1 keeps births possible,
+///   which is the most expensive case: one chain per birth cell besides the no-event chain), drawn from
+///   K / N versions of each object, so the store holds `objects` × K / N of its K tracks;
+/// - all objects sit in one cluster (position σ 10 km, within ±1 km of each other), the B birth cells
+///   are centred on it, and the Z measurements fall within ±2 km of its predicted centre, so every
+///   (measurement, object) and (measurement, birth cell) entry is inside the gate: every association
+///   matrix is dense, one cluster, sampled.
+///
+/// # Panics
+/// If the configuration or the prior is rejected (a bug in this function).
+pub fn worst_case<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    objects: usize,
+) -> WorstCase<T, H, N, Z, K, B> {
+    let objects = objects.min(N);
+    let versions = (K / N).max(1);
+    let mut state = 0x5eed_u64;
+    let base = cluster_state();
+    // versions × objects distinct tracks.
+    let tracks: Vec<Vec<PriorObject<T, 4>>> = (0..objects)
+        .map(|label| {
+            let offset = [uniform(&mut state) * 2.0 - 1.0, uniform(&mut state) * 2.0 - 1.0];
+            (0..versions)
+                .map(|version| {
+                    let shift = 0.05 * version as f64;
+                    let mean = [base[0] + offset[0] + shift, base[1] + offset[1] - shift, base[2], base[3]];
+                    PriorObject { label: TrackLabel(label as u32), state: gaussian(mean, [100.0, 100.0, 1e-4, 1e-4]) }
+                })
+                .collect()
+        })
+        .collect();
+    let hypotheses: Vec<Vec<PriorObject<T, 4>>> = (0..H)
+        .map(|h| {
+            (0..objects)
+                .map(|label| {
+                    // Within each block of `versions` hypotheses every object takes every version once.
+                    let mut key = ((h / versions) as u64) << 32 | label as u64;
+                    tracks[label][(h + (splitmix(&mut key) % versions as u64) as usize) % versions]
+                })
+                .collect()
+        })
+        .collect();
+    let prior: Vec<PriorHypothesis<'_, T, 4>> = hypotheses
+        .iter()
+        .enumerate()
+        .map(|(h, objects)| PriorHypothesis { weight: T::of_f64(1.0 / (1.0 + h as f64)), objects })
+        .collect();
+    let config = worst_case_config::<T, B>(B);
+    let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
+    let centre = ssa_motion::<f64>().propagate(&SVector::from(base), WORST_CASE_DT).expect("two-body").state;
+    let measurements = (0..Z)
+        .map(|_| {
+            let dx = uniform(&mut state) * 4.0 - 2.0;
+            let dy = uniform(&mut state) * 4.0 - 2.0;
+            SVector::from([T::of_f64(centre[0] + dx), T::of_f64(centre[1] + dy)])
+        })
+        .collect();
+    WorstCase { tracker, measurements, time: WORST_CASE_DT }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn worst_case_fills_the_caps_with_dense_matrices() {
+        // Small caps keep the test fast; the construction is the same at the SSA caps.
+        let mut case = worst_case::<f64, 4, 8, 6, 32, 2>(7);
+        assert_eq!(case.tracker.hypotheses().len(), 4);
+        assert_eq!(case.tracker.tracks().len(), 28);
+        let report = case.step().unwrap();
+        assert_eq!(report.hypotheses, 4);
+        assert_eq!(report.births_beyond_object_capacity, 0);
+        // Every measurement is inside every gate: δ finite for every track and birth cell.
+        let config = worst_case_config::<f64, 2>(2);
+        let weights = tracker_core::weight::WeightModel::from_config(&config);
+        let prior = worst_case::<f64, 4, 8, 6, 32, 2>(7);
+        for track in prior.tracker.tracks() {
+            let predicted = tracker_core::ekf::predict(&config.motion, &track.state, WORST_CASE_DT).unwrap();
+            let innovation = tracker_core::ekf::innovation(&config.measurement, &predicted).unwrap();
+            for z in &prior.measurements {
+                assert!(weights.entry(&innovation, z).is_finite());
+            }
+        }
+        for cell in &config.birth.cells {
+            let innovation = tracker_core::ekf::innovation(&config.measurement, cell).unwrap();
+            for z in &prior.measurements {
+                assert!(weights.entry(&innovation, z).is_finite());
+            }
+        }
+    }
+
+    #[test]
+    fn host_sim_perf_measures_the_same_crossing_matrices() {
+        for (rows, columns, in_gate, seed) in [(32, 64, 8, 1), (16, 32, 4, 3), (5, 9, 2, 7)] {
+            let ours: AssociationMatrix<f64, 64, 32> = crossing_matrix(rows, columns, in_gate, seed);
+            assert_eq!(ours, host_sim::perf::crossing_matrix(rows, columns, in_gate, seed));
+        }
+    }
 }

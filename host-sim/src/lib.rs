@@ -13,6 +13,7 @@ pub mod digest;
 pub mod evaluate;
 pub mod experiment;
 pub mod metrics;
+pub mod murty;
 pub mod perf;
 pub mod plots;
 pub mod reference;
