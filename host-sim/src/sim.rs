@@ -112,7 +112,7 @@ fn region(sensor: &SensorSpec) -> Region<f64> {
     crate::setup::region(&sensor.field_of_view)
 }
 
-fn uniform_in_region(fov: &FieldOfViewSpec, random: &mut Random) -> [f64; 2] {
+pub fn uniform_in_region(fov: &FieldOfViewSpec, random: &mut Random) -> [f64; 2] {
     match *fov {
         FieldOfViewSpec::Sector { origin, look_direction_deg, field_of_view_deg, max_range } => {
             let half = field_of_view_deg.to_radians() / 2.0;
@@ -131,7 +131,7 @@ fn uniform_in_region(fov: &FieldOfViewSpec, random: &mut Random) -> [f64; 2] {
 }
 
 /// One step of the true motion: x ← f(x, dt) + w, w ~ N(0, Q(dt)).
-fn move_object(motion: &MotionSpec, state: [f64; 4], dt: f64, random: &mut Random) -> [f64; 4] {
+pub fn move_object(motion: &MotionSpec, state: [f64; 4], dt: f64, random: &mut Random) -> [f64; 4] {
     if dt <= 0.0 {
         return state;
     }
@@ -318,7 +318,7 @@ pub fn ssa_birth_cells(
 }
 
 /// A random orbit between LEO and MEO: a in [a_min, a_max], e ≤ e_max (perigee at least 200 km up).
-fn random_orbit(random: &mut Random, a_min: f64, a_max: f64, e_max: f64) -> Orbit {
+pub fn random_orbit(random: &mut Random, a_min: f64, a_max: f64, e_max: f64) -> Orbit {
     let semi_major_axis = random.between(a_min, a_max);
     let e_limit = (1.0 - (EARTH_RADIUS + 200.0) / semi_major_axis).clamp(0.0, e_max);
     Orbit {
@@ -331,7 +331,7 @@ fn random_orbit(random: &mut Random, a_min: f64, a_max: f64, e_max: f64) -> Orbi
 
 /// Two-body motion with the SSA noise level: q = 1e-13 km²/s³ (white acceleration noise), which lets an
 /// unobserved object's position wander about √(q t³/3) ≈ 1.6 km in 12 h.
-fn ssa_motion() -> MotionSpec {
+pub fn ssa_motion() -> MotionSpec {
     MotionSpec::TwoBody { mu: EARTH_MU, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 20_000 }
 }
 

@@ -1,9 +1,391 @@
-//! `host-sim soak`: a long run with objects entering and leaving (being written).
+//! `host-sim soak`: a long run with objects entering and leaving, through the default embedded tracker.
+//!
+//! The scenario is paper 003's SSA geometry, generated scan by scan (nothing of the truth is kept beyond
+//! the objects alive now): planar two-body orbits from LEO to MEO with white acceleration noise, the
+//! sensor at the Earth's centre looking 15° above +x with a 30° field of view out to 30,000 km, p_D = 0.95,
+//! one clutter return per scan, a scan every 60 s. It starts with [`INITIAL_OBJECTS`] objects known to the
+//! prior; every scan a new object is born inside the field of view with probability [`BIRTH_RATE`], and
+//! every object dies with probability [`DEATH_RATE`], so about `BIRTH_RATE / DEATH_RATE` objects are alive
+//! in the steady state and each lives about 1 / `DEATH_RATE` scans.
+//!
+//! The tracker is tracker-core's [`SsaTracker<f64>`] (the embedded capacities [`tracker_core::ssa_caps`])
+//! with R-FISST's sampled children and the default [`SamplerConfig`], the fifty-object preset's birth
+//! cells (α = 10⁻³ each) and β = 10⁻⁴. After every scan the soak counts non-finite values in every weight,
+//! mean, covariance and existence probability, and every `StepError` by kind; it reports the largest and
+//! mean time per scan, the largest number of hypotheses and the track store's high-water mark, and how far
+//! the expected number of objects is from the truth.
+//!
+//! # Capacities are checked at compile time
+//!
+//! A tracker with a zero capacity does not compile (`CAPACITY_CHECK` in tracker-core's tracker.rs, a
+//! constant evaluation error E0080):
+//!
+//! ```compile_fail,E0080
+//! use tracker_core::{BirthModel, ChildGeneration, Config, ConstantVelocity, LinearTracker};
+//! use tracker_core::{PositionMeasurement, Region, Sensor, StoreOverflow};
+//! let config = Config {
+//!     motion: ConstantVelocity { acceleration_noise: 0.1 },
+//!     measurement: PositionMeasurement::isotropic(0.5),
+//!     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 1.0 } },
+//!     birth: BirthModel::none(),
+//!     death_probability: 0.0,
+//!     gate: None,
+//!     children: ChildGeneration::default(),
+//!     selection: Default::default(),
+//!     store_overflow: StoreOverflow::default(),
+//!     seed: 1,
+//! };
+//! // H = 0 hypotheses.
+//! let _ = LinearTracker::<f64, 0, 1, 1, 1, 0>::with_objects(config, &[], 0.0);
+//! ```
+//!
+//! while the same code with the smallest non-zero capacities compiles and runs:
+//!
+//! ```
+//! use tracker_core::{BirthModel, ChildGeneration, Config, ConstantVelocity, LinearTracker};
+//! use tracker_core::{PositionMeasurement, Region, Sensor, StoreOverflow};
+//! let config = Config {
+//!     motion: ConstantVelocity { acceleration_noise: 0.1 },
+//!     measurement: PositionMeasurement::isotropic(0.5),
+//!     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 1.0 } },
+//!     birth: BirthModel::none(),
+//!     death_probability: 0.0,
+//!     gate: None,
+//!     children: ChildGeneration::default(),
+//!     selection: Default::default(),
+//!     store_overflow: StoreOverflow::default(),
+//!     seed: 1,
+//! };
+//! assert!(LinearTracker::<f64, 1, 1, 1, 1, 0>::with_objects(config, &[], 0.0).is_ok());
+//! ```
 
-/// Placeholder until the module lands.
+use crate::rng::{Random, Stream};
+use crate::scenario::FieldOfViewSpec;
+use crate::setup;
+use crate::sim::{self, EARTH_MU, Orbit};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use nalgebra::{SMatrix, SVector};
+use serde_json::json;
+use std::collections::BTreeMap;
+use std::io::IsTerminal;
+use std::time::Instant;
+use tracker_core::sampler::SamplerConfig;
+use tracker_core::{
+    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorObject, SsaConfig,
+    SsaTracker, StoreOverflow, TrackLabel, ssa_caps,
+};
+
+/// Objects known to the prior.
+pub const INITIAL_OBJECTS: usize = 20;
+/// Probability of a birth per scan.
+pub const BIRTH_RATE: f64 = 2e-3;
+/// Probability that a given object dies, per scan.
+pub const DEATH_RATE: f64 = 1e-4;
+/// Seconds between scans.
+pub const SCAN_INTERVAL: f64 = 60.0;
+/// Measurement noise standard deviation (km).
+const SIGMA: f64 = 0.5;
+
+/// One true object, alive now.
+struct Object {
+    id: u64,
+    state: [f64; 4],
+    motion: Random,
+    detection: Random,
+}
+
+impl Object {
+    fn new(seed: u64, id: u64, orbit: Orbit) -> Self {
+        Object {
+            id,
+            state: orbit.state(EARTH_MU),
+            motion: Random::stream(seed, Stream::Motion, id),
+            detection: Random::stream(seed, Stream::Detection, id),
+        }
+    }
+}
+
+/// The position of a planar state.
+fn position(state: &[f64; 4]) -> SVector<f64, 2> {
+    SVector::from([state[0], state[1]])
+}
+
+/// A random LEO-MEO orbit whose position at the epoch is inside the field of view, 2° from its edges.
+fn orbit_in_view(random: &mut Random) -> Orbit {
+    let mut orbit = sim::random_orbit(random, 6_878.0, 26_560.0, 0.02);
+    orbit.true_anomaly = random.between(2.0, 28.0).to_radians() - orbit.periapsis;
+    orbit
+}
+
+/// Counts of what one run saw.
+#[derive(Default)]
+struct Health {
+    non_finite: u64,
+    non_finite_scans: u64,
+    first_non_finite_scan: Option<u64>,
+    errors: BTreeMap<String, u64>,
+    first_error: Option<(u64, String)>,
+    max_hypotheses: usize,
+    max_tracks: usize,
+    max_measurements: usize,
+    births_beyond_capacity: u64,
+    children_dropped_for_store: u64,
+}
+
+/// The name of an error's variant (`Numerical { .. }` → `Numerical`).
+fn variant(error: &tracker_core::StepError) -> String {
+    let text = format!("{error:?}");
+    text.split(|c: char| !c.is_alphanumeric()).next().unwrap_or_default().to_string()
+}
+
+/// Non-finite values among the tracker's weights, means, covariances and existence probabilities.
+fn non_finite_values(tracker: &SsaTracker<f64>) -> u64 {
+    let weights = tracker.hypotheses().filter(|h| !h.weight().is_finite() || !h.log_weight().is_finite()).count();
+    let tracks: usize = tracker
+        .tracks()
+        .iter()
+        .map(|t| {
+            let state = &t.state;
+            state.mean.iter().chain(state.covariance.iter()).filter(|v| !v.is_finite()).count()
+                + usize::from(!t.existence.is_finite())
+        })
+        .sum();
+    (weights + tracks) as u64
+}
+
+fn progress(scans: u64, quiet: bool) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(scans), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} scans, {elapsed} (eta {eta})") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message("soak");
+    bar
+}
+
+/// Runs `scans` scans of the soak scenario with `seed` and returns the report.
 ///
 /// # Errors
-/// Always, for now.
-pub fn run(_scans: u64, _seed: u64, _quiet: bool) -> Result<serde_json::Value, String> {
-    Err("soak: not implemented yet".into())
+/// A one-line message when `scans` is 0 or the tracker cannot be built (which would be a bug).
+pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<serde_json::Value, String> {
+    if scans == 0 {
+        return Err("--scans: must be > 0".into());
+    }
+    let started = Instant::now();
+    let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
+    let motion = sim::ssa_motion();
+    let two_body = setup::two_body(&motion).ok_or("soak: the SSA motion model is two-body")?;
+    let fov = setup::region(&sensor.field_of_view);
+    let cells = sim::ssa_birth_cells(&sensor, 6_600.0, 30_000.0, 8, 0.3);
+    let mut birth = BirthModel::none();
+    birth.probability = 1e-3;
+    birth.detection = BirthDetection::AllDetected;
+    for cell in &cells {
+        birth.cells.push(setup::gaussian(&cell.mean, &cell.covariance)).map_err(|_| "soak: too many birth cells")?;
+    }
+    let config: SsaConfig<f64> = Config {
+        motion: two_body,
+        measurement: PositionMeasurement::isotropic(SIGMA),
+        sensor: setup::sensor(&sensor),
+        birth,
+        death_probability: 1e-4,
+        gate: Some(25.0),
+        children: ChildGeneration::Sampled(SamplerConfig::default()),
+        selection: tracker_core::config::Selection::TopWeight,
+        store_overflow: StoreOverflow::PruneChildren,
+        seed,
+    };
+
+    // The truth at t = 0 and the prior (the true states with a small error, as the presets do).
+    let mut alive: Vec<Object> = (0..INITIAL_OBJECTS as u64)
+        .map(|id| {
+            let orbit = sim::random_orbit(&mut Random::stream(seed, Stream::Orbit, id), 6_878.0, 26_560.0, 0.02);
+            Object::new(seed, id, orbit)
+        })
+        .collect();
+    let (sp, sv) = (1.0, 2e-4);
+    let covariance = SMatrix::<f64, 4, 4>::from_diagonal(&SVector::from([sp * sp, sp * sp, sv * sv, sv * sv]));
+    let prior: Vec<PriorObject<f64, 4>> = alive
+        .iter()
+        .map(|o| {
+            let mut random = Random::stream(seed, Stream::Prior, o.id);
+            let error = [sp * random.normal(), sp * random.normal(), sv * random.normal(), sv * random.normal()];
+            let mean = SVector::from([0, 1, 2, 3].map(|i| o.state[i] + error[i]));
+            PriorObject { label: TrackLabel(o.id as u32), state: Gaussian { mean, covariance } }
+        })
+        .collect();
+    let hypothesis = [tracker_core::PriorHypothesis { weight: 1.0, objects: &prior }];
+    let mut tracker =
+        Box::new(SsaTracker::<f64>::new(config, &hypothesis, 0.0).map_err(|e| format!("soak: tracker: {e}"))?);
+    let noise = SMatrix::<f64, 2, 2>::identity() * (SIGMA * SIGMA);
+
+    let bar = progress(scans, quiet);
+    let mut health = Health::default();
+    let mut next_id = INITIAL_OBJECTS as u64;
+    let (mut births, mut deaths) = (0u64, 0u64);
+    let mut max_alive = alive.len();
+    let mut durations: Vec<f32> = Vec::with_capacity(scans as usize);
+    let mut cardinality_error = 0.0;
+    let mut max_cardinality_error: f64 = 0.0;
+    let mut measurement_total = 0u64;
+    for k in 0..scans {
+        let time = (k + 1) as f64 * SCAN_INTERVAL;
+        // Deaths; the survivors move one interval; at most one birth, placed in the field of view now.
+        let mut events = Random::stream(seed, Stream::Scenario, k);
+        let before = alive.len();
+        alive.retain(|_| events.uniform() >= DEATH_RATE);
+        deaths += (before - alive.len()) as u64;
+        for object in &mut alive {
+            object.state = sim::move_object(&motion, object.state, SCAN_INTERVAL, &mut object.motion);
+        }
+        if events.uniform() < BIRTH_RATE {
+            let orbit = orbit_in_view(&mut Random::stream(seed, Stream::Orbit, next_id));
+            alive.push(Object::new(seed, next_id, orbit));
+            next_id += 1;
+            births += 1;
+        }
+        max_alive = max_alive.max(alive.len());
+        let mut measurements: Vec<SVector<f64, 2>> = vec![];
+        for object in &mut alive {
+            // Draw the detection and the noise every scan, so that each object's stream stays aligned.
+            let detected = object.detection.uniform() < sensor.detection_probability;
+            let z = position(&object.state) + object.detection.gaussian(&noise);
+            if detected && fov.contains(&position(&object.state)) && fov.contains(&z) {
+                measurements.push(z);
+            }
+        }
+        let mut clutter = Random::stream(seed, Stream::Clutter, k);
+        for _ in 0..clutter.poisson(sensor.clutter_rate) {
+            measurements.push(SVector::from(sim::uniform_in_region(&sensor.field_of_view, &mut clutter)));
+        }
+        events.shuffle(&mut measurements);
+        health.max_measurements = health.max_measurements.max(measurements.len());
+        measurement_total += measurements.len() as u64;
+
+        let step_started = Instant::now();
+        let result = tracker.step(time, &measurements);
+        durations.push(step_started.elapsed().as_secs_f32() * 1e3);
+        match result {
+            Ok(report) => {
+                health.max_hypotheses = health.max_hypotheses.max(report.hypotheses);
+                health.max_tracks = health.max_tracks.max(report.tracks);
+                health.births_beyond_capacity += report.births_beyond_object_capacity;
+                health.children_dropped_for_store += report.children_dropped_for_store as u64;
+            }
+            Err(error) => {
+                *health.errors.entry(variant(&error)).or_default() += 1;
+                health.first_error.get_or_insert((k + 1, error.to_string()));
+            }
+        }
+        let bad = non_finite_values(&tracker);
+        if bad > 0 {
+            health.non_finite += bad;
+            health.non_finite_scans += 1;
+            health.first_non_finite_scan.get_or_insert(k + 1);
+        }
+        let difference = (tracker.expected_cardinality() - alive.len() as f64).abs();
+        cardinality_error += difference;
+        max_cardinality_error = max_cardinality_error.max(difference);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+
+    let mut sorted = durations.clone();
+    sorted.sort_unstable_by(f32::total_cmp);
+    let percentile =
+        |p: f64| f64::from(sorted[((p * (sorted.len() - 1) as f64).round() as usize).min(sorted.len() - 1)]);
+    let mean_ms = durations.iter().map(|&d| f64::from(d)).sum::<f64>() / durations.len() as f64;
+    let FieldOfViewSpec::Sector { field_of_view_deg, max_range, .. } = sensor.field_of_view else {
+        return Err("soak: the SSA sensor is a sector".into());
+    };
+    Ok(json!({
+        "scans": scans,
+        "seed": seed,
+        "nan_count": health.non_finite,
+        "non_finite_scans": health.non_finite_scans,
+        "first_non_finite_scan": health.first_non_finite_scan,
+        "max_hypotheses": health.max_hypotheses,
+        "max_ms_per_scan": percentile(1.0),
+        "mean_ms_per_scan": mean_ms,
+        "p50_ms_per_scan": percentile(0.5),
+        "p99_ms_per_scan": percentile(0.99),
+        "errors_by_kind": health.errors,
+        "first_error": health.first_error.map(|(scan, message)| json!({ "scan": scan, "message": message })),
+        "track_store_high_water": health.max_tracks,
+        "track_store_capacity": ssa_caps::TRACKS,
+        "hypothesis_capacity": ssa_caps::HYPOTHESES,
+        "max_measurements_per_scan": health.max_measurements,
+        "measurement_capacity": ssa_caps::MEASUREMENTS,
+        "measurements": measurement_total,
+        "births_beyond_object_capacity": health.births_beyond_capacity,
+        "children_dropped_for_store": health.children_dropped_for_store,
+        "truth": {
+            "initial_objects": INITIAL_OBJECTS,
+            "births": births,
+            "deaths": deaths,
+            "max_alive": max_alive,
+            "final_alive": alive.len(),
+        },
+        "final_expected_cardinality": tracker.expected_cardinality(),
+        "mean_abs_cardinality_error": cardinality_error / scans as f64,
+        "max_abs_cardinality_error": max_cardinality_error,
+        "wall_seconds": started.elapsed().as_secs_f64(),
+        "setup": {
+            "tracker": format!(
+                "tracker-core SsaTracker<f64> (H = {}, N = {}, Z = {}, K = {}, B = {}), R-FISST sampled children, default SamplerConfig",
+                ssa_caps::HYPOTHESES, ssa_caps::OBJECTS, ssa_caps::MEASUREMENTS, ssa_caps::TRACKS, ssa_caps::BIRTH_CELLS
+            ),
+            "motion": "planar two-body, q = 1e-13 km^2/s^3, RK4 sub-steps of at most 20 s",
+            "sensor": format!("sector of {field_of_view_deg} deg to {max_range} km, p_D = {}, clutter {} per scan", sensor.detection_probability, sensor.clutter_rate),
+            "scan_interval_s": SCAN_INTERVAL,
+            "birth_rate_per_scan": BIRTH_RATE,
+            "death_rate_per_object_per_scan": DEATH_RATE,
+            "tracker_birth_probability_per_cell": 1e-3,
+            "tracker_birth_cells": cells.len(),
+            "tracker_death_probability": 1e-4,
+        },
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The figures that do not depend on timing.
+    fn untimed(report: &serde_json::Value) -> serde_json::Value {
+        let mut report = report.clone();
+        if let Some(object) = report.as_object_mut() {
+            object.retain(|key, _| !key.contains("ms_per_scan") && key != "wall_seconds");
+        }
+        report
+    }
+
+    /// Runs `f` on a thread with the CLI worker's stack: the tracker holds several hundred KiB inline.
+    fn with_large_stack(f: impl FnOnce() + Send + 'static) {
+        std::thread::Builder::new().stack_size(512 << 20).spawn(f).unwrap().join().unwrap();
+    }
+
+    #[test]
+    fn a_short_soak_is_healthy_and_deterministic() {
+        with_large_stack(|| {
+            let report = run(100, 4, true).unwrap();
+            for key in ["scans", "nan_count", "max_hypotheses", "max_ms_per_scan", "errors_by_kind"] {
+                assert!(report.get(key).is_some(), "{key} missing");
+            }
+            assert_eq!(report["scans"], 100);
+            assert_eq!(report["nan_count"], 0);
+            assert_eq!(report["errors_by_kind"], json!({}));
+            let max_hypotheses = report["max_hypotheses"].as_u64().unwrap();
+            assert!((1..=ssa_caps::HYPOTHESES as u64).contains(&max_hypotheses));
+            assert_eq!(untimed(&run(100, 4, true).unwrap()), untimed(&report));
+            assert_ne!(untimed(&run(100, 5, true).unwrap()), untimed(&report));
+        });
+    }
+
+    #[test]
+    fn zero_scans_is_an_error() {
+        assert!(run(0, 1, true).is_err());
+    }
 }
