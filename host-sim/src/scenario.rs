@@ -381,9 +381,10 @@ impl Scenario {
     pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
         let deserializer = &mut serde_json::Deserializer::from_str(text);
         let scenario: Scenario = serde_path_to_error::deserialize(&mut *deserializer).map_err(|e| {
-            let path = e.path().to_string();
+            // One line: a key may contain escaped line breaks or other control characters.
+            let path = e.path().to_string().escape_debug().to_string();
             let inner = e.into_inner();
-            let message = inner.to_string().replace('\n', " ");
+            let message = inner.to_string().replace(['\n', '\r'], " ");
             if path == "." { ScenarioError(format!("invalid scenario JSON: {message}")) } else { error(path, message) }
         })?;
         // Nothing but whitespace may follow the scenario.

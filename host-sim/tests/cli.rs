@@ -712,3 +712,14 @@ fn reference_rejects_impossible_event_probabilities() {
         panic!("{why}\n{}", describe(&output));
     }
 }
+
+#[test]
+fn a_key_with_an_escaped_line_break_gives_a_one_line_error() {
+    let dir = TempDir::new("escaped-key");
+    let file = dir.join("key.json");
+    std::fs::write(&file, r#"{"format":"rfisst-scenario/1","sensor":{"a\nb":1}}"#).expect("write");
+    let output = host_sim(&["run".as_ref(), file.as_os_str(), "--out".as_ref(), dir.join("out").as_os_str()]);
+    if let Err(why) = check_malformed(&output, "sensor.a\\nb") {
+        panic!("{why}\n{}", describe(&output));
+    }
+}
