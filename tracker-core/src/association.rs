@@ -18,6 +18,7 @@
 //! is *required* instead (a child that leaves it unassigned has weight 0). A birth that must be detected
 //! (paper 000's "all births detected") is a required column too.
 
+use crate::index::At;
 use crate::real::Real;
 
 /// The assignment value of a measurement taken by clutter.
@@ -41,13 +42,17 @@ impl<T: Real, const N: usize, const Z: usize> Default for AssociationMatrix<T, N
 }
 
 impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
-    /// An empty `rows × columns` matrix: every entry impossible, no column required.
-    ///
-    /// # Panics
-    /// If `rows > Z` or `columns > N`.
+    /// An empty `rows × columns` matrix: every entry impossible, no column required. `rows` and `columns`
+    /// are clamped to the capacity (`Z` rows, `N` columns).
     pub fn new(rows: usize, columns: usize, baseline: T) -> Self {
-        assert!(rows <= Z && columns <= N, "association matrix larger than its capacity");
-        Self { rows, columns, entries: [[T::NEG_INFINITY; N]; Z], required: [false; N], required_count: 0, baseline }
+        Self {
+            rows: rows.min(Z),
+            columns: columns.min(N),
+            entries: [[T::NEG_INFINITY; N]; Z],
+            required: [false; N],
+            required_count: 0,
+            baseline,
+        }
     }
 
     /// Builds a matrix from plain likelihood products, as printed in paper 004's Fig. 4: the weight of an
@@ -55,9 +60,10 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     /// column (reusable by every row). A zero entry is impossible.
     ///
     /// # Panics
-    /// If the table is larger than the capacity or ragged.
+    /// If the table is larger than the capacity or ragged, or `clutter` is shorter than the table.
     pub fn from_likelihoods(table: &[&[T]], clutter: &[T]) -> Self {
         let columns = table.first().map_or(0, |row| row.len());
+        assert!(table.len() <= Z && columns <= N, "likelihood table larger than the matrix capacity");
         let mut matrix = Self::new(table.len(), columns, T::zero());
         for (j, row) in table.iter().enumerate() {
             assert_eq!(row.len(), columns, "ragged likelihood table");
@@ -70,14 +76,24 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
         matrix
     }
 
-    /// Number of rows (measurements).
+    /// Number of rows (measurements), at most `Z`.
+    #[inline]
     pub fn rows(&self) -> usize {
-        self.rows
+        // `rows ≤ Z` always holds; the `min` lets the optimiser see it (and drop callers' bounds checks).
+        self.rows.min(Z)
     }
 
-    /// Number of columns (detectable objects).
+    /// Number of columns (detectable objects), at most `N`.
+    #[inline]
     pub fn columns(&self) -> usize {
-        self.columns
+        self.columns.min(N)
+    }
+
+    /// `(rows, columns)` without the `min` of [`AssociationMatrix::rows`] and
+    /// [`AssociationMatrix::columns`], for a hot path that bounds its indices itself.
+    #[inline(always)]
+    pub(crate) fn shape(&self) -> (usize, usize) {
+        (self.rows, self.columns)
     }
 
     /// The log-weight of the child in which every row is clutter and every column missed.
@@ -90,16 +106,27 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
         self.baseline = baseline;
     }
 
-    /// The entry δ of row `row`, column `column` (`-inf` when impossible).
-    #[inline]
+    /// The entry δ of row `row`, column `column` (`-inf` when impossible, and outside the capacity).
+    #[inline(always)]
     pub fn entry(&self, row: usize, column: usize) -> T {
-        self.entries[row][column]
+        match self.entries.get(row).and_then(|line| line.get(column)) {
+            Some(&entry) => entry,
+            None => T::NEG_INFINITY,
+        }
     }
 
-    /// Whether `column` must be assigned in every child with non-zero weight.
-    #[inline]
+    /// The entries of row `row`, one per column (empty outside the capacity).
+    #[inline(always)]
+    pub(crate) fn row(&self, row: usize) -> &[T] {
+        let columns = self.columns();
+        self.entries.get(row).map_or(&[], |line| &line[..columns])
+    }
+
+    /// Whether `column` must be assigned in every child with non-zero weight (`false` outside the
+    /// capacity, so for [`CLUTTER`]).
+    #[inline(always)]
     pub fn is_required(&self, column: usize) -> bool {
-        self.required[column]
+        self.required.get(column).copied().unwrap_or(false)
     }
 
     /// Number of required columns.
@@ -107,18 +134,20 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
         self.required_count
     }
 
-    /// Writes column `column` from `entries` (one per row) and its required flag.
+    /// Writes column `column` (`< N`) from `entries` (one per row) and its required flag.
     pub fn set_column(&mut self, column: usize, entries: &[T], required: bool) {
-        for (row, &value) in entries.iter().enumerate().take(self.rows) {
-            self.entries[row][column] = value;
+        let rows = self.rows();
+        for (line, &value) in self.entries.iter_mut().zip(entries).take(rows) {
+            *line.at_mut(column) = value;
         }
         self.set_required(column, required);
     }
 
-    /// Marks `column` required or not.
+    /// Marks `column` (`< N`) required or not.
     pub fn set_required(&mut self, column: usize, required: bool) {
-        if self.required[column] != required {
-            self.required[column] = required;
+        let flag = self.required.at_mut(column);
+        if *flag != required {
+            *flag = required;
             if required {
                 self.required_count += 1;
             } else {
@@ -129,7 +158,7 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
 
     /// Appends a column (for a born object) and returns its index, or `None` when the matrix is full.
     pub fn push_column(&mut self, entries: &[T], required: bool) -> Option<usize> {
-        if self.columns == N {
+        if self.columns >= N {
             return None;
         }
         let column = self.columns;
@@ -146,34 +175,35 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
         }
     }
 
-    /// Copies column `column` into `out` (one entry per row).
+    /// Copies column `column` (`< N`) into `out` (one entry per row).
     pub fn column(&self, column: usize, out: &mut [T; Z]) {
-        for (row, slot) in out.iter_mut().enumerate().take(self.rows) {
-            *slot = self.entries[row][column];
+        for (slot, line) in out.iter_mut().zip(&self.entries).take(self.rows()) {
+            *slot = *line.at(column);
         }
     }
 
     /// The log-weight of `assignment` (one column or [`CLUTTER`] per row), `-inf` when it is impossible,
     /// assigns a column twice, or leaves a required column unassigned.
     pub fn score(&self, assignment: &[u16]) -> T {
+        let (rows, columns) = (self.rows(), self.columns());
         let mut used = [false; N];
         let mut total = self.baseline;
         let mut required_assigned = 0;
-        for (row, &column) in assignment.iter().enumerate().take(self.rows) {
+        for (line, &column) in self.entries.iter().zip(assignment).take(rows) {
             if column == CLUTTER {
                 continue;
             }
             let column = column as usize;
-            if column >= self.columns || used[column] {
+            if column >= columns || *used.at(column) {
                 return T::NEG_INFINITY;
             }
-            used[column] = true;
-            if self.required[column] {
+            *used.at_mut(column) = true;
+            if self.is_required(column) {
                 required_assigned += 1;
             }
-            total += self.entries[row][column];
+            total += *line.at(column);
         }
-        if required_assigned < self.required_count || assignment.len() < self.rows { T::NEG_INFINITY } else { total }
+        if required_assigned < self.required_count || assignment.len() < rows { T::NEG_INFINITY } else { total }
     }
 }
 
@@ -191,7 +221,7 @@ pub fn association_count(objects: u32, measurements: u32) -> u128 {
     for n in 0..=objects.min(measurements) {
         total = total.saturating_add(term);
         let numerator = term.saturating_mul(u128::from(objects - n)).saturating_mul(u128::from(measurements - n));
-        term = if numerator == u128::MAX { u128::MAX } else { numerator / u128::from(n + 1) };
+        term = if numerator == u128::MAX { u128::MAX } else { numerator / (u128::from(n) + 1) };
     }
     total
 }

@@ -7,6 +7,7 @@
 //! non-zero weight; the Metropolis sampler implements the same trait.
 
 use crate::association::{AssociationMatrix, CLUTTER};
+use crate::index::{At, below};
 use crate::real::Real;
 
 /// Receives children.
@@ -76,7 +77,6 @@ impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for Exhaus
         sink: &mut K,
     ) -> Result<u64, GenerateError> {
         let rows = matrix.rows();
-        let columns = matrix.columns();
         let required_total = matrix.required_count();
         let mut assignment = [CLUTTER; Z];
         if rows == 0 {
@@ -95,33 +95,36 @@ impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for Exhaus
         let mut required_assigned = 0usize;
         let mut offered = 0u64;
         let mut row = 0usize;
-        partial[0] = matrix.baseline();
+        *partial.at_mut(0) = matrix.baseline();
         loop {
+            // `row < rows ≤ Z` always holds; the check shows it to the optimiser.
+            if row >= Z {
+                return Ok(offered);
+            }
             // Release this row's previous choice.
-            let previous = assignment[row];
-            if previous != CLUTTER {
-                used[previous as usize] = false;
-                if matrix.is_required(previous as usize) {
+            if let Some(previous) = below::<N>(assignment[row]) {
+                used[previous] = false;
+                if matrix.is_required(previous) {
                     required_assigned -= 1;
                 }
                 assignment[row] = CLUTTER;
             }
-            // Find the next feasible option of this row.
-            let mut option = next_option[row] as usize;
+            // Find the next feasible option of this row: clutter, then each free column with a possible
+            // entry.
+            let mut option = usize::from(next_option[row]);
             let mut chosen: Option<(u16, T)> = None;
-            while option <= columns {
-                if option == 0 {
-                    chosen = Some((CLUTTER, T::zero()));
-                } else {
-                    let column = option - 1;
-                    let entry = matrix.entry(row, column);
+            if option == 0 {
+                chosen = Some((CLUTTER, T::zero()));
+                option = 1;
+            } else {
+                let entries = matrix.row(row);
+                for column in option - 1..entries.len() {
+                    let entry = entries[column];
                     if !used[column] && entry > T::NEG_INFINITY {
                         chosen = Some((column as u16, entry));
+                        option = column + 2;
+                        break;
                     }
-                }
-                option += 1;
-                if chosen.is_some() {
-                    break;
                 }
             }
             let Some((column, entry)) = chosen else {
@@ -133,9 +136,9 @@ impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for Exhaus
                 continue;
             };
             next_option[row] = option as u16;
-            if column != CLUTTER {
-                used[column as usize] = true;
-                if matrix.is_required(column as usize) {
+            if let Some(index) = below::<N>(column) {
+                used[index] = true;
+                if matrix.is_required(index) {
                     required_assigned += 1;
                 }
                 assignment[row] = column;
@@ -151,9 +154,9 @@ impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for Exhaus
                 offered += 1;
             } else {
                 row += 1;
-                partial[row] = value;
-                next_option[row] = 0;
-                assignment[row] = CLUTTER;
+                *partial.at_mut(row) = value;
+                *next_option.at_mut(row) = 0;
+                *assignment.at_mut(row) = CLUTTER;
             }
         }
     }

@@ -19,8 +19,10 @@
 
 use crate::association::{AssociationMatrix, CLUTTER, association_count};
 use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren, GenerateError};
+use crate::index::{At, copy_prefix, insertion_sort_by};
 use crate::real::{LogSumExp, Real, exp, ln};
 use crate::sampler::{MetropolisSampler, SamplerConfig, mix};
+use core::cmp::Ordering;
 
 const NONE: u16 = u16::MAX;
 
@@ -125,7 +127,12 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
 
     /// The children offered by the last `generate`, as (log-weight, assignment over `rows` rows).
     pub fn offered(&self, rows: usize) -> impl Iterator<Item = (T, &[u16])> + '_ {
-        (0..self.offered_len).map(move |i| (self.offered_scores[i], &self.offered_assignments[i][..rows]))
+        let rows = rows.min(Z);
+        self.offered_scores
+            .iter()
+            .zip(&self.offered_assignments)
+            .take(self.offered_len)
+            .map(move |(&score, assignment)| (score, &assignment[..rows]))
     }
 
     /// Leaves visited by exhaustive enumeration of clusters so far.
@@ -133,15 +140,17 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         self.leaves
     }
 
+    /// The union-find parent of `node` (rows are nodes `0..Z`, columns `Z..Z + N`; a node outside the
+    /// table is its own root).
     fn node_root(&self, node: usize) -> usize {
-        if node < Z { self.row_root[node] as usize } else { self.column_root[node - Z] as usize }
+        let parent = if node < Z { self.row_root.get(node) } else { self.column_root.get(node - Z) };
+        parent.map_or(node, |&parent| usize::from(parent))
     }
 
     fn set_node_root(&mut self, node: usize, root: usize) {
-        if node < Z {
-            self.row_root[node] = root as u16;
-        } else {
-            self.column_root[node - Z] = root as u16;
+        let parent = if node < Z { self.row_root.get_mut(node) } else { self.column_root.get_mut(node - Z) };
+        if let Some(parent) = parent {
+            *parent = root as u16;
         }
     }
 
@@ -208,16 +217,17 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
                 count += 1;
             }
         }
+        // A cluster's root is its smallest row.
         for row in 0..rows {
             if row_possible[row] {
                 let root = self.find(row);
-                self.row_cluster[row] = self.row_cluster[root];
+                self.row_cluster[row] = *self.row_cluster.at(root);
             }
         }
         for column in 0..columns {
             if column_possible[column] {
                 let root = self.find(Z + column);
-                self.column_cluster[column] = self.row_cluster[root];
+                self.column_cluster[column] = *self.row_cluster.at(root);
             }
         }
         Some(count)
@@ -232,23 +242,25 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         let (mut m, mut n) = (0usize, 0usize);
         for row in 0..rows {
             if self.row_cluster[row] as usize == index {
-                cluster_rows[m] = row as u16;
+                *cluster_rows.at_mut(m) = row as u16;
                 m += 1;
             }
         }
         for column in 0..columns {
             if self.column_cluster[column] as usize == index {
-                cluster_columns[n] = column as u16;
+                *cluster_columns.at_mut(n) = column as u16;
                 n += 1;
             }
         }
+        // No-op clamps (m ≤ rows, n ≤ columns) that let the optimiser drop the slices' bounds checks.
+        let (cluster_rows, cluster_columns) = (&cluster_rows[..m.min(Z)], &cluster_columns[..n.min(N)]);
         self.cluster = AssociationMatrix::new(m, 0, T::zero());
         let mut entries = [T::NEG_INFINITY; Z];
-        for &column in &cluster_columns[..n] {
-            for (local, &row) in cluster_rows[..m].iter().enumerate() {
-                entries[local] = matrix.entry(row as usize, column as usize);
+        for &column in cluster_columns {
+            for (entry, &row) in entries.iter_mut().zip(cluster_rows) {
+                *entry = matrix.entry(usize::from(row), usize::from(column));
             }
-            let _ = self.cluster.push_column(&entries[..m], matrix.is_required(column as usize));
+            let _ = self.cluster.push_column(&entries[..cluster_rows.len()], matrix.is_required(usize::from(column)));
         }
         let exhaustive = association_count(n as u32, m as u32) <= u128::from(self.config.exhaustive_limit);
         let total = if exhaustive {
@@ -278,41 +290,48 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             *slot = i;
         }
         let score_of = |i: u16| best.get(i as usize).map_or(T::NEG_INFINITY, |(score, _)| score);
-        order[..kept].sort_unstable_by(|&a, &b| {
-            score_of(b).partial_cmp(&score_of(a)).unwrap_or(core::cmp::Ordering::Equal).then(a.cmp(&b))
+        // Best first, ties by index: a total order, so the sorted order is unique.
+        insertion_sort_by(&mut order[..kept], |&a, &b| {
+            score_of(b).partial_cmp(&score_of(a)).unwrap_or(Ordering::Equal).then(a.cmp(&b)) == Ordering::Less
         });
+        let stage_scores = self.stage_scores.at_mut(index);
         for (rank, &item) in order[..kept].iter().enumerate() {
             let Some((score, assignment)) = best.get(item as usize) else { continue };
-            self.stage_scores[index][rank] = score;
-            for (local, &row) in cluster_rows[..m].iter().enumerate() {
-                let column = assignment.get(local).copied().unwrap_or(CLUTTER);
-                self.choices[rank][row as usize] =
-                    if column == CLUTTER { CLUTTER } else { cluster_columns[column as usize] };
+            *stage_scores.at_mut(rank) = score;
+            let choice = self.choices.at_mut(rank);
+            for (local, &row) in cluster_rows.iter().enumerate() {
+                // The cluster's column mapped back to the matrix (clutter, `u16::MAX`, maps to itself).
+                *choice.at_mut(usize::from(row)) = assignment
+                    .get(local)
+                    .and_then(|&column| cluster_columns.get(usize::from(column)))
+                    .copied()
+                    .unwrap_or(CLUTTER);
             }
         }
-        self.stage_len[index] = kept as u16;
+        *self.stage_len.at_mut(index) = kept as u16;
         Ok((total, !exhaustive))
     }
 
     /// Stage `index` = best `C` sums of stage `index − 1` and cluster `index` (k-best merge of two sorted
     /// lists with a frontier heap of at most `C` entries).
     fn combine(&mut self, index: usize) {
-        let cluster_len = self.stage_len[index] as usize;
+        let cluster_len = usize::from(*self.stage_len.at(index));
+        let cluster_scores = self.stage_scores.at(index);
         if index == 0 {
             for rank in 0..cluster_len {
-                self.stages[0][rank] =
-                    Combination { score: self.stage_scores[0][rank], previous: 0, choice: rank as u16 };
+                *self.stages[0].at_mut(rank) =
+                    Combination { score: *cluster_scores.at(rank), previous: 0, choice: rank as u16 };
             }
             self.combined_len[0] = cluster_len as u16;
             return;
         }
-        let previous_len = self.combined_len[index - 1] as usize;
+        let previous_len = usize::from(*self.combined_len.at(index - 1));
         // Frontier: for each previous entry i, the next choice j to pair with it; start with (i, 0).
         let mut frontier_len = 0usize;
         if cluster_len > 0 {
             for i in 0..previous_len {
-                self.frontier[frontier_len] = Combination {
-                    score: self.stages[index - 1][i].score + self.stage_scores[index][0],
+                *self.frontier.at_mut(frontier_len) = Combination {
+                    score: self.stages.at(index - 1).at(i).score + cluster_scores[0],
                     previous: i as u16,
                     choice: 0,
                 };
@@ -320,32 +339,33 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             }
         }
         let mut out = 0usize;
-        while out < C && frontier_len > 0 {
+        while out < C {
             // Take the best of the frontier (ties: lower previous entry, then lower choice).
-            let mut best = 0usize;
-            for f in 1..frontier_len {
-                let (a, b) = (&self.frontier[f], &self.frontier[best]);
-                if a.score > b.score || (a.score == b.score && (a.previous, a.choice) < (b.previous, b.choice)) {
-                    best = f;
+            let Some((&first, rest)) = self.frontier[..frontier_len.min(C)].split_first() else { break };
+            let (mut best, mut taken) = (0usize, first);
+            for (f, &a) in (1..).zip(rest) {
+                if a.score > taken.score
+                    || (a.score == taken.score && (a.previous, a.choice) < (taken.previous, taken.choice))
+                {
+                    (best, taken) = (f, a);
                 }
             }
-            let taken = self.frontier[best];
-            self.stages[index][out] = taken;
+            *self.stages.at_mut(index).at_mut(out) = taken;
             out += 1;
-            let next_choice = taken.choice as usize + 1;
+            let next_choice = usize::from(taken.choice) + 1;
             if next_choice < cluster_len {
-                self.frontier[best] = Combination {
-                    score: self.stages[index - 1][taken.previous as usize].score
-                        + self.stage_scores[index][next_choice],
+                *self.frontier.at_mut(best) = Combination {
+                    score: self.stages.at(index - 1).at(usize::from(taken.previous)).score
+                        + *cluster_scores.at(next_choice),
                     previous: taken.previous,
                     choice: next_choice as u16,
                 };
             } else {
                 frontier_len -= 1;
-                self.frontier[best] = self.frontier[frontier_len];
+                *self.frontier.at_mut(best) = *self.frontier.at(frontier_len);
             }
         }
-        self.combined_len[index] = out as u16;
+        *self.combined_len.at_mut(index) = out as u16;
     }
 }
 
@@ -365,8 +385,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, 
             self.sampler.reseed(self.seed);
             self.sampler.run(matrix);
             for (score, assignment) in self.sampler.best().iter() {
-                self.offered_scores[self.offered_len] = score;
-                self.offered_assignments[self.offered_len][..rows].copy_from_slice(assignment);
+                *self.offered_scores.at_mut(self.offered_len) = score;
+                copy_prefix(self.offered_assignments.at_mut(self.offered_len), assignment);
                 self.offered_len += 1;
                 sink.offer(score, assignment);
             }
@@ -378,33 +398,34 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, 
         for index in 0..clusters {
             let (total, _) = self.solve(matrix, index)?;
             log_total += total;
-            if self.stage_len[index] == 0 {
+            if *self.stage_len.at(index) == 0 {
                 return Ok(0); // a cluster with no feasible association
             }
             self.combine(index);
         }
         // Reconstruct and offer every combination of the last stage.
-        let final_len = if clusters == 0 { 1 } else { self.combined_len[clusters - 1] as usize };
+        let final_len = if clusters == 0 { 1 } else { usize::from(*self.combined_len.at(clusters - 1)) };
         let mut offered_total = LogSumExp::new();
         let mut assignment = [CLUTTER; Z];
         for entry in 0..final_len {
             assignment[..rows].fill(CLUTTER);
-            let mut at = entry;
+            let mut position = entry;
             for stage in (0..clusters).rev() {
-                let combination = self.stages[stage][at];
+                let combination = *self.stages.at(stage).at(position);
+                let choice = self.choices.at(usize::from(combination.choice));
                 for row in 0..rows {
                     if self.row_cluster[row] as usize == stage {
-                        assignment[row] = self.choices[combination.choice as usize][row];
+                        assignment[row] = choice[row];
                     }
                 }
-                at = combination.previous as usize;
+                position = usize::from(combination.previous);
             }
             let exact = matrix.score(&assignment[..rows]);
             if exact > T::NEG_INFINITY {
                 offered_total.add(exact);
                 sink.offer(exact, &assignment[..rows]);
-                self.offered_scores[self.offered_len] = exact;
-                self.offered_assignments[self.offered_len] = assignment;
+                *self.offered_scores.at_mut(self.offered_len) = exact;
+                *self.offered_assignments.at_mut(self.offered_len) = assignment;
                 self.offered_len += 1;
             }
         }

@@ -5,6 +5,7 @@
 //! that hold the same tracks have the same slot list and can be merged exactly (their components are
 //! identical, so their weights add).
 
+use crate::index::copy_prefix;
 use crate::real::Real;
 
 /// One hypothesis: a log-weight and up to `N` track slots sorted by label.
@@ -25,19 +26,21 @@ impl<T: Real, const N: usize> Default for Hypothesis<T, N> {
 impl<T: Real, const N: usize> Hypothesis<T, N> {
     /// A hypothesis with `log_weight` holding `slots` (at most `N`; the caller sorts them by label).
     pub(crate) fn new(log_weight: T, slots: &[u16]) -> Self {
-        let mut h = Self { log_weight, len: slots.len() as u16, slots: [0; N] };
-        h.slots[..slots.len()].copy_from_slice(slots);
+        let len = slots.len().min(N);
+        let mut h = Self { log_weight, len: len as u16, slots: [0; N] };
+        copy_prefix(&mut h.slots, slots);
         h
     }
 
     /// The store slots of the hypothesis's tracks, in label order.
     pub fn slots(&self) -> &[u16] {
-        &self.slots[..self.len as usize]
+        &self.slots[..self.len()]
     }
 
-    /// Number of objects.
+    /// Number of objects (at most `N`).
     pub fn len(&self) -> usize {
-        self.len as usize
+        // The `min` only shows the optimiser the invariant `len ≤ N`.
+        usize::from(self.len).min(N)
     }
 
     /// Whether the hypothesis holds no object.
@@ -62,16 +65,18 @@ impl<T: Real, const N: usize, const H: usize> Default for HypothesisSet<T, N, H>
 impl<T: Real, const N: usize, const H: usize> HypothesisSet<T, N, H> {
     /// The hypotheses.
     pub fn as_slice(&self) -> &[Hypothesis<T, N>] {
-        &self.items[..self.len]
+        &self.items[..self.len()]
     }
 
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Hypothesis<T, N>] {
-        &mut self.items[..self.len]
+        let len = self.len();
+        &mut self.items[..len]
     }
 
-    /// Number of hypotheses.
+    /// Number of hypotheses (at most `H`).
     pub fn len(&self) -> usize {
-        self.len
+        // The `min` only shows the optimiser the invariant `len ≤ H`.
+        self.len.min(H)
     }
 
     /// Whether there is no hypothesis.
@@ -85,11 +90,10 @@ impl<T: Real, const N: usize, const H: usize> HypothesisSet<T, N, H> {
 
     /// Appends a hypothesis and returns its index, or hands it back when the set is full.
     pub(crate) fn push(&mut self, hypothesis: Hypothesis<T, N>) -> Result<usize, Hypothesis<T, N>> {
-        if self.len == H {
-            return Err(hypothesis);
-        }
-        self.items[self.len] = hypothesis;
-        self.len += 1;
-        Ok(self.len - 1)
+        let index = self.len;
+        let Some(item) = self.items.get_mut(index) else { return Err(hypothesis) };
+        *item = hypothesis;
+        self.len = index + 1;
+        Ok(index)
     }
 }

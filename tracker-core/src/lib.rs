@@ -48,6 +48,7 @@ pub mod config;
 pub mod ekf;
 pub mod error;
 pub mod hypothesis;
+mod index;
 pub mod model;
 pub mod real;
 pub mod report;

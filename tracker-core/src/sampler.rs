@@ -34,6 +34,7 @@
 
 use crate::association::{AssociationMatrix, CLUTTER};
 use crate::children::{ChildGenerator, ChildSink, GenerateError};
+use crate::index::{At, below, copy_prefix};
 use crate::real::{Real, exp};
 use core::cmp::Ordering;
 use rand_core::{Rng, SeedableRng};
@@ -150,9 +151,10 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
         }
     }
 
-    /// Number of children kept.
+    /// Number of children kept (at most `C`).
     pub fn len(&self) -> usize {
-        self.len
+        // The `min` only shows the optimiser the invariant `len ≤ C`.
+        self.len.min(C)
     }
 
     /// Whether the set is empty.
@@ -163,25 +165,42 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     /// The lowest score a new child must beat to enter, `-inf` while there is room.
     #[inline]
     pub fn threshold(&self) -> T {
-        if self.len < C { T::NEG_INFINITY } else { self.scores[self.heap[0] as usize] }
+        match self.heap.first() {
+            Some(&worst) if self.len >= C => *self.scores.at(usize::from(worst)),
+            _ => T::NEG_INFINITY,
+        }
+    }
+
+    /// The first `rows` entries of a kept assignment.
+    #[inline]
+    fn prefix<'a>(&self, assignment: &'a [u16; Z]) -> &'a [u16] {
+        &assignment[..self.rows.min(Z)]
     }
 
     /// The kept children as (score, assignment), in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = (T, &[u16])> + '_ {
-        (0..self.len).map(move |i| (self.scores[i], &self.assignments[i][..self.rows]))
+        self.scores
+            .iter()
+            .zip(&self.assignments)
+            .take(self.len)
+            .map(move |(&score, assignment)| (score, self.prefix(assignment)))
     }
 
     /// Kept child `index` as (score, assignment).
     pub fn get(&self, index: usize) -> Option<(T, &[u16])> {
-        (index < self.len).then(|| (self.scores[index], &self.assignments[index][..self.rows]))
+        if index >= self.len {
+            return None;
+        }
+        Some((*self.scores.get(index)?, self.prefix(self.assignments.get(index)?)))
     }
 
+    /// Slot `slot` (`< 2C`) of the hash table.
     fn table_slot(&self, slot: usize) -> u16 {
-        self.table[slot / C][slot % C]
+        *self.table.at(slot / C).at(slot % C)
     }
 
     fn set_table_slot(&mut self, slot: usize, value: u16) {
-        self.table[slot / C][slot % C] = value;
+        *self.table.at_mut(slot / C).at_mut(slot % C) = value;
     }
 
     /// Slot of `hash` with `assignment` in the table, or the empty slot where it would go.
@@ -194,8 +213,8 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
             if item == NONE {
                 return (slot, false);
             }
-            let item = item as usize;
-            if self.hashes[item] == hash && self.assignments[item][..self.rows] == *assignment {
+            let item = usize::from(item);
+            if *self.hashes.at(item) == hash && self.prefix(self.assignments.at(item)) == assignment {
                 return (slot, true);
             }
             slot = (slot + 1) % size;
@@ -218,7 +237,7 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
             if item == NONE {
                 return;
             }
-            let home = (self.hashes[item as usize] % size as u64) as usize;
+            let home = (*self.hashes.at(usize::from(item)) % size as u64) as usize;
             // Move the entry back if its home is not cyclically in (slot, next].
             let distance_to_next = (next + size - home) % size;
             let distance_to_slot = (slot + size - home) % size;
@@ -232,11 +251,11 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     }
 
     fn worse(&self, a: u16, b: u16) -> bool {
-        let (a, b) = (a as usize, b as usize);
-        match self.scores[a].partial_cmp(&self.scores[b]) {
+        let (a, b) = (usize::from(a), usize::from(b));
+        match self.scores.at(a).partial_cmp(self.scores.at(b)) {
             Some(Ordering::Less) => true,
             Some(Ordering::Greater) => false,
-            _ => self.arrival[a] > self.arrival[b],
+            _ => self.arrival.at(a) > self.arrival.at(b),
         }
     }
 
@@ -244,16 +263,16 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
         loop {
             let (left, right) = (2 * at + 1, 2 * at + 2);
             let mut worst = at;
-            if left < self.len && self.worse(self.heap[left], self.heap[worst]) {
+            if left < self.len && self.worse(*self.heap.at(left), *self.heap.at(worst)) {
                 worst = left;
             }
-            if right < self.len && self.worse(self.heap[right], self.heap[worst]) {
+            if right < self.len && self.worse(*self.heap.at(right), *self.heap.at(worst)) {
                 worst = right;
             }
             if worst == at {
                 return;
             }
-            self.heap.swap(at, worst);
+            self.heap.swap_at(at, worst);
             at = worst;
         }
     }
@@ -261,10 +280,10 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     fn sift_up(&mut self, mut at: usize) {
         while at > 0 {
             let parent = (at - 1) / 2;
-            if !self.worse(self.heap[at], self.heap[parent]) {
+            if !self.worse(*self.heap.at(at), *self.heap.at(parent)) {
                 return;
             }
-            self.heap.swap(at, parent);
+            self.heap.swap_at(at, parent);
             at = parent;
         }
     }
@@ -275,23 +294,24 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
         if C == 0 || !(score > self.threshold()) || self.contains(hash, assignment) {
             return false;
         }
-        let replaced = self.len == C;
+        let replaced = self.len >= C;
         let item = if replaced {
             // Evict the worst kept child.
-            let worst = self.heap[0] as usize;
-            let worst_assignment = self.assignments[worst];
-            let (slot, _) = self.find(self.hashes[worst], &worst_assignment[..self.rows]);
+            let worst = usize::from(*self.heap.at(0));
+            let worst_assignment = *self.assignments.at(worst);
+            let (slot, _) = self.find(*self.hashes.at(worst), self.prefix(&worst_assignment));
             self.remove_slot(slot);
             worst
         } else {
-            self.heap[self.len] = self.len as u16;
-            self.len += 1;
-            self.len - 1
+            let item = self.len;
+            *self.heap.at_mut(item) = item as u16;
+            self.len = item + 1;
+            item
         };
-        self.scores[item] = score;
-        self.hashes[item] = hash;
-        self.assignments[item][..assignment.len()].copy_from_slice(assignment);
-        self.arrival[item] = self.next_arrival;
+        *self.scores.at_mut(item) = score;
+        *self.hashes.at_mut(item) = hash;
+        copy_prefix(self.assignments.at_mut(item), assignment);
+        *self.arrival.at_mut(item) = self.next_arrival;
         self.next_arrival = self.next_arrival.wrapping_add(1);
         let (slot, _) = self.find(hash, assignment);
         self.set_table_slot(slot, item as u16);
@@ -302,6 +322,12 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
         }
         true
     }
+}
+
+/// The first `count` of a row's possible columns.
+#[inline]
+fn possible<const N: usize>(columns: &[u16; N], count: u16) -> &[u16] {
+    &columns[..usize::from(count).min(N)]
 }
 
 /// The chain's state.
@@ -415,12 +441,13 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     fn build_tables(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         let (rows, columns) = (matrix.rows(), matrix.columns());
         for row in 0..rows {
+            let possible = &mut self.row_columns[row];
             let mut top = T::zero(); // clutter's δ
             let mut count = 0usize;
             for column in 0..columns {
                 let entry = matrix.entry(row, column);
                 if entry > T::NEG_INFINITY {
-                    self.row_columns[row][count] = column as u16;
+                    *possible.at_mut(count) = column as u16;
                     count += 1;
                     if entry > top {
                         top = entry;
@@ -431,34 +458,49 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             // Weights relative to the row's largest, so nothing overflows.
             let clutter = exp(-top);
             let mut total = clutter;
+            let weights = &mut self.weights[row];
             for column in 0..columns {
                 let entry = matrix.entry(row, column);
                 let weight = if entry > T::NEG_INFINITY { exp(entry - top) } else { T::zero() };
-                self.weights[row][column] = weight;
+                weights[column] = weight;
                 total += weight;
             }
             self.clutter_weight[row] = clutter;
             self.inverse_row_total[row] = T::one() / total;
             let scale = T::of_f64(4_294_967_296.0) / total;
             let mut cumulative = T::zero();
-            for k in 0..count {
-                cumulative += self.weights[row][self.row_columns[row][k] as usize];
+            let (weights, possible) = (&self.weights[row], &self.row_columns[row]);
+            for (bound, &column) in self.cumulative[row].iter_mut().zip(possible).take(count) {
+                cumulative += *weights.at(usize::from(column));
                 let units = (cumulative * scale).as_f64();
-                self.cumulative[row][k] = if units >= 4_294_967_295.0 { u32::MAX } else { units as u32 };
+                *bound = if units >= 4_294_967_295.0 { u32::MAX } else { units as u32 };
             }
         }
     }
 
-    /// `cell_hash(row, column)` from the table.
+    /// The possible columns of `row` (finite δ), in order.
     #[inline]
-    fn zobrist(&self, row: usize, column: u16) -> u64 {
-        if column == CLUTTER { self.zobrist_clutter[row] } else { self.zobrist[row][column as usize] }
+    fn possible_columns(&self, row: usize) -> &[u16] {
+        possible(self.row_columns.at(row), *self.row_count.at(row))
     }
 
-    /// Linear weight of `row` taking `column` (clutter included), relative to the row's largest.
-    #[inline]
+    /// `cell_hash(row, column)` from the table (`row < Z`; any value that is no column is clutter).
+    #[inline(always)]
+    fn zobrist(&self, row: usize, column: u16) -> u64 {
+        match below::<N>(column) {
+            Some(column) => self.zobrist[row][column],
+            None => self.zobrist_clutter[row],
+        }
+    }
+
+    /// Linear weight of `row` taking `column` (clutter included), relative to the row's largest; as
+    /// [`MetropolisSampler::zobrist`].
+    #[inline(always)]
     fn weight(&self, row: usize, column: u16) -> T {
-        if column == CLUTTER { self.clutter_weight[row] } else { self.weights[row][column as usize] }
+        match below::<N>(column) {
+            Some(column) => self.weights[row][column],
+            None => self.clutter_weight[row],
+        }
     }
 
     /// Greedy start: repeatedly the best remaining (measurement, object) pair that beats clutter, then
@@ -478,27 +520,26 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 if row_done[row] {
                     continue;
                 }
-                if best_column[row] == NONE || chain.owner[best_column[row] as usize] != NONE {
+                if best_column[row] == NONE || *chain.owner.at(usize::from(best_column[row])) != NONE {
                     best_column[row] = NONE;
                     best_entry[row] = T::zero(); // clutter: only entries above it count
-                    for k in 0..self.row_count[row] as usize {
-                        let column = self.row_columns[row][k];
-                        let entry = matrix.entry(row, column as usize);
-                        if chain.owner[column as usize] == NONE && entry > best_entry[row] {
+                    for &column in possible(self.row_columns.at(row), *self.row_count.at(row)) {
+                        let entry = matrix.entry(row, usize::from(column));
+                        if *chain.owner.at(usize::from(column)) == NONE && entry > best_entry[row] {
                             best_column[row] = column;
                             best_entry[row] = entry;
                         }
                     }
                 }
-                if best_column[row] != NONE && pick.is_none_or(|p| best_entry[row] > best_entry[p]) {
+                if best_column[row] != NONE && pick.is_none_or(|p| best_entry[row] > *best_entry.at(p)) {
                     pick = Some(row);
                 }
             }
             let Some(row) = pick else { break };
-            let column = best_column[row];
-            chain.assignment[row] = column;
-            chain.owner[column as usize] = row as u16;
-            row_done[row] = true;
+            let column = *best_column.at(row);
+            *chain.assignment.at_mut(row) = column;
+            *chain.owner.at_mut(usize::from(column)) = row as u16;
+            *row_done.at_mut(row) = true;
         }
         for column in 0..columns {
             if !matrix.is_required(column) || chain.owner[column] != NONE {
@@ -512,8 +553,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 }
             }
             if let Some((row, _)) = best {
-                chain.assignment[row] = column as u16;
-                chain.owner[column] = row as u16;
+                *chain.assignment.at_mut(row) = column as u16;
+                *chain.owner.at_mut(column) = row as u16;
             }
         }
         let mut score = T::zero();
@@ -526,7 +567,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     }
 
     /// Records the current state if it is feasible and good enough.
-    #[inline]
+    #[inline(always)]
     fn record(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         let chain = &self.chain;
         if chain.unassigned_required != 0 || !(matrix.baseline() + chain.score > self.best.threshold()) {
@@ -545,7 +586,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// One Metropolis step; returns whether the state changed.
     #[inline]
     pub fn step(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
-        let (rows, columns) = (matrix.rows(), matrix.columns());
+        // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
+        let (rows, columns) = matrix.shape();
         self.steps_taken += 1;
         let draw = self.rng.next_u64();
         // Row from the high half of the draw (multiply-shift range), the rest picks the column.
@@ -562,14 +604,16 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 let pick = ((u64::from(bits) * (columns as u64 + 1)) >> 32) as usize;
                 if pick >= columns { CLUTTER } else { pick as u16 }
             }
-            _ if informed => {
-                let count = self.row_count[row] as usize;
-                let k = self.cumulative[row][..count].partition_point(|&bound| bound <= bits);
-                if k >= count { CLUTTER } else { self.row_columns[row][k] }
-            }
             _ => {
-                let count = self.row_count[row] as usize;
-                let k = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
+                let count = usize::from(self.row_count[row]);
+                if count > N {
+                    return false; // never: a row has at most N possible columns
+                }
+                let k = if informed {
+                    self.cumulative[row][..count].partition_point(|&bound| bound <= bits)
+                } else {
+                    ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize
+                };
                 if k >= count { CLUTTER } else { self.row_columns[row][k] }
             }
         };
@@ -578,20 +622,31 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         if new == old {
             return false;
         }
-        let new_weight = self.weight(row, new);
-        if new_weight == T::zero() && new != CLUTTER && matrix.entry(row, new as usize) == T::NEG_INFINITY {
-            return false; // impossible (paper 003's uniform column)
-        }
-        let required = |column: u16| column != CLUTTER && matrix.is_required(column as usize);
-        let other = if new == CLUTTER { NONE } else { chain.owner[new as usize] };
+        // Its weight, and the measurement that holds it (if any).
+        let (new_weight, other) = match below::<N>(new) {
+            None => (self.clutter_weight[row], None),
+            Some(column) => {
+                let weight = self.weights[row][column];
+                if weight == T::zero() && matrix.entry(row, column) == T::NEG_INFINITY {
+                    return false; // impossible (paper 003's uniform column)
+                }
+                (weight, below::<Z>(chain.owner[column]))
+            }
+        };
+        // Clutter is never required.
+        let required = |column: u16| matrix.is_required(usize::from(column));
         let old_weight = self.weight(row, old);
         // The acceptance ratio e^Δ q_reverse / q_forward as numerator / denominator of products of linear
         // weights (no exp, no log, no division), and the move.
-        let (mut numerator, mut denominator, other_takes) = if other == NONE {
-            if informed { (T::one(), T::one(), NONE) } else { (new_weight, old_weight, NONE) }
-        } else {
-            let other_row = other as usize;
-            match proposal {
+        let (mut numerator, mut denominator, other_takes) = match other {
+            None => {
+                if informed {
+                    (T::one(), T::one(), NONE)
+                } else {
+                    (new_weight, old_weight, NONE)
+                }
+            }
+            Some(other_row) => match proposal {
                 Proposal::MoveOrSwap | Proposal::Informed => {
                     let other_new_weight = self.weight(other_row, old);
                     if other_new_weight == T::zero()
@@ -627,14 +682,14 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     // The other measurement goes to clutter.
                     (new_weight * self.clutter_weight[other_row], old_weight * self.weight(other_row, new), CLUTTER)
                 }
-            }
+            },
         };
         // Required columns freed or taken change the target by e^∓penalty.
-        let frees_old = other == NONE || other_takes == CLUTTER;
+        let frees_old = other.is_none() || other_takes == CLUTTER;
         if frees_old && required(old) {
             denominator *= self.penalty_factor;
         }
-        if other == NONE && required(new) {
+        if other.is_none() && required(new) {
             numerator *= self.penalty_factor;
         }
         // Accept with probability min(1, numerator / denominator).
@@ -652,36 +707,41 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// Makes the move: `row` takes `new`; the measurement `other` that held `new` (if any) takes
     /// `other_takes`. Updates owners, hash, required count and the log-score by sums of entries.
     #[inline]
-    fn apply(&mut self, matrix: &AssociationMatrix<T, N, Z>, row: usize, new: u16, other: u16, other_takes: u16) {
-        let required = |column: u16| column != CLUTTER && matrix.is_required(column as usize);
-        let old = self.chain.assignment[row];
+    fn apply(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        row: usize,
+        new: u16,
+        other: Option<usize>,
+        other_takes: u16,
+    ) {
+        let required = |column: u16| matrix.is_required(usize::from(column));
+        let Some(&old) = self.chain.assignment.get(row) else { return };
         let mut delta = Self::entry(matrix, row, new) - Self::entry(matrix, row, old);
         let mut hash = self.chain.hash ^ self.zobrist(row, old) ^ self.zobrist(row, new);
-        if other != NONE {
-            let other_row = other as usize;
+        if let Some(other_row) = other {
             hash ^= self.zobrist(other_row, new) ^ self.zobrist(other_row, other_takes);
         }
         let chain = &mut self.chain;
         chain.hash = hash;
         chain.assignment[row] = new;
-        if old != CLUTTER {
-            chain.owner[old as usize] = NONE;
+        if let Some(old) = below::<N>(old) {
+            chain.owner[old] = NONE;
         }
-        if new != CLUTTER {
-            chain.owner[new as usize] = row as u16;
+        if let Some(new) = below::<N>(new) {
+            chain.owner[new] = row as u16;
         }
-        if other != NONE {
-            let other_row = other as usize;
+        if let Some(other_row) = other {
             delta += Self::entry(matrix, other_row, other_takes) - Self::entry(matrix, other_row, new);
             chain.assignment[other_row] = other_takes;
-            if other_takes != CLUTTER {
-                chain.owner[other_takes as usize] = other;
+            if let Some(column) = below::<N>(other_takes) {
+                chain.owner[column] = other_row as u16;
             }
         }
         // Required columns: a single move frees `old` and takes `new`; paper 003's conflict move frees
         // `old`; a swap keeps the set of assigned columns.
         let before = chain.unassigned_required;
-        if other == NONE {
+        if other.is_none() {
             chain.unassigned_required = before + usize::from(required(old)) - usize::from(required(new));
         } else if other_takes == CLUTTER && required(old) {
             chain.unassigned_required += 1;
@@ -695,36 +755,39 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     fn climb(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         let rows = matrix.rows();
         let penalty = Self::penalty();
-        let required = |column: u16| column != CLUTTER && matrix.is_required(column as usize);
+        let required = |column: u16| matrix.is_required(usize::from(column));
         for _ in 0..rows {
             let mut improved = false;
             for row in 0..rows {
-                for k in 0..=self.row_count[row] as usize {
-                    let new = if k == self.row_count[row] as usize { CLUTTER } else { self.row_columns[row][k] };
+                // Each possible column, then clutter.
+                for k in 0..=self.possible_columns(row).len() {
+                    let new = self.possible_columns(row).get(k).copied().unwrap_or(CLUTTER);
                     let old = self.chain.assignment[row];
                     if new == old {
                         continue;
                     }
-                    let other = if new == CLUTTER { NONE } else { self.chain.owner[new as usize] };
+                    let other = below::<N>(new).and_then(|column| below::<Z>(self.chain.owner[column]));
                     let mut gain = Self::entry(matrix, row, new) - Self::entry(matrix, row, old);
-                    if other == NONE {
-                        if required(old) {
-                            gain -= penalty;
+                    match other {
+                        None => {
+                            if required(old) {
+                                gain -= penalty;
+                            }
+                            if required(new) {
+                                gain += penalty;
+                            }
                         }
-                        if required(new) {
-                            gain += penalty;
+                        Some(other_row) => {
+                            let back = Self::entry(matrix, other_row, old);
+                            if back == T::NEG_INFINITY {
+                                continue;
+                            }
+                            gain += back - Self::entry(matrix, other_row, new);
                         }
-                    } else {
-                        let other_row = other as usize;
-                        let back = Self::entry(matrix, other_row, old);
-                        if back == T::NEG_INFINITY {
-                            continue;
-                        }
-                        gain += back - Self::entry(matrix, other_row, new);
                     }
                     // Strictly better by a margin, so rounding cannot cycle.
                     if gain > T::of_f64(1e-9) {
-                        self.apply(matrix, row, new, other, if other == NONE { NONE } else { old });
+                        self.apply(matrix, row, new, other, if other.is_none() { NONE } else { old });
                         improved = true;
                     }
                 }

@@ -7,6 +7,7 @@
 //! selection is a total order and the same inputs always keep the same children.
 
 use crate::children::ChildSink;
+use crate::index::{At, below, copy_prefix, insertion_sort_by};
 use crate::real::{LogSumExp, Real, ln};
 pub use crate::weight::Event;
 use core::cmp::Ordering;
@@ -111,9 +112,10 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
         self.event = event;
     }
 
-    /// Number of children kept.
+    /// Number of children kept (at most `H`).
     pub fn len(&self) -> usize {
-        self.len
+        // The `min` only shows the optimiser the invariant `len ≤ H`.
+        self.len.min(H)
     }
 
     /// Whether no child is kept.
@@ -129,7 +131,10 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// The key a new child must beat to be kept (`-inf` while there is room). With
     /// [`TopChildren::clear_sampling`] keys are perturbed, so this bounds keys, not weights.
     pub fn threshold(&self) -> T {
-        if self.len < H { T::NEG_INFINITY } else { self.items[self.heap[0] as usize].key }
+        match self.heap.first() {
+            Some(&worst) if self.len >= H => self.items.at(usize::from(worst)).key,
+            _ => T::NEG_INFINITY,
+        }
     }
 
     /// Whether keys are weights (selection by largest weight).
@@ -144,30 +149,31 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
 
     /// The kept children, in no particular order.
     pub fn kept(&self) -> &[Candidate<T, Z>] {
-        &self.items[..self.len]
+        &self.items[..self.len()]
     }
 
     /// Writes the indices of the kept children into `order`, best first, and returns how many.
     pub fn best_first(&self, order: &mut [u16; H]) -> usize {
-        for (slot, index) in order.iter_mut().zip(0u16..).take(self.len) {
+        let len = self.len();
+        for (slot, index) in order.iter_mut().zip(0u16..).take(len) {
             *slot = index;
         }
-        order[..self.len].sort_unstable_by(|&a, &b| {
-            let (a, b) = (&self.items[a as usize], &self.items[b as usize]);
-            if a.better_than(b) { Ordering::Less } else { Ordering::Greater }
+        // "Better than" is a strict total order (arrivals are distinct): the sorted order is unique.
+        insertion_sort_by(&mut order[..len], |&a, &b| {
+            self.items.at(usize::from(a)).better_than(self.items.at(usize::from(b)))
         });
-        self.len
+        len
     }
 
     fn worse(&self, a: u16, b: u16) -> bool {
-        self.items[b as usize].better_than(&self.items[a as usize])
+        self.items.at(usize::from(b)).better_than(self.items.at(usize::from(a)))
     }
 
     fn sift_up(&mut self, mut at: usize) {
         while at > 0 {
             let parent = (at - 1) / 2;
-            if self.worse(self.heap[at], self.heap[parent]) {
-                self.heap.swap(at, parent);
+            if self.worse(*self.heap.at(at), *self.heap.at(parent)) {
+                self.heap.swap_at(at, parent);
                 at = parent;
             } else {
                 break;
@@ -179,16 +185,16 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
         loop {
             let (left, right) = (2 * at + 1, 2 * at + 2);
             let mut worst = at;
-            if left < self.len && self.worse(self.heap[left], self.heap[worst]) {
+            if left < self.len && self.worse(*self.heap.at(left), *self.heap.at(worst)) {
                 worst = left;
             }
-            if right < self.len && self.worse(self.heap[right], self.heap[worst]) {
+            if right < self.len && self.worse(*self.heap.at(right), *self.heap.at(worst)) {
                 worst = right;
             }
             if worst == at {
                 break;
             }
-            self.heap.swap(at, worst);
+            self.heap.swap_at(at, worst);
             at = worst;
         }
     }
@@ -221,20 +227,20 @@ impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H,
             assignment: [0; Z],
         };
         self.offered += 1;
-        if self.len == H {
-            let worst = self.heap[0] as usize;
+        if self.len < H {
+            let index = self.len;
+            copy_prefix(&mut candidate.assignment, assignment);
+            self.items[index] = candidate;
+            self.heap[index] = index as u16;
+            self.len = index + 1;
+            self.sift_up(index);
+        } else if let Some(worst) = self.heap.first().and_then(|&worst| below::<H>(worst)) {
             if !candidate.better_than(&self.items[worst]) {
                 return;
             }
-            candidate.assignment[..assignment.len()].copy_from_slice(assignment);
+            copy_prefix(&mut candidate.assignment, assignment);
             self.items[worst] = candidate;
             self.sift_down(0);
-        } else {
-            candidate.assignment[..assignment.len()].copy_from_slice(assignment);
-            self.items[self.len] = candidate;
-            self.heap[self.len] = self.len as u16;
-            self.len += 1;
-            self.sift_up(self.len - 1);
         }
     }
 }

@@ -54,16 +54,18 @@ impl<T: Real, const S: usize, const K: usize> Default for TrackStore<T, S, K> {
 impl<T: Real, const S: usize, const K: usize> TrackStore<T, S, K> {
     /// The live tracks.
     pub fn as_slice(&self) -> &[Track<T, S>] {
-        &self.tracks[..self.len]
+        &self.tracks[..self.len()]
     }
 
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Track<T, S>] {
-        &mut self.tracks[..self.len]
+        let len = self.len();
+        &mut self.tracks[..len]
     }
 
-    /// Number of live tracks.
+    /// Number of live tracks (at most `K`).
     pub fn len(&self) -> usize {
-        self.len
+        // The `min` only shows the optimiser the invariant `len ≤ K`.
+        self.len.min(K)
     }
 
     /// Whether no track is live.
@@ -77,11 +79,10 @@ impl<T: Real, const S: usize, const K: usize> TrackStore<T, S, K> {
 
     /// Appends a track and returns its slot, or hands it back when the store is full.
     pub(crate) fn push(&mut self, track: Track<T, S>) -> Result<u16, Track<T, S>> {
-        if self.len == K {
-            return Err(track);
-        }
-        self.tracks[self.len] = track;
-        self.len += 1;
-        Ok((self.len - 1) as u16)
+        let slot = self.len;
+        let Some(item) = self.tracks.get_mut(slot) else { return Err(track) };
+        *item = track;
+        self.len = slot + 1;
+        Ok(slot as u16)
     }
 }

@@ -19,8 +19,15 @@
 //!    the tracker bit-for-bit as it was.
 //!
 //! # Panics
-//! `step` is designed not to panic on any input: capacity, finiteness and time are checked first, and
-//! numerical failure is returned as [`StepError::Numerical`].
+//! [`Tracker::new`], [`Tracker::step`] and [`Tracker::digest`] do not panic on any input in a release
+//! build: capacity, finiteness and time are checked first, numerical failure is returned as
+//! [`StepError::Numerical`], and every index into the fixed-size tables is proved in bounds or clamped
+//! (the private `index` module), so no panic path is left. This is proved at link time: `nostd-check`'s
+//! `panic_free` binary calls them on inputs the optimiser cannot see through, with a panic handler that
+//! references an undefined symbol, and it links only when the optimiser removed every path to a panic
+//! (`cd nostd-check && cargo build --release --bin panic_free`; see `docs/embedded.md`, "Panic-freedom").
+//! The proof covers the monomorphisations that binary instantiates. Debug builds keep `debug_assert!`s on
+//! internal invariants.
 
 use crate::association::{AssociationMatrix, CLUTTER};
 use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren, GenerateError};
@@ -30,6 +37,7 @@ use crate::config::{ChildGeneration, Config, StoreOverflow};
 use crate::ekf::{self, Gaussian, Innovation};
 use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
+use crate::index::{At, insertion_sort_by};
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{LogSumExp, Real, exp, ln, log_add};
 use crate::report::StepReport;
@@ -203,7 +211,8 @@ pub struct Tracker<
     birth_in_field_of_view: [bool; B],
     stores: [TrackStore<T, S, K>; 2],
     hypotheses: [HypothesisSet<T, N, H>; 2],
-    active: usize,
+    /// Which half of `stores` and `hypotheses` is live (`false`: index 0).
+    active: bool,
     time: f64,
     scans: u64,
     next_label: u32,
@@ -250,13 +259,15 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// Its tracks, in label order.
     pub fn tracks(&self) -> impl Iterator<Item = &'a Track<T, S>> + 'a {
         let tracks = self.tracks;
-        self.hypothesis.slots().iter().map(move |&slot| &tracks[slot as usize])
+        // Every slot of a hypothesis is a live track of the store.
+        self.hypothesis.slots().iter().filter_map(move |&slot| tracks.get(usize::from(slot)))
     }
 }
 
-fn split_pair<X>(pair: &mut [X; 2], active: usize) -> (&X, &mut X) {
-    let (first, second) = pair.split_at_mut(1);
-    if active == 0 { (&first[0], &mut second[0]) } else { (&second[0], &mut first[0]) }
+/// The live half of a double buffer and the other half, mutably.
+fn split_pair<X>(pair: &mut [X; 2], active: bool) -> (&X, &mut X) {
+    let [first, second] = pair;
+    if active { (second, first) } else { (first, second) }
 }
 
 /// 64-bit FNV-1a of a slot list, to find identical children quickly.
@@ -323,7 +334,7 @@ where
             birth_in_field_of_view,
             stores: [TrackStore::default(), TrackStore::default()],
             hypotheses: [HypothesisSet::default(), HypothesisSet::default()],
-            active: 0,
+            active: false,
             time,
             scans: 0,
             next_label: 0,
@@ -398,13 +409,14 @@ where
         }
         let mut innovations = [Innovation::default(); B];
         let mut in_view = [false; B];
-        for (cell, birth) in config.birth.cells.iter().enumerate() {
+        let cells = config.birth.cells.iter().zip(innovations.iter_mut().zip(in_view.iter_mut()));
+        for (cell, (birth, (innovation, in_view))) in cells.enumerate() {
             if !(birth.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&birth.covariance)) {
                 return Err(ConfigError::BirthCell { cell });
             }
-            innovations[cell] =
+            *innovation =
                 ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
-            in_view[cell] = config.sensor.field_of_view.contains(&innovations[cell].predicted);
+            *in_view = config.sensor.field_of_view.contains(&innovation.predicted);
         }
         Ok((innovations, in_view))
     }
@@ -434,17 +446,17 @@ where
                 return Err(ConfigError::PriorTooManyObjects { hypothesis: index });
             }
             let mut slots = [0u16; N];
-            for (position, object) in hypothesis.objects.iter().enumerate() {
+            for (position, (object, slot)) in hypothesis.objects.iter().zip(slots.iter_mut()).enumerate() {
                 let state = &object.state;
                 if !(state.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&state.covariance)) {
                     return Err(ConfigError::PriorObject { hypothesis: index, object: position });
                 }
-                if hypothesis.objects[..position].iter().any(|other| other.label == object.label) {
+                if hypothesis.objects.iter().take(position).any(|other| other.label == object.label) {
                     return Err(ConfigError::PriorDuplicateLabel { hypothesis: index });
                 }
                 next_label = next_label.max(object.label.0.saturating_add(1));
                 let existing = store.as_slice().iter().position(|t| t.label == object.label && t.state == *state);
-                slots[position] = match existing {
+                *slot = match existing {
                     Some(slot) => slot as u16,
                     None => store
                         .push(Track { label: object.label, state: *state, existence: T::zero() })
@@ -454,11 +466,13 @@ where
             if hypothesis.weight == T::zero() {
                 continue;
             }
-            let count = hypothesis.objects.len();
+            let slots = &mut slots[..hypothesis.objects.len()];
+            // Labels are distinct within a hypothesis, so the order is unique.
             let tracks = store.as_slice();
-            slots[..count].sort_unstable_by_key(|&slot| tracks[slot as usize].label);
+            let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
+            insertion_sort_by(slots, |&a, &b| label(a) < label(b));
             // The prior has at most H hypotheses, so this push cannot fail.
-            let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), &slots[..count]));
+            let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), slots));
         }
         self.next_label = next_label;
         finish_hypotheses(set, store);
@@ -477,7 +491,7 @@ where
         let outcome = self.materialise(measurements)?;
 
         // Commit.
-        self.active = 1 - self.active;
+        self.active = !self.active;
         self.time = time;
         self.scans += 1;
         self.next_label = outcome.next_label;
@@ -485,8 +499,8 @@ where
         Ok(StepReport {
             scan: self.scans,
             measurements: measurements.len(),
-            hypotheses: self.hypotheses[self.active].len(),
-            tracks: self.stores[self.active].len(),
+            hypotheses: self.hypotheses[self.live()].len(),
+            tracks: self.stores[self.live()].len(),
             children: top.offered(),
             captured_mass: exp(outcome.log_kept - top.log_total()),
             merged_children: outcome.merged,
@@ -520,25 +534,23 @@ where
 
     /// Step 1: predict every track once and score it against every measurement once.
     fn predict_and_score(&mut self, dt: T, measurements: &[SVector<T, D>]) -> Result<(), StepError> {
-        let store = &self.stores[self.active];
-        for (slot, track) in store.as_slice().iter().enumerate() {
+        let store = &self.stores[self.live()];
+        let slots = self.work.predicted.iter_mut().zip(self.work.entries.iter_mut());
+        for (track, (predicted, entries)) in store.as_slice().iter().zip(slots) {
             let numerical = |error| StepError::Numerical { label: track.label, error };
             let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
             let innovation = ekf::innovation(&self.config.measurement, &state).map_err(numerical)?;
             let in_field_of_view = self.config.sensor.field_of_view.contains(&innovation.predicted);
-            for (row, z) in measurements.iter().enumerate() {
-                self.work.entries[slot][row] =
-                    if in_field_of_view { self.weights.entry(&innovation, z) } else { T::NEG_INFINITY };
+            for (entry, z) in entries.iter_mut().zip(measurements) {
+                *entry = if in_field_of_view { self.weights.entry(&innovation, z) } else { T::NEG_INFINITY };
             }
-            self.work.predicted[slot] = Predicted { state, innovation, in_field_of_view };
+            *predicted = Predicted { state, innovation, in_field_of_view };
         }
-        for cell in 0..self.config.birth.cells.len() {
-            for (row, z) in measurements.iter().enumerate() {
-                self.work.birth_entries[cell][row] = if self.birth_in_field_of_view[cell] {
-                    self.weights.entry(&self.birth_innovations[cell], z)
-                } else {
-                    T::NEG_INFINITY
-                };
+        let cells =
+            self.work.birth_entries.iter_mut().zip(self.birth_innovations.iter().zip(&self.birth_in_field_of_view));
+        for (entries, (innovation, &in_field_of_view)) in cells.take(self.config.birth.cells.len()) {
+            for (entry, z) in entries.iter_mut().zip(measurements) {
+                *entry = if in_field_of_view { self.weights.entry(innovation, z) } else { T::NEG_INFINITY };
             }
         }
         Ok(())
@@ -552,6 +564,8 @@ where
     /// children are derived from the no-event chain's kept children instead of running one chain per
     /// object. (With p_D = 1 the sets differ, and each death gets its own chain.)
     fn generate_children(&mut self, rows: usize) -> Result<u64, StepError> {
+        // `check_scan` bounds the rows by Z; the clamp shows it to the optimiser.
+        let rows = rows.min(Z);
         let scan_seed = mix(self.config.seed ^ mix(self.scans + 1));
         let steps_before = self.sampler.sampler().steps_taken();
         let sampled = matches!(self.config.children, ChildGeneration::Sampled(_));
@@ -571,17 +585,18 @@ where
             Selection::TopWeight => work.top.clear(),
             Selection::SampledByWeight => work.top.clear_sampling(mix(scan_seed ^ 0x5e1e_c7ed)),
         }
-        let parents = self.hypotheses[self.active].as_slice();
+        let parents = self.hypotheses[usize::from(self.active)].as_slice();
         for (parent_index, parent) in parents.iter().enumerate() {
             // Columns: the parent's objects in the field of view, in the parent's order.
             work.matrix = AssociationMatrix::new(rows, 0, T::zero());
             for (position, &slot) in parent.slots().iter().enumerate() {
-                if work.predicted[slot as usize].in_field_of_view {
+                let slot = usize::from(slot);
+                if work.predicted.at(slot).in_field_of_view {
                     // A parent holds at most N objects, so the matrix has room.
                     if let Some(column) =
-                        work.matrix.push_column(&work.entries[slot as usize][..rows], weights.detection_required())
+                        work.matrix.push_column(&work.entries.at(slot)[..rows], weights.detection_required())
                     {
-                        work.column_position[column] = position as u16;
+                        *work.column_position.at_mut(column) = position as u16;
                     }
                 }
             }
@@ -599,8 +614,9 @@ where
                 births_skipped += birth_cells as u64;
             } else {
                 for cell in 0..birth_cells {
-                    let detectable = self.birth_in_field_of_view[cell];
+                    let Some(&detectable) = self.birth_in_field_of_view.get(cell) else { break };
                     if detectable {
+                        // `cell < B`: checked by the `get` above.
                         let _ = work.matrix.push_column(&work.birth_entries[cell][..rows], weights.birth_required());
                     } else if weights.birth_required() {
                         continue; // a birth that must be detected where it cannot be
@@ -621,7 +637,7 @@ where
                     work.matrix.column(column, &mut work.saved_column);
                     let required = work.matrix.is_required(column);
                     work.matrix.set_column(column, &[T::NEG_INFINITY; Z][..rows], false);
-                    let event = Event::Death { object: work.column_position[column] };
+                    let event = Event::Death { object: *work.column_position.at(column) };
                     let result = offer_event(&mut generator, work, &weights, &context, event, in_view - 1);
                     work.matrix.set_column(column, &work.saved_column[..rows], required);
                     result?;
@@ -653,38 +669,43 @@ where
         let mut dropped_for_store = 0usize;
         let mut merged = 0usize;
         let kept = work.top.best_first(&mut work.order);
-        for rank in 0..kept {
-            let candidate = work.top.kept()[work.order[rank] as usize];
-            let parent = &parents.as_slice()[candidate.parent as usize];
+        // A candidate naming a parent, a birth cell or a track that does not exist cannot occur; it would be
+        // skipped like a child that does not fit.
+        'children: for rank in 0..kept {
+            let Some(&candidate) = work.top.kept().get(usize::from(*work.order.at(rank))) else { continue };
+            let Some(parent) = parents.as_slice().get(usize::from(candidate.parent)) else { continue };
 
             // Which row took each column.
             work.row_of_column.fill(NONE);
-            for (row, &column) in candidate.assignment[..measurements.len()].iter().enumerate() {
+            for (row, &column) in candidate.assignment.iter().enumerate().take(measurements.len()) {
                 if column != CLUTTER {
-                    work.row_of_column[column as usize] = row as u16;
+                    *work.row_of_column.at_mut(usize::from(column)) = row as u16;
                 }
             }
             // The child's objects as (source, measurement) keys.
             let mut count = 0usize;
             let mut column = 0usize;
             for (position, &slot) in parent.slots().iter().enumerate() {
-                let row = if work.predicted[slot as usize].in_field_of_view {
+                let row = if work.predicted.at(usize::from(slot)).in_field_of_view {
                     column += 1;
-                    work.row_of_column[column - 1]
+                    *work.row_of_column.at(column - 1)
                 } else {
                     NONE
                 };
                 if candidate.event == (Event::Death { object: position as u16 }) {
                     continue;
                 }
-                work.child_sources[count] = (Source::Track(slot), row);
+                *work.child_sources.at_mut(count) = (Source::Track(slot), row);
                 count += 1;
             }
             if let Event::Birth { cell } = candidate.event {
-                let row = if self.birth_in_field_of_view[cell as usize] { work.row_of_column[column] } else { NONE };
-                work.child_sources[count] = (Source::Birth(cell), row);
+                let Some(&detectable) = self.birth_in_field_of_view.get(usize::from(cell)) else { continue };
+                let row = if detectable { *work.row_of_column.at(column) } else { NONE };
+                *work.child_sources.at_mut(count) = (Source::Birth(cell), row);
                 count += 1;
             }
+            // A child holds at most N objects; the clamp shows it to the optimiser.
+            let count = count.min(N);
 
             // Room for its new tracks?
             let new_tracks = work.child_sources[..count]
@@ -708,15 +729,25 @@ where
                     None => {
                         let (label, prior, innovation) = match source {
                             Source::Track(old) => {
-                                let predicted = &work.predicted[old as usize];
-                                (store.as_slice()[old as usize].label, predicted.state, predicted.innovation)
+                                let old = usize::from(old);
+                                let Some(track) = store.as_slice().get(old) else { continue 'children };
+                                let predicted = work.predicted.at(old);
+                                (track.label, predicted.state, predicted.innovation)
                             }
                             Source::Birth(cell) => {
+                                let cell = usize::from(cell);
+                                let (Some(&prior), Some(&innovation), Some(by_cell)) = (
+                                    config.birth.cells.get(cell),
+                                    self.birth_innovations.get(cell),
+                                    work.birth_label_of_cell.get_mut(cell),
+                                ) else {
+                                    continue 'children;
+                                };
                                 // One new object per measurement (or per cell when undetected): the same
                                 // birth explained by different cells' pdfs is one object with one label.
-                                let known = match work.birth_label_of_row.get_mut(row as usize) {
+                                let known = match work.birth_label_of_row.get_mut(usize::from(row)) {
                                     Some(by_row) => by_row,
-                                    None => &mut work.birth_label_of_cell[cell as usize],
+                                    None => by_cell,
                                 };
                                 let label = match *known {
                                     Some(label) => label,
@@ -727,26 +758,28 @@ where
                                         label
                                     }
                                 };
-                                (label, config.birth.cells[cell as usize], self.birth_innovations[cell as usize])
+                                (label, prior, innovation)
                             }
                         };
-                        let state = if row == NONE {
-                            prior
-                        } else {
-                            ekf::update(&config.measurement, &prior, &innovation, &measurements[row as usize])
-                                .map_err(|error| StepError::Numerical { label, error })?
+                        // Missed (`row == NONE`): the prediction; else the update with the measurement.
+                        let state = match measurements.get(usize::from(row)) {
+                            None => prior,
+                            Some(z) => ekf::update(&config.measurement, &prior, &innovation, z)
+                                .map_err(|error| StepError::Numerical { label, error })?,
                         };
                         // Room was checked above; the error path is unreachable but kept panic-free.
                         let new_slot = next_store
                             .push(Track { label, state, existence: T::zero() })
                             .map_err(|_| StepError::TrackStoreFull { capacity: K })?;
                         let head = match source {
-                            Source::Track(old) => &mut work.source_head[old as usize],
-                            Source::Birth(cell) => &mut work.birth_head[cell as usize],
+                            Source::Track(old) => Some(work.source_head.at_mut(usize::from(old))),
+                            Source::Birth(cell) => work.birth_head.get_mut(usize::from(cell)),
                         };
-                        work.next_same_source[new_slot as usize] = *head;
-                        *head = new_slot;
-                        work.new_slot_measurement[new_slot as usize] = row;
+                        if let Some(head) = head {
+                            *work.next_same_source.at_mut(usize::from(new_slot)) = *head;
+                            *head = new_slot;
+                        }
+                        *work.new_slot_measurement.at_mut(usize::from(new_slot)) = row;
                         new_slot
                     }
                 };
@@ -754,24 +787,25 @@ where
             }
             let tracks = next_store.as_slice();
             let slots = &mut work.child_slots[..count];
-            slots.sort_unstable_by_key(|&slot| tracks[slot as usize].label);
+            // Labels are distinct within a child, so the order is unique.
+            let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
+            insertion_sort_by(slots, |&a, &b| label(a) < label(b));
 
             // Merge with an identical child kept earlier, else keep it.
             let hash = slots_hash(slots);
             let existing = next_set
-                .as_slice()
-                .iter()
+                .as_mut_slice()
+                .iter_mut()
                 .zip(work.hashes.iter())
-                .position(|(h, &other)| other == hash && h.slots() == &*slots);
+                .find(|(h, other)| **other == hash && h.slots() == &*slots);
             match existing {
-                Some(index) => {
-                    let hypothesis = &mut next_set.as_mut_slice()[index];
+                Some((hypothesis, _)) => {
                     hypothesis.log_weight = log_add(hypothesis.log_weight, candidate.log_weight);
                     merged += 1;
                 }
                 None => {
                     if let Ok(index) = next_set.push(Hypothesis::new(candidate.log_weight, slots)) {
-                        work.hashes[index] = hash;
+                        *work.hashes.at_mut(index) = hash;
                     }
                 }
             }
@@ -788,6 +822,11 @@ where
         }
         finish_hypotheses(next_set, next_store);
         Ok(Materialised { log_kept, next_label, dropped_for_store, merged })
+    }
+
+    /// Index of the live half of the double buffers (0 or 1).
+    fn live(&self) -> usize {
+        usize::from(self.active)
     }
 
     /// The configuration.
@@ -807,21 +846,21 @@ where
 
     /// The hypotheses, best first, with normalised weights.
     pub fn hypotheses(&self) -> impl ExactSizeIterator<Item = HypothesisView<'_, T, S, N>> + '_ {
-        let tracks = self.stores[self.active].as_slice();
-        self.hypotheses[self.active].as_slice().iter().map(move |hypothesis| HypothesisView { hypothesis, tracks })
+        let tracks = self.stores[self.live()].as_slice();
+        self.hypotheses[self.live()].as_slice().iter().map(move |hypothesis| HypothesisView { hypothesis, tracks })
     }
 
     /// The maximum a posteriori hypothesis (the first of [`Tracker::hypotheses`]; ties keep the
     /// deterministic enumeration order).
     pub fn map_hypothesis(&self) -> HypothesisView<'_, T, S, N> {
-        let tracks = self.stores[self.active].as_slice();
+        let tracks = self.stores[self.live()].as_slice();
         // There is always at least one hypothesis: the prior has one and every scan keeps one.
-        HypothesisView { hypothesis: &self.hypotheses[self.active].as_slice()[0], tracks }
+        HypothesisView { hypothesis: &self.hypotheses[self.live()].as_slice()[0], tracks }
     }
 
     /// Every track of the shared store, with its existence probability.
     pub fn tracks(&self) -> &[Track<T, S>] {
-        self.stores[self.active].as_slice()
+        self.stores[self.live()].as_slice()
     }
 
     /// Existence probability of the object `label`: the total weight of the hypotheses that hold a
@@ -949,10 +988,11 @@ fn derive_death_children<
         let mut assigned = [false; N];
         for &column in assignment {
             if column != CLUTTER {
-                assigned[column as usize] = true;
+                *assigned.at_mut(usize::from(column)) = true;
             }
         }
-        let free = (0..parent.in_view).filter(|&c| !assigned[c]).count();
+        let unassigned = || assigned.iter().enumerate().take(parent.in_view).filter(|&(_, &a)| !a).map(|(c, _)| c);
+        let free = unassigned().count();
         if free == 0 {
             continue;
         }
@@ -962,8 +1002,8 @@ fn derive_death_children<
             work.top.unoffered(death_score + ln(T::of_f64(free as f64)));
             continue;
         }
-        for column in (0..parent.in_view).filter(|&c| !assigned[c]) {
-            work.top.set_context(parent.index, Event::Death { object: work.column_position[column] });
+        for column in unassigned() {
+            work.top.set_context(parent.index, Event::Death { object: *work.column_position.at(column) });
             work.top.offer(death_score, assignment);
         }
     }
@@ -1020,15 +1060,15 @@ fn lookup<
     row: u16,
 ) -> Option<u16> {
     let mut slot = match source {
-        Source::Track(old) => work.source_head[old as usize],
-        Source::Birth(cell) => work.birth_head[cell as usize],
+        Source::Track(old) => *work.source_head.at(usize::from(old)),
+        Source::Birth(cell) => work.birth_head.get(usize::from(cell)).copied().unwrap_or(NONE),
     };
     // Each source has at most Z + 1 distinct new slots (one per measurement, one missed).
     while slot != NONE {
-        if work.new_slot_measurement[slot as usize] == row {
+        if *work.new_slot_measurement.at(usize::from(slot)) == row {
             return Some(slot);
         }
-        slot = work.next_same_source[slot as usize];
+        slot = *work.next_same_source.at(usize::from(slot));
     }
     None
 }
@@ -1038,15 +1078,8 @@ fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, co
     set: &mut HypothesisSet<T, N, H>,
     store: &mut TrackStore<T, S, K>,
 ) {
-    let items = set.as_mut_slice();
     // Insertion sort: merging only raises weights of earlier entries, so few moves are needed.
-    for i in 1..items.len() {
-        let mut j = i;
-        while j > 0 && items[j].log_weight > items[j - 1].log_weight {
-            items.swap(j, j - 1);
-            j -= 1;
-        }
-    }
+    insertion_sort_by(set.as_mut_slice(), |a, b| a.log_weight > b.log_weight);
     let tracks = store.as_mut_slice();
     for track in tracks.iter_mut() {
         track.existence = T::zero();
@@ -1054,7 +1087,9 @@ fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, co
     for hypothesis in set.as_slice() {
         let weight = exp(hypothesis.log_weight);
         for &slot in hypothesis.slots() {
-            tracks[slot as usize].existence += weight;
+            if let Some(track) = tracks.get_mut(usize::from(slot)) {
+                track.existence += weight;
+            }
         }
     }
 }

@@ -1,0 +1,192 @@
+//! Link-time proof that `Tracker::new`, `Tracker::step` and `Tracker::digest` cannot panic.
+//!
+//! The panic handler calls a function that does not exist. The release build (fat LTO, one codegen unit)
+//! only links if the optimiser removed every path to a panic from the code below, so a successful build of
+//! this binary is the proof (`cargo build --release --bin panic_free`). With `--features report-panics`
+//! the handler is an ordinary loop instead, so the remaining panic sites can be listed from the
+//! disassembly (`scripts/panic-sites.sh`).
+//!
+//! Every input goes through `black_box`, so the optimiser cannot specialise the tracker to it: any
+//! configuration (both child generations, both birth variants, gate on or off, both selections, both
+//! store policies, any values), any prior and any scan (any number of measurements, any time) stays
+//! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
+//! `SsaTracker<f32>` and `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells).
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use nalgebra::{SMatrix, SVector};
+use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
+use tracker_core::sampler::SamplerConfig;
+use tracker_core::{
+    BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
+    PriorHypothesis, PriorObject, Real, Region, Sensor, SsaConfig, SsaTracker, TrackLabel, TwoBody, ssa_caps,
+};
+
+// The C runtime provides `_start`, which calls `main`.
+#[link(name = "c")]
+unsafe extern "C" {}
+
+#[cfg(not(feature = "report-panics"))]
+unsafe extern "C" {
+    /// Deliberately undefined: referencing it from the panic handler makes any reachable panic a link error.
+    fn tracker_core_step_can_panic() -> !;
+}
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    #[cfg(not(feature = "report-panics"))]
+    // SAFETY: never called: the binary only links when no panic is reachable.
+    unsafe {
+        tracker_core_step_can_panic()
+    }
+    #[cfg(feature = "report-panics")]
+    loop {}
+}
+
+/// The precompiled `core` for this host target was built with unwinding and references this symbol;
+/// with `panic = "abort"` it is never called.
+#[unsafe(no_mangle)]
+extern "C" fn rust_eh_personality() {}
+
+/// More measurements than any capacity here, so every scan length (including too many) is possible.
+const MEASUREMENTS: usize = 40;
+
+/// The variant choices, from the command line (they are opaque anyway).
+fn children(argc: i32) -> ChildGeneration {
+    if argc > 1 {
+        ChildGeneration::Sampled(SamplerConfig::default())
+    } else {
+        ChildGeneration::Exhaustive { max_children_per_scan: 1_000_000 }
+    }
+}
+
+fn selection(argc: i32) -> Selection {
+    if argc > 4 { Selection::SampledByWeight } else { Selection::TopWeight }
+}
+
+fn store_overflow(argc: i32) -> StoreOverflow {
+    if argc > 5 { StoreOverflow::Error } else { StoreOverflow::PruneChildren }
+}
+
+/// A two-hypothesis prior over `objects` (the second holds the first object only).
+fn prior<T: Real>(objects: &[PriorObject<T, 4>; 2]) -> [PriorHypothesis<'_, T, 4>; 2] {
+    [
+        PriorHypothesis { weight: T::of_f64(0.7), objects },
+        PriorHypothesis { weight: T::of_f64(0.3), objects: &objects[..1] },
+    ]
+}
+
+/// `SsaTracker<T>`: `new`, `with_objects`, then `step` and `digest` over opaque scans.
+fn ssa<T: Real>(argc: i32) -> u64 {
+    let c = T::of_f64;
+    let x = c(f64::from(argc));
+    let mut cells = heapless::Vec::<Gaussian<T, 4>, { ssa_caps::BIRTH_CELLS }>::new();
+    let _ = cells.push(Gaussian {
+        mean: SVector::from([c(8000.0) * x, c(100.0), T::zero(), c(7.0)]),
+        covariance: SMatrix::identity() * (c(100.0) * x),
+    });
+    let config: SsaConfig<T> = black_box(Config {
+        motion: TwoBody {
+            mu: c(398_600.441_8),
+            acceleration_noise: c(1e-13) * x,
+            max_step: c(20.0),
+            max_substeps: 20_000,
+        },
+        measurement: PositionMeasurement::isotropic(c(0.5) * x),
+        sensor: Sensor {
+            detection_probability: c(0.9) / x,
+            clutter_rate: x,
+            field_of_view: Region::Sector {
+                origin: [T::zero(), T::zero()],
+                look_direction: c(0.26) * x,
+                half_angle: c(0.26),
+                max_range: c(30_000.0),
+            },
+        },
+        birth: BirthModel {
+            probability: c(1e-3) * x,
+            cells,
+            detection: if argc > 2 { BirthDetection::AllowUndetected } else { BirthDetection::AllDetected },
+        },
+        death_probability: c(1e-4) * x,
+        gate: if argc > 3 { None } else { Some(c(25.0) * x) },
+        children: children(argc),
+        selection: selection(argc),
+        store_overflow: store_overflow(argc),
+        seed: argc as u64,
+    });
+    let state = |position: f64| Gaussian {
+        mean: SVector::from([c(7000.0) * x, c(position), -T::one(), c(7.5)]),
+        covariance: SMatrix::identity() * x,
+    };
+    let objects = [
+        PriorObject { label: TrackLabel(0), state: state(1000.0) },
+        PriorObject { label: TrackLabel(3), state: state(1400.0) },
+    ];
+    let prior = prior(&objects);
+    let mut digest = 0u64;
+    if let Ok(tracker) =
+        SsaTracker::<T>::with_objects(config.clone(), black_box(&[objects[0].state][..]), black_box(0.0))
+    {
+        digest ^= tracker.digest();
+    }
+    let Ok(mut tracker) = SsaTracker::<T>::new(config, black_box(&prior[..]), black_box(0.0)) else { return 2 };
+    let zs: [SVector<T, 2>; MEASUREMENTS] =
+        core::array::from_fn(|i| SVector::from([c(7000.0 + 60.0 * i as f64) * x, c(1060.0 - 25.0 * i as f64)]));
+    for k in 1..=argc as usize {
+        let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
+        if tracker.step(black_box(60.0 * k as f64), scan).is_err() {
+            digest ^= 1;
+        }
+        digest ^= tracker.digest();
+    }
+    digest
+}
+
+/// `LinearTracker` without birth cells (`B = 0`): `new`, `step` and `digest` over opaque scans.
+fn linear(argc: i32) -> u64 {
+    type Tracker = LinearTracker<f64, 8, 4, 4, 16, 0>;
+    let x = f64::from(argc);
+    let config = black_box(Config {
+        motion: ConstantVelocity { acceleration_noise: 0.01 * x },
+        measurement: PositionMeasurement::isotropic(0.3 * x),
+        sensor: Sensor {
+            detection_probability: 0.9 / x,
+            clutter_rate: x,
+            field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0 * x] },
+        },
+        birth: BirthModel::none(),
+        death_probability: 0.01 * x,
+        gate: if argc > 3 { None } else { Some(16.0 * x) },
+        children: children(argc),
+        selection: selection(argc),
+        store_overflow: store_overflow(argc),
+        seed: argc as u64,
+    });
+    let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };
+    let objects = [
+        PriorObject { label: TrackLabel(1), state: state(0.0) },
+        PriorObject { label: TrackLabel(2), state: state(5.0) },
+    ];
+    let prior = prior(&objects);
+    let Ok(mut tracker) = Tracker::new(config, black_box(&prior[..]), black_box(0.0)) else { return 2 };
+    let zs: [SVector<f64, 2>; MEASUREMENTS] =
+        core::array::from_fn(|i| SVector::from([i as f64 * x, 5.0 - 0.5 * i as f64]));
+    let mut digest = 0u64;
+    for k in 1..=argc as usize {
+        let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
+        if tracker.step(black_box(k as f64), scan).is_err() {
+            digest ^= 1;
+        }
+        digest ^= tracker.digest();
+    }
+    digest
+}
+
+/// Inputs come from the command line so the optimiser cannot fold them: argc picks values.
+#[unsafe(no_mangle)]
+pub extern "C" fn main(argc: i32, _argv: *const *const u8) -> i32 {
+    let digest = ssa::<f64>(argc) ^ ssa::<f32>(argc) ^ linear(argc);
+    (digest & 0x7f) as i32
+}
