@@ -801,7 +801,6 @@ fn covariance_at_the_edge_of_the_scalar_range() {
 /// is built and the next scan is accepted with NaN log-weights. Found by the `step` fuzz target
 /// (fuzz/artifacts/step/crash-f4a8da60239bf62e846e3a9b3dbeb32963241fcd: a sector of subnormal range).
 #[test]
-#[ignore = "bug: a field of view of volume 0 or inf (lambda_C = 0 or inf) is accepted and gives NaN weights"]
 fn degenerate_clutter_intensity_is_rejected() {
     fn check<T: Real>(children: ChildGeneration, region: Region<T>) -> Option<String> {
         let mut config = config::<T, 1>(children);
@@ -843,7 +842,6 @@ fn degenerate_clutter_intensity_is_rejected() {
 /// hypotheses of weight 1 each. Found by the `step` fuzz target
 /// (fuzz/artifacts/step/crash-212204e411a1a52a2a1bfe841104e22097a0b112: f32, two-body, p_D = 1).
 #[test]
-#[ignore = "bug: with p_D = 1 and far measurements the normalised weights round to 1 each and sum to H"]
 fn huge_log_weights_stay_normalised() {
     fn check<T: Real>(children: ChildGeneration, far: f64) -> Option<String> {
         let mut config = config::<T, 1>(children);

@@ -37,17 +37,17 @@ pub struct AssociationMatrix<T, const N: usize, const Z: usize> {
 
 impl<T: Real, const N: usize, const Z: usize> Default for AssociationMatrix<T, N, Z> {
     fn default() -> Self {
-        Self::new(0, 0, T::zero())
+        Self::new(0, 0, T::ZERO)
     }
 }
 
 impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     /// An empty `rows × columns` matrix: every entry impossible, no column required. `rows` and `columns`
     /// are clamped to the capacity (`Z` rows, `N` columns).
-    pub fn new(rows: usize, columns: usize, baseline: T) -> Self {
+    pub const fn new(rows: usize, columns: usize, baseline: T) -> Self {
         Self {
-            rows: rows.min(Z),
-            columns: columns.min(N),
+            rows: if rows < Z { rows } else { Z },
+            columns: if columns < N { columns } else { N },
             entries: [[T::NEG_INFINITY; N]; Z],
             required: [false; N],
             required_count: 0,

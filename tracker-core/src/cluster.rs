@@ -86,11 +86,23 @@ pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: u
 impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<T, N, Z, C> {
     /// A generator with `config`; without `config.clusters` it runs one chain on the whole matrix.
     pub fn new(config: SamplerConfig, seed: u64) -> Self {
+        let mut generator = Self::empty(config);
+        generator.reseed(seed);
+        generator.sampler.reseed(seed);
+        generator
+    }
+
+    /// A generator in a `const` context (for a tracker in a `static`): the sampler gets its random
+    /// stream at the first matrix (every matrix is reseeded).
+    pub const fn empty(config: SamplerConfig) -> Self {
+        const fn blank<T: Real>() -> Combination<T> {
+            Combination { score: T::ZERO, previous: 0, choice: 0 }
+        }
         Self {
             config,
-            seed,
-            sampler: MetropolisSampler::new(config, seed),
-            cluster: AssociationMatrix::default(),
+            seed: 0,
+            sampler: MetropolisSampler::empty(config),
+            cluster: AssociationMatrix::new(0, 0, T::ZERO),
             row_root: [0; Z],
             column_root: [0; N],
             row_cluster: [NONE; Z],
@@ -98,9 +110,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             stage_scores: [[T::NEG_INFINITY; C]; Z],
             stage_len: [0; Z],
             choices: [[CLUTTER; Z]; C],
-            stages: [[Combination::default(); C]; Z],
+            stages: [[blank(); C]; Z],
             combined_len: [0; Z],
-            frontier: [Combination::default(); C],
+            frontier: [blank(); C],
             leaves: 0,
             sampled_clusters: 0,
             enumerated_clusters: 0,
@@ -168,15 +180,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         node
     }
 
-    fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller index becomes the root, so cluster order follows row order.
-            let (low, high) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.set_node_root(high, low);
-        }
-    }
-
     /// Splits `matrix` into clusters; returns their number, or `None` when a required column can take no
     /// measurement (no feasible child).
     fn split(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> Option<usize> {
@@ -190,11 +193,19 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         let mut column_possible = [false; N];
         let mut row_possible = [false; Z];
         for row in 0..rows {
+            // The root of the row's set, kept as the row joins its columns' sets. The smaller root wins, so
+            // cluster order follows row order.
+            let mut root = self.find(row);
             for column in 0..columns {
                 if matrix.entry(row, column) > T::NEG_INFINITY {
                     row_possible[row] = true;
                     column_possible[column] = true;
-                    self.union(row, Z + column);
+                    let other = self.find(Z + column);
+                    if other != root {
+                        let (low, high) = if root < other { (root, other) } else { (other, root) };
+                        self.set_node_root(high, low);
+                        root = low;
+                    }
                 }
             }
         }

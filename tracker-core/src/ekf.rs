@@ -26,8 +26,13 @@ pub struct Gaussian<T: Real, const S: usize> {
 
 impl<T: Real, const S: usize> Default for Gaussian<T, S> {
     fn default() -> Self {
-        Self { mean: SVector::zeros(), covariance: SMatrix::zeros() }
+        Self::ZERO
     }
+}
+
+impl<T: Real, const S: usize> Gaussian<T, S> {
+    /// Zero mean and zero covariance (a placeholder in fixed storage).
+    pub const ZERO: Self = Self { mean: crate::real::zeros(), covariance: crate::real::zeros() };
 }
 
 /// Why an EKF operation failed.
@@ -68,8 +73,14 @@ pub struct Innovation<T: Real, const D: usize> {
 
 impl<T: Real, const D: usize> Default for Innovation<T, D> {
     fn default() -> Self {
-        Self { predicted: SVector::zeros(), cholesky: SMatrix::identity(), log_normaliser: T::zero() }
+        Self::EMPTY
     }
+}
+
+impl<T: Real, const D: usize> Innovation<T, D> {
+    /// A placeholder in fixed storage: ẑ = 0, L = I.
+    pub(crate) const EMPTY: Self =
+        Self { predicted: crate::real::zeros(), cholesky: crate::real::identity(), log_normaliser: T::ZERO };
 }
 
 impl<T: Real, const D: usize> Innovation<T, D> {

@@ -163,6 +163,9 @@ pub enum StepError {
     NoViableChild,
     /// 2³² labels have been handed out.
     LabelsExhausted,
+    /// The tracker was made with [`crate::Tracker::empty`] and has no prior yet: call
+    /// [`crate::Tracker::reset`].
+    NotInitialised,
 }
 
 impl core::fmt::Display for StepError {
@@ -182,6 +185,7 @@ impl core::fmt::Display for StepError {
             StepError::TrackStoreFull { capacity } => write!(f, "kept children need more than {capacity} tracks"),
             StepError::NoViableChild => f.write_str("every child has zero weight"),
             StepError::LabelsExhausted => f.write_str("track labels exhausted"),
+            StepError::NotInitialised => f.write_str("no prior loaded: call reset first"),
         }
     }
 }

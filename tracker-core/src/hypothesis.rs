@@ -19,11 +19,13 @@ pub struct Hypothesis<T, const N: usize> {
 
 impl<T: Real, const N: usize> Default for Hypothesis<T, N> {
     fn default() -> Self {
-        Self { log_weight: T::NEG_INFINITY, len: 0, slots: [0; N] }
+        Self::EMPTY
     }
 }
 
 impl<T: Real, const N: usize> Hypothesis<T, N> {
+    const EMPTY: Self = Self { log_weight: T::NEG_INFINITY, len: 0, slots: [0; N] };
+
     /// A hypothesis with `log_weight` holding `slots` (at most `N`; the caller sorts them by label).
     pub(crate) fn new(log_weight: T, slots: &[u16]) -> Self {
         let len = slots.len().min(N);
@@ -58,11 +60,16 @@ pub struct HypothesisSet<T, const N: usize, const H: usize> {
 
 impl<T: Real, const N: usize, const H: usize> Default for HypothesisSet<T, N, H> {
     fn default() -> Self {
-        Self { items: [Hypothesis::default(); H], len: 0 }
+        Self::new()
     }
 }
 
 impl<T: Real, const N: usize, const H: usize> HypothesisSet<T, N, H> {
+    /// An empty set (usable in a `const` context).
+    pub const fn new() -> Self {
+        Self { items: [Hypothesis::EMPTY; H], len: 0 }
+    }
+
     /// The hypotheses.
     pub fn as_slice(&self) -> &[Hypothesis<T, N>] {
         &self.items[..self.len()]

@@ -13,6 +13,10 @@ use nalgebra::RealField;
 /// Implemented for `f32` and `f64`. The methods are named after `libm` so that call sites cannot pick up
 /// a `std` implementation by accident; use the free functions of this module in code.
 pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Display + 'static {
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
     /// Positive infinity.
     const INFINITY: Self;
     /// Negative infinity: the log-weight of an impossible event.
@@ -42,6 +46,8 @@ pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Displ
 macro_rules! impl_real {
     ($t:ty, $ln:path, $exp:path, $sqrt:path, $sin:path, $cos:path, $atan2:path, $floor:path) => {
         impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
             const INFINITY: Self = <$t>::INFINITY;
             const NEG_INFINITY: Self = <$t>::NEG_INFINITY;
             #[inline]
@@ -152,6 +158,22 @@ pub fn log_add<T: Real>(a: T, b: T) -> T {
     hi + ln(T::one() + exp(lo - hi))
 }
 
+/// The `R × C` zero matrix, in a `const` context.
+pub const fn zeros<T: Real, const R: usize, const C: usize>() -> nalgebra::SMatrix<T, R, C> {
+    nalgebra::SMatrix::from_array_storage(nalgebra::ArrayStorage([[T::ZERO; R]; C]))
+}
+
+/// The `D × D` identity matrix, in a `const` context.
+pub const fn identity<T: Real, const D: usize>() -> nalgebra::SMatrix<T, D, D> {
+    let mut columns = [[T::ZERO; D]; D];
+    let mut i = 0;
+    while i < D {
+        columns[i][i] = T::ONE;
+        i += 1;
+    }
+    nalgebra::SMatrix::from_array_storage(nalgebra::ArrayStorage(columns))
+}
+
 /// A running log-sum-exp: the log of the sum of `exp` of every value added, kept as a maximum and a sum
 /// scaled by it, so that one `exp` is evaluated per value and nothing overflows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,8 +190,8 @@ impl<T: Real> Default for LogSumExp<T> {
 
 impl<T: Real> LogSumExp<T> {
     /// The empty sum (`ln 0 = -inf`).
-    pub fn new() -> Self {
-        Self { max: T::NEG_INFINITY, scaled_sum: T::zero() }
+    pub const fn new() -> Self {
+        Self { max: T::NEG_INFINITY, scaled_sum: T::ZERO }
     }
 
     /// Adds `exp(value)` to the sum. `-inf` adds nothing.
@@ -191,6 +213,21 @@ impl<T: Real> LogSumExp<T> {
     pub fn value(&self) -> T {
         if self.max == T::NEG_INFINITY { T::NEG_INFINITY } else { self.max + ln(self.scaled_sum) }
     }
+
+    /// `value − ln(sum)`: `value` normalised by this sum. The largest term is subtracted first (exactly,
+    /// for values near it), so the result stays accurate even when the values are so large that
+    /// `ln(sum)` is below their rounding step.
+    pub fn normalise(&self, value: T) -> T {
+        (value - self.max) - ln(self.scaled_sum)
+    }
+
+    /// ln(this sum / `other` sum), accurate in the same way as [`LogSumExp::normalise`].
+    pub fn log_ratio(&self, other: &LogSumExp<T>) -> T {
+        if self.max == T::NEG_INFINITY {
+            return T::NEG_INFINITY;
+        }
+        (self.max - other.max) + ln(self.scaled_sum / other.scaled_sum)
+    }
 }
 
 #[cfg(test)]
@@ -206,6 +243,17 @@ mod tests {
         }
         let direct: f64 = values.iter().map(|v| v.exp()).sum::<f64>().ln();
         assert!((acc.value() - direct).abs() < 1e-14);
+    }
+
+    #[test]
+    fn normalising_huge_values_keeps_the_sum_at_one() {
+        // ln 2 is far below the rounding step of 1e18: value() − value() would give weights 1 and 1.
+        let mut acc = LogSumExp::new();
+        acc.add(-1e18f64);
+        acc.add(-1e18f64);
+        let weights: f64 = [-1e18f64, -1e18].iter().map(|&v| acc.normalise(v).exp()).sum();
+        assert!((weights - 1.0).abs() < 1e-15);
+        assert_eq!(acc.log_ratio(&acc), 0.0);
     }
 
     #[test]

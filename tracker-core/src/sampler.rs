@@ -81,13 +81,19 @@ pub struct SamplerConfig {
 
 impl Default for SamplerConfig {
     fn default() -> Self {
-        Self { burn_in: 100, steps: 2_000, proposal: Proposal::Informed, clusters: true, exhaustive_limit: 2_000 }
+        Self::DEFAULT
     }
+}
+
+impl SamplerConfig {
+    /// The default budget and moves (also usable in a `const` context).
+    pub const DEFAULT: Self =
+        Self { burn_in: 100, steps: 2_000, proposal: Proposal::Informed, clusters: true, exhaustive_limit: 2_000 };
 }
 
 /// SplitMix64: the per-(row, column) hash of the Zobrist-style association hash, and the seed mixer.
 #[inline]
-pub(crate) fn mix(mut z: u64) -> u64 {
+pub(crate) const fn mix(mut z: u64) -> u64 {
     z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
@@ -96,8 +102,8 @@ pub(crate) fn mix(mut z: u64) -> u64 {
 
 /// Hash contribution of row `row` taking `column`.
 #[inline]
-fn cell_hash(row: usize, column: u16) -> u64 {
-    mix(((row as u64) << 32) | u64::from(column))
+const fn cell_hash(row: usize, column: u16) -> u64 {
+    mix(((row as u64) << 32) | column as u64)
 }
 
 /// The hash of a whole association: XOR of its cells' hashes (so one move updates it in O(1)).
@@ -126,6 +132,13 @@ pub struct BestChildren<T, const C: usize, const Z: usize> {
 
 impl<T: Real, const C: usize, const Z: usize> Default for BestChildren<T, C, Z> {
     fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
+    /// An empty set (usable in a `const` context).
+    pub const fn new() -> Self {
         Self {
             scores: [T::NEG_INFINITY; C],
             hashes: [0; C],
@@ -291,7 +304,15 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     /// Offers a feasible child with exact `score`; keeps it if it is new and beats the worst kept one.
     /// Returns whether it was kept.
     pub fn insert(&mut self, score: T, hash: u64, assignment: &[u16]) -> bool {
-        if C == 0 || !(score > self.threshold()) || self.contains(hash, assignment) {
+        if self.contains(hash, assignment) {
+            return false;
+        }
+        self.insert_absent(score, hash, assignment)
+    }
+
+    /// As [`BestChildren::insert`], for a child the caller knows is not kept.
+    pub(crate) fn insert_absent(&mut self, score: T, hash: u64, assignment: &[u16]) -> bool {
+        if C == 0 || !(score > self.threshold()) {
             return false;
         }
         let replaced = self.len >= C;
@@ -345,7 +366,9 @@ struct Chain<T, const N: usize, const Z: usize> {
 #[derive(Debug, Clone)]
 pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> {
     config: SamplerConfig,
-    rng: Xoshiro256PlusPlus,
+    /// The chain's random stream; `None` until the first [`MetropolisSampler::reseed`] of a sampler made
+    /// with [`MetropolisSampler::empty`] (steps are then no-ops).
+    rng: Option<Xoshiro256PlusPlus>,
     best: BestChildren<T, C, Z>,
     chain: Chain<T, N, Z>,
     /// Per row: its possible columns (finite δ), in order, and how many.
@@ -371,26 +394,47 @@ pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> 
 impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<T, N, Z, C> {
     /// A sampler with `config`, its random stream seeded by `seed`.
     pub fn new(config: SamplerConfig, seed: u64) -> Self {
+        let mut sampler = Self::empty(config);
+        sampler.reseed(seed);
+        sampler
+    }
+
+    /// A sampler without a random stream yet (usable in a `const` context, so that a tracker can live in
+    /// a `static`); [`MetropolisSampler::reseed`] gives it one.
+    pub const fn empty(config: SamplerConfig) -> Self {
+        let mut zobrist = [[0u64; N]; Z];
+        let mut zobrist_clutter = [0u64; Z];
+        let mut row = 0;
+        while row < Z {
+            let mut column = 0;
+            while column < N {
+                zobrist[row][column] = cell_hash(row, column as u16);
+                column += 1;
+            }
+            zobrist_clutter[row] = cell_hash(row, CLUTTER);
+            row += 1;
+        }
         Self {
             config,
-            rng: Xoshiro256PlusPlus::seed_from_u64(seed),
-            best: BestChildren::default(),
+            rng: None,
+            best: BestChildren::new(),
             chain: Chain {
                 assignment: [CLUTTER; Z],
                 owner: [NONE; N],
-                score: T::zero(),
+                score: T::ZERO,
                 hash: 0,
                 unassigned_required: 0,
             },
             row_columns: [[0; N]; Z],
             row_count: [0; Z],
             cumulative: [[0; N]; Z],
-            weights: [[T::zero(); N]; Z],
-            clutter_weight: [T::one(); Z],
-            inverse_row_total: [T::one(); Z],
-            penalty_factor: exp(T::of_f64(REQUIRED_PENALTY)),
-            zobrist: core::array::from_fn(|row| core::array::from_fn(|column| cell_hash(row, column as u16))),
-            zobrist_clutter: core::array::from_fn(|row| cell_hash(row, CLUTTER)),
+            weights: [[T::ZERO; N]; Z],
+            clutter_weight: [T::ONE; Z],
+            inverse_row_total: [T::ONE; Z],
+            // Set with the tables (an exp cannot run in a const context).
+            penalty_factor: T::ONE,
+            zobrist,
+            zobrist_clutter,
             steps_taken: 0,
             accepted: 0,
         }
@@ -398,7 +442,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
 
     /// Reseeds the random stream (the tracker derives one seed per scan, parent and event).
     pub fn reseed(&mut self, seed: u64) {
-        self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        self.rng = Some(Xoshiro256PlusPlus::seed_from_u64(seed));
     }
 
     /// The configuration.
@@ -440,6 +484,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// cumulative distribution (O(rows × columns) once per matrix; one exp per possible entry).
     fn build_tables(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         let (rows, columns) = (matrix.rows(), matrix.columns());
+        self.penalty_factor = exp(T::of_f64(REQUIRED_PENALTY));
         for row in 0..rows {
             let possible = &mut self.row_columns[row];
             let mut top = T::zero(); // clutter's δ
@@ -569,18 +614,24 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// Records the current state if it is feasible and good enough.
     #[inline(always)]
     fn record(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
-        let chain = &self.chain;
-        if chain.unassigned_required != 0 || !(matrix.baseline() + chain.score > self.best.threshold()) {
+        let Self { chain, best, .. } = self;
+        if chain.unassigned_required != 0 || !(matrix.baseline() + chain.score > best.threshold()) {
             return;
         }
         let rows = matrix.rows();
-        if self.best.contains(chain.hash, &chain.assignment[..rows]) {
+        let assignment = &chain.assignment[..rows];
+        if best.contains(chain.hash, assignment) {
             return;
         }
-        // Exact weight from the formula, not the running sum.
-        let exact = matrix.score(&chain.assignment[..rows]);
-        let (hash, assignment) = (chain.hash, chain.assignment);
-        self.best.insert(exact, hash, &assignment[..rows]);
+        // Exact weight from the formula, not the running sum: the baseline plus the entries, in the order
+        // of `AssociationMatrix::score` (the state is valid: no column twice, every required column taken).
+        let mut exact = matrix.baseline();
+        for (row, &column) in assignment.iter().enumerate() {
+            if column != CLUTTER {
+                exact += matrix.entry(row, usize::from(column));
+            }
+        }
+        best.insert_absent(exact, chain.hash, assignment);
     }
 
     /// One Metropolis step; returns whether the state changed.
@@ -589,7 +640,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
         let (rows, columns) = matrix.shape();
         self.steps_taken += 1;
-        let draw = self.rng.next_u64();
+        let Some(rng) = self.rng.as_mut() else { return false };
+        let draw = rng.next_u64();
         // Row from the high half of the draw (multiply-shift range), the rest picks the column.
         let row = ((((draw >> 32) * rows as u64) >> 32) as usize).min(Z - 1);
         let bits = (draw as u32) << 1;
@@ -694,7 +746,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
         // Accept with probability min(1, numerator / denominator).
         if !(numerator >= denominator) {
-            let uniform = T::of_f64((self.rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
+            let Some(rng) = self.rng.as_mut() else { return false };
+            let uniform = T::of_f64((rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
             if !(uniform * denominator < numerator) {
                 return false;
             }
@@ -746,8 +799,13 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         } else if other_takes == CLUTTER && required(old) {
             chain.unassigned_required += 1;
         }
-        let penalty = Self::penalty();
-        chain.score += delta - penalty * (T::of_f64(chain.unassigned_required as f64) - T::of_f64(before as f64));
+        if chain.unassigned_required == before {
+            // delta − penalty × 0 is delta: the same bits without two integer-to-float conversions.
+            chain.score += delta;
+        } else {
+            let penalty = Self::penalty();
+            chain.score += delta - penalty * (T::of_f64(chain.unassigned_required as f64) - T::of_f64(before as f64));
+        }
     }
 
     /// Hill climbing from the greedy start: applies improving move-or-swap moves (each row to each of its

@@ -33,18 +33,20 @@ pub struct Candidate<T, const Z: usize> {
 
 impl<T: Real, const Z: usize> Default for Candidate<T, Z> {
     fn default() -> Self {
-        Self {
-            log_weight: T::NEG_INFINITY,
-            key: T::NEG_INFINITY,
-            sequence: 0,
-            parent: 0,
-            event: Event::None,
-            assignment: [0; Z],
-        }
+        Self::EMPTY
     }
 }
 
 impl<T: Real, const Z: usize> Candidate<T, Z> {
+    const EMPTY: Self = Self {
+        log_weight: T::NEG_INFINITY,
+        key: T::NEG_INFINITY,
+        sequence: 0,
+        parent: 0,
+        event: Event::None,
+        assignment: [0; Z],
+    };
+
     /// Total order "better than": larger weight, then earlier arrival.
     fn better_than(&self, other: &Self) -> bool {
         match self.key.partial_cmp(&other.key) {
@@ -78,9 +80,9 @@ impl<T: Real, const H: usize, const Z: usize> Default for TopChildren<T, H, Z> {
 
 impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// An empty selection.
-    pub fn new() -> Self {
+    pub const fn new() -> Self {
         Self {
-            items: [Candidate::default(); H],
+            items: [Candidate::EMPTY; H],
             heap: [0; H],
             len: 0,
             offered: 0,
@@ -140,6 +142,11 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// Whether keys are weights (selection by largest weight).
     pub fn selects_by_weight(&self) -> bool {
         self.gumbel.is_none()
+    }
+
+    /// The running sum of w̃ over every child offered (and reported unoffered).
+    pub fn total(&self) -> &LogSumExp<T> {
+        &self.total
     }
 
     /// ln Σ w̃ over every child offered.

@@ -137,7 +137,20 @@ impl<T: Real> Sensor<T> {
         if !(self.clutter_rate.is_finite_value() && self.clutter_rate > T::zero()) {
             return Err("sensor: clutter rate must be finite and > 0");
         }
-        self.field_of_view.validate(measurement_dimension)
+        self.field_of_view.validate(measurement_dimension)?;
+        // The region's volume and the clutter intensity must be representable: a region whose area
+        // overflows or underflows the scalar type would make λ_C infinite or zero.
+        let volume = self.field_of_view.volume();
+        let intensity = self.clutter_intensity();
+        if !(volume.is_finite_value() && volume > T::zero()) {
+            return Err("field of view: its volume is not a finite positive number in this scalar type");
+        }
+        if !(intensity.is_finite_value() && intensity > T::zero() && crate::real::ln(intensity).is_finite_value()) {
+            return Err(
+                "sensor: clutter intensity (clutter rate / field-of-view volume) is not finite and > 0 in this scalar type",
+            );
+        }
+        Ok(())
     }
 
     /// Clutter intensity λ_C = Λ_C / V per unit measurement volume.

@@ -34,8 +34,12 @@ pub struct Track<T: Real, const S: usize> {
 
 impl<T: Real, const S: usize> Default for Track<T, S> {
     fn default() -> Self {
-        Self { label: TrackLabel(0), state: Gaussian::default(), existence: T::zero() }
+        Self::EMPTY
     }
+}
+
+impl<T: Real, const S: usize> Track<T, S> {
+    const EMPTY: Self = Self { label: TrackLabel(0), state: Gaussian::ZERO, existence: T::ZERO };
 }
 
 /// A fixed-capacity array of tracks; slots `0..len` are live.
@@ -47,11 +51,16 @@ pub struct TrackStore<T: Real, const S: usize, const K: usize> {
 
 impl<T: Real, const S: usize, const K: usize> Default for TrackStore<T, S, K> {
     fn default() -> Self {
-        Self { tracks: [Track::default(); K], len: 0 }
+        Self::new()
     }
 }
 
 impl<T: Real, const S: usize, const K: usize> TrackStore<T, S, K> {
+    /// An empty store (usable in a `const` context).
+    pub const fn new() -> Self {
+        Self { tracks: [Track::EMPTY; K], len: 0 }
+    }
+
     /// The live tracks.
     pub fn as_slice(&self) -> &[Track<T, S>] {
         &self.tracks[..self.len()]

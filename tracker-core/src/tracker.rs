@@ -124,14 +124,15 @@ impl<
     const Z: usize,
     const K: usize,
     const B: usize,
-> Default for Workspace<T, S, D, H, N, Z, K, B>
+> Workspace<T, S, D, H, N, Z, K, B>
 {
-    fn default() -> Self {
+    /// Empty scratch space (usable in a `const` context).
+    const fn new() -> Self {
         Self {
-            predicted: [Predicted::default(); K],
+            predicted: [Predicted { state: Gaussian::ZERO, innovation: Innovation::EMPTY, in_field_of_view: false }; K],
             entries: [[T::NEG_INFINITY; Z]; K],
             birth_entries: [[T::NEG_INFINITY; Z]; B],
-            matrix: AssociationMatrix::default(),
+            matrix: AssociationMatrix::new(0, 0, T::ZERO),
             saved_column: [T::NEG_INFINITY; Z],
             top: TopChildren::new(),
             order: [0; H],
@@ -216,6 +217,8 @@ pub struct Tracker<
     time: f64,
     scans: u64,
     next_label: u32,
+    /// Whether a prior has been loaded ([`Tracker::reset`]).
+    initialised: bool,
     work: Workspace<T, S, D, H, N, Z, K, B>,
     /// The sampler's state (used when children are sampled).
     sampler: ClusteredChildren<T, N, Z, H>,
@@ -313,6 +316,9 @@ where
     /// Builds a tracker from a configuration, a prior (one or more weighted hypotheses) and the prior's
     /// time in seconds.
     ///
+    /// The tracker is returned by value, which can take a few times its size of stack; on a small target
+    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead.
+    ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry.
     pub fn new(
@@ -320,36 +326,69 @@ where
         prior: &[PriorHypothesis<'_, T, S>],
         time: f64,
     ) -> Result<Self, ConfigError> {
+        let mut tracker = Self::empty(config);
+        tracker.reset(prior, time)?;
+        Ok(tracker)
+    }
+
+    /// A tracker holding `config` but no prior yet, built in a `const` context so that it can be the
+    /// initial value of a `static` (no stack is used for its storage):
+    ///
+    /// ```ignore
+    /// static TRACKER: Mutex<RefCell<SsaTracker<f32>>> = Mutex::new(RefCell::new(SsaTracker::empty(CONFIG)));
+    /// ```
+    ///
+    /// The configuration is checked, and the prior loaded, by [`Tracker::reset`]; until then `step` fails
+    /// with [`StepError::NotInitialised`].
+    pub const fn empty(config: Config<T, M, G, S, B>) -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_CHECK;
-        let (birth_innovations, birth_in_field_of_view) = Self::validate(&config)?;
-        let config_children = config.children;
+        let sampler = match config.children {
+            ChildGeneration::Sampled(sampler) => sampler,
+            ChildGeneration::Exhaustive { .. } => SamplerConfig::DEFAULT,
+        };
+        Self {
+            config,
+            weights: WeightModel::EMPTY,
+            birth_innovations: [Innovation::EMPTY; B],
+            birth_in_field_of_view: [false; B],
+            stores: [TrackStore::new(), TrackStore::new()],
+            hypotheses: [HypothesisSet::new(), HypothesisSet::new()],
+            active: false,
+            time: 0.0,
+            scans: 0,
+            next_label: 0,
+            initialised: false,
+            work: Workspace::new(),
+            sampler: ClusteredChildren::empty(sampler),
+            last_sampler_steps: 0,
+        }
+    }
+
+    /// Checks the configuration and loads `prior` at `time` (seconds), in place: the tracker restarts
+    /// from this prior with no scan processed.
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the first invalid parameter or prior entry; the tracker is then unchanged.
+    pub fn reset(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<(), ConfigError> {
+        let (birth_innovations, birth_in_field_of_view) = Self::validate(&self.config)?;
         if !time.is_finite() {
             return Err(ConfigError::PriorTime);
         }
-        let mut tracker = Self {
-            weights: WeightModel::from_config(&config),
-            config,
-            birth_innovations,
-            birth_in_field_of_view,
-            stores: [TrackStore::default(), TrackStore::default()],
-            hypotheses: [HypothesisSet::default(), HypothesisSet::default()],
-            active: false,
-            time,
-            scans: 0,
-            next_label: 0,
-            work: Workspace::default(),
-            sampler: ClusteredChildren::new(
-                match config_children {
-                    ChildGeneration::Sampled(sampler) => sampler,
-                    ChildGeneration::Exhaustive { .. } => SamplerConfig::default(),
-                },
-                0,
-            ),
-            last_sampler_steps: 0,
-        };
-        tracker.load_prior(prior)?;
-        Ok(tracker)
+        // Into the inactive buffers; swapped in only on success.
+        let next_label = self.load_prior(prior)?;
+        self.active = !self.active;
+        self.weights = WeightModel::from_config(&self.config);
+        self.birth_innovations = birth_innovations;
+        self.birth_in_field_of_view = birth_in_field_of_view;
+        self.time = time;
+        self.scans = 0;
+        self.next_label = next_label;
+        self.initialised = true;
+        if let ChildGeneration::Sampled(sampler) = self.config.children {
+            self.sampler = ClusteredChildren::empty(sampler);
+        }
+        Ok(())
     }
 
     /// Builds a tracker whose prior is one hypothesis (weight 1) holding `objects`, labelled 0, 1, ...
@@ -421,7 +460,8 @@ where
         Ok((innovations, in_view))
     }
 
-    fn load_prior(&mut self, prior: &[PriorHypothesis<'_, T, S>]) -> Result<(), ConfigError> {
+    /// Checks `prior` and writes it into the inactive buffers; returns the next free label.
+    fn load_prior(&mut self, prior: &[PriorHypothesis<'_, T, S>]) -> Result<u32, ConfigError> {
         if prior.is_empty() {
             return Err(ConfigError::PriorEmpty);
         }
@@ -438,8 +478,11 @@ where
         if !(total > T::zero() && total.is_finite_value()) {
             return Err(ConfigError::PriorWeight { hypothesis: 0 });
         }
-        let store = &mut self.stores[0];
-        let set = &mut self.hypotheses[0];
+        let inactive = usize::from(!self.active);
+        let store = self.stores.at_mut(inactive);
+        store.clear();
+        let set = self.hypotheses.at_mut(inactive);
+        set.clear();
         let mut next_label: u32 = 0;
         for (index, hypothesis) in prior.iter().enumerate() {
             if hypothesis.objects.len() > N {
@@ -474,9 +517,8 @@ where
             // The prior has at most H hypotheses, so this push cannot fail.
             let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), slots));
         }
-        self.next_label = next_label;
         finish_hypotheses(set, store);
-        Ok(())
+        Ok(next_label)
     }
 
     /// Processes one scan taken at `time` (seconds, after the previous scan) with `measurements`.
@@ -484,6 +526,9 @@ where
     /// # Errors
     /// [`StepError`]; the tracker is then exactly as it was before the call.
     pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
+        if !self.initialised {
+            return Err(StepError::NotInitialised);
+        }
         self.check_scan(time, measurements)?;
         let dt = T::of_f64(time - self.time);
         self.predict_and_score(dt, measurements)?;
@@ -502,7 +547,8 @@ where
             hypotheses: self.hypotheses[self.live()].len(),
             tracks: self.stores[self.live()].len(),
             children: top.offered(),
-            captured_mass: exp(outcome.log_kept - top.log_total()),
+            // The kept sum is part of the total: a ratio above 1 is rounding.
+            captured_mass: exp(outcome.kept_total.log_ratio(top.total())).min(T::one()),
             merged_children: outcome.merged,
             children_dropped_for_store: outcome.dropped_for_store,
             births_beyond_object_capacity: births_skipped,
@@ -816,12 +862,11 @@ where
         for hypothesis in next_set.as_slice() {
             kept_total.add(hypothesis.log_weight);
         }
-        let log_kept = kept_total.value();
         for hypothesis in next_set.as_mut_slice() {
-            hypothesis.log_weight -= log_kept;
+            hypothesis.log_weight = kept_total.normalise(hypothesis.log_weight);
         }
         finish_hypotheses(next_set, next_store);
-        Ok(Materialised { log_kept, next_label, dropped_for_store, merged })
+        Ok(Materialised { kept_total, next_label, dropped_for_store, merged })
     }
 
     /// Index of the live half of the double buffers (0 or 1).
@@ -1038,7 +1083,7 @@ impl<T: Real, const N: usize, const Z: usize, const H: usize> ChildGenerator<T, 
 
 /// What materialisation produced besides the buffers.
 struct Materialised<T> {
-    log_kept: T,
+    kept_total: LogSumExp<T>,
     next_label: u32,
     dropped_for_store: usize,
     merged: usize,

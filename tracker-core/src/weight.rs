@@ -53,6 +53,18 @@ pub struct WeightModel<T> {
 }
 
 impl<T: Real> WeightModel<T> {
+    /// A placeholder until a configuration is checked (no births, no deaths, neutral terms).
+    pub(crate) const EMPTY: Self = Self {
+        log_detect: T::ZERO,
+        log_miss: T::ZERO,
+        log_clutter: T::ZERO,
+        gate: None,
+        birth_probability: T::ZERO,
+        birth_cells: 0,
+        birth_detection: BirthDetection::AllDetected,
+        death_probability: T::ZERO,
+    };
+
     /// The weight model of a configuration.
     pub fn from_config<M, G, const S: usize, const B: usize>(config: &Config<T, M, G, S, B>) -> Self {
         Self::new(
