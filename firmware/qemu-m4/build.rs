@@ -92,18 +92,12 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
     let tracker = field(s, "tracker")?;
     let cells = array(birth, "birth.cells")?;
 
-    w(&mut o, "/// The tracker configuration.\npub fn config() -> SsaConfig<f32> {\n".into());
-    w(&mut o, "    let mut cells = heapless::Vec::new();\n".into());
     w(
         &mut o,
-        concat!(
-            "    for cell in &BIRTH_CELLS {\n",
-            "        // BIRTH_CELLS fits: checked at compile time below.\n",
-            "        let _ = cells.push(*cell);\n",
-            "    }\n"
-        )
-        .into(),
+        "/// The tracker configuration (a constant, so that the tracker can be a static).\npub const CONFIG: SsaConfig<f32> = {\n"
+            .into(),
     );
+    w(&mut o, "    let cells = heapless::Vec::from_array(BIRTH_CELLS);\n".into());
     w(&mut o, "    Config {\n".into());
     w(
         &mut o,
@@ -157,9 +151,9 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
     };
     w(&mut o, format!("        store_overflow: StoreOverflow::{overflow},\n"));
     w(&mut o, format!("        seed: {},\n", unsigned(tracker, "tracker.seed", u64::MAX)?));
-    w(&mut o, "    }\n}\n".into());
+    w(&mut o, "    }\n};\n".into());
 
-    w(&mut o, format!("static BIRTH_CELLS: [Gaussian<f32, 4>; {}] = [\n", cells.len()));
+    w(&mut o, format!("const BIRTH_CELLS: [Gaussian<f32, 4>; {}] = [\n", cells.len()));
     for (i, cell) in cells.iter().enumerate() {
         w(&mut o, format!("    {},\n", gaussian(cell, &format!("birth.cells[{i}]"))?));
     }

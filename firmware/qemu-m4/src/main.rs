@@ -132,17 +132,22 @@ fn run() -> debug::ExitStatus {
     debug::EXIT_SUCCESS
 }
 
-/// Builds the tracker straight into a static (.bss): it is far too large for a small stack. `new` returns
-/// it by value, so building it still takes stack once; not inlined, so that this stack is given back before
-/// the scans. `Err(None)` when called twice.
+/// The tracker, built at compile time by the `const fn` `SsaTracker::empty`: it lives in a static and
+/// takes no stack to build. `reset` then checks the configuration and loads the prior in place.
+static mut TRACKER: SsaTracker<f32> = SsaTracker::empty(scenario::CONFIG);
+
+/// Loads the prior into the static tracker. `Err(None)` when called twice.
 #[inline(never)]
 fn build() -> Result<&'static mut SsaTracker<f32>, Option<ConfigError>> {
-    let built = cortex_m::singleton!(
-        : Result<SsaTracker<f32>, ConfigError> =
-            SsaTracker::<f32>::new(scenario::config(), &scenario::PRIOR, scenario::PRIOR_TIME)
-    )
-    .ok_or(None)?;
-    built.as_mut().map_err(|error| Some(*error))
+    static TAKEN: core::sync::atomic::AtomicBool = core::sync::atomic::AtomicBool::new(false);
+    if TAKEN.swap(true, core::sync::atomic::Ordering::AcqRel) {
+        return Err(None);
+    }
+    // SAFETY: `TAKEN` hands out this one `&mut` exactly once, and the firmware is single-threaded with no
+    // interrupt touching the tracker.
+    let tracker = unsafe { &mut *core::ptr::addr_of_mut!(TRACKER) };
+    tracker.reset(&scenario::PRIOR, scenario::PRIOR_TIME).map_err(Some)?;
+    Ok(tracker)
 }
 
 /// The table of per-scan records, in a static. Not inlined, so that its initial value is built on a stack frame

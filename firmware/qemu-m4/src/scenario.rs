@@ -1,7 +1,7 @@
 //! The recorded scenario, embedded at build time: `build.rs` turns the host-sim scenario file named by
 //! `RFISST_SCENARIO` into `$OUT_DIR/scenario.rs`, included here.
 //!
-//! The generated file defines `NAME`, `SCANS_IN_FILE`, `config()` (an `SsaConfig<f32>`), `PRIOR_TIME`,
+//! The generated file defines `NAME`, `SCANS_IN_FILE`, `CONFIG` (an `SsaConfig<f32>` constant), `PRIOR_TIME`,
 //! `PRIOR` and `SCANS`. Every value in it is written as `f32::from_bits` / `f64::from_bits` of the value the
 //! host computes, so the host and the target start from the same bits. Matrices are written row by row,
 //! as in the scenario file.
