@@ -267,7 +267,8 @@ pub fn run(
             let born: HashMap<u64, bool> =
                 scenario.truth.iter().flat_map(|t| t.objects.iter().map(|o| (o.id, !o.in_prior))).collect();
             for ((id, covered), (_, position)) in s.truth_covered.iter().zip(&truth) {
-                let confirmed_track = !born.get(id).copied().unwrap_or(false) || confirmed.get(id).copied().flatten().is_some_and(|c| c <= k);
+                let confirmed_track = !born.get(id).copied().unwrap_or(false)
+                    || confirmed.get(id).copied().flatten().is_some_and(|c| c <= k);
                 if confirmed_track && !covered && fov.contains(&nalgebra::SVector::<f64, 2>::from(*position)) {
                     in_view_misses += 1;
                 }

@@ -28,6 +28,7 @@ use serde_json::{Value, json};
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
+use tracker_core::TwoBody;
 use tracker_core::association::{AssociationMatrix, CLUTTER, association_count};
 use tracker_core::children::{ChildGenerator, ChildSink, ExhaustiveChildren};
 use tracker_core::cluster::ClusteredChildren;
@@ -35,7 +36,6 @@ use tracker_core::ekf::{self, Gaussian};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::selection::TopChildren;
 use tracker_core::weight::{Event, WeightModel};
-use tracker_core::TwoBody;
 
 /// The experiments, in the order `all` runs them.
 pub const EXPERIMENTS: [&str; 4] = ["fifty", "fifteen", "scaling", "debris"];
@@ -64,11 +64,16 @@ pub fn run(name: &str, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<
             let seeds: Vec<u64> = (seed..seed + runs).collect();
             // Trackers hold up to several MiB inline: large stacks.
             let pool = rayon::ThreadPoolBuilder::new().stack_size(512 << 20).build().map_err(err)?;
-            let results: Vec<Result<Value, String>> =
-                pool.install(|| seeds.par_iter().map(|&s| run_one(experiment, &dir.join(format!("seed-{s}")), s, true)).collect());
+            let results: Vec<Result<Value, String>> = pool.install(|| {
+                seeds.par_iter().map(|&s| run_one(experiment, &dir.join(format!("seed-{s}")), s, true)).collect()
+            });
             let figures: Vec<Value> = results.into_iter().collect::<Result<_, _>>()?;
             let spread = aggregate(&figures);
-            write_json(&dir.join("runs.json"), &json!({"experiment": experiment, "seeds": seeds, "runs": figures, "aggregate": spread})).map_err(err)?;
+            write_json(
+                &dir.join("runs.json"),
+                &json!({"experiment": experiment, "seeds": seeds, "runs": figures, "aggregate": spread}),
+            )
+            .map_err(err)?;
             eprintln!("{experiment}: {} runs, aggregate {}", runs, serde_json::to_string(&spread).unwrap_or_default());
         }
     }
@@ -123,7 +128,9 @@ fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
 /// Whether `a`'s MAP hypothesis is also `b`'s (by the exact bits of its tracks' states), allowing for
 /// ties in `b`.
 fn map_agrees(a: &Snapshot, b: &Snapshot) -> bool {
-    let (Some(_), Some(best)) = (a.hypotheses.first(), b.hypotheses.first()) else { return a.hypotheses.is_empty() && b.hypotheses.is_empty() };
+    let (Some(_), Some(best)) = (a.hypotheses.first(), b.hypotheses.first()) else {
+        return a.hypotheses.is_empty() && b.hypotheses.is_empty();
+    };
     let key = a.hypothesis_key(0);
     (0..b.hypotheses.len()).any(|i| b.hypotheses[i].weight >= best.weight * (1.0 - 1e-9) && b.hypothesis_key(i) == key)
 }
@@ -149,7 +156,10 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     let mut homht = build(TrackerKind::Homht, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
     let mut homht_rejected = 0usize;
     // The reference runs while a scan needs at most 2·10⁷ children and its hypotheses fit 1 GiB.
-    let mut reference: Option<Box<dyn Runner>> = Some(build(TrackerKind::Reference, profile, &scenario, ReferenceBudget { bytes: 1 << 30, children: 20_000_000 }).map_err(err)?);
+    let mut reference: Option<Box<dyn Runner>> = Some(
+        build(TrackerKind::Reference, profile, &scenario, ReferenceBudget { bytes: 1 << 30, children: 20_000_000 })
+            .map_err(err)?,
+    );
     let mut reference_scans = 0usize;
     let mut reference_budget_reached = false;
     let bar = evaluate::progress(scenario.scans.len(), quiet, "fifteen");
@@ -248,7 +258,8 @@ impl ChildSink<f64> for Watch<'_> {
 /// One scaling problem: `objects` objects spaced 3σ apart on a line, the first `measurements` detected
 /// at their truth with noise, every entry possible (no gate), so A_N(m) is the number of children.
 fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (AssociationMatrix<f64, 64, 64>, Vec<u16>) {
-    let mut random = crate::rng::Random::stream(seed, crate::rng::Stream::Scenario, (objects * 100 + measurements) as u64);
+    let mut random =
+        crate::rng::Random::stream(seed, crate::rng::Stream::Scenario, (objects * 100 + measurements) as u64);
     let sigma = 1.0;
     let (pd, clutter) = (0.95f64, 1e-3f64);
     let mut matrix = AssociationMatrix::new(measurements, objects, 0.0);
@@ -260,7 +271,9 @@ fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (Associatio
             .iter()
             .map(|zj| {
                 let s = 2.0 * sigma * sigma;
-                (pd / (1.0 - pd) / clutter).ln() - 0.5 * (zj - x).powi(2) / s - 0.5 * (2.0 * std::f64::consts::PI * s).ln()
+                (pd / (1.0 - pd) / clutter).ln()
+                    - 0.5 * (zj - x).powi(2) / s
+                    - 0.5 * (2.0 * std::f64::consts::PI * s).ln()
             })
             .collect();
         matrix.set_column(o, &entries, false);
@@ -293,7 +306,8 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         let mut found_truth = true;
         for r in 0..repeats {
             let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(SamplerConfig::default(), seed ^ r);
-            let mut watch = Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
+            let mut watch =
+                Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
             let start = Instant::now();
             generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
             rfisst_times.push(start.elapsed().as_secs_f64());
@@ -307,7 +321,8 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         let mut pure_times = vec![];
         for r in 0..repeats {
             let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(pure_config, seed ^ r);
-            let mut watch = Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
+            let mut watch =
+                Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
             let start = Instant::now();
             generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
             pure_times.push(start.elapsed().as_secs_f64());
@@ -328,14 +343,25 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
             exhaustive_broken = true;
             None
         } else {
-            let mut watch = Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
+            let mut watch =
+                Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
             let start = Instant::now();
             ExhaustiveChildren::new(u64::MAX).generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
             let seconds = start.elapsed().as_secs_f64();
             last_rate = seconds / children as f64;
             Some(seconds)
         };
-        rows.push((children, objects, measurements, exhaustive_seconds, rfisst_seconds, found_truth, paper_seconds, paper_found, pure_seconds));
+        rows.push((
+            children,
+            objects,
+            measurements,
+            exhaustive_seconds,
+            rfisst_seconds,
+            found_truth,
+            paper_seconds,
+            paper_found,
+            pure_seconds,
+        ));
     }
     // CSV, JSON and the log-log plot.
     let mut csv = String::from(
@@ -343,7 +369,9 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
     );
     for (children, objects, measurements, exhaustive, rfisst, found, paper, paper_found, pure) in &rows {
         let exhaustive = exhaustive.map_or("broken".to_string(), |e| e.to_string());
-        csv.push_str(&format!("{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"));
+        csv.push_str(&format!(
+            "{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"
+        ));
     }
     std::fs::write(dir.join("scaling.csv"), csv).map_err(err)?;
     // Crossover: the smallest size from which R-FISST is faster at every larger size measured.
@@ -365,7 +393,8 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
     }
     // Speed-up at 10⁸ children: log-interpolated between the measured sizes around it.
     let ratio_at = |target: f64| -> Option<f64> {
-        let points: Vec<(f64, f64)> = rows.iter().filter_map(|r| r.3.map(|e| ((r.0 as f64).log10(), (e / r.4).log10()))).collect();
+        let points: Vec<(f64, f64)> =
+            rows.iter().filter_map(|r| r.3.map(|e| ((r.0 as f64).log10(), (e / r.4).log10()))).collect();
         let t = target.log10();
         points.windows(2).find(|w| w[0].0 <= t && t <= w[1].0).map(|w| {
             let f = if w[1].0 > w[0].0 { (t - w[0].0) / (w[1].0 - w[0].0) } else { 0.0 };
@@ -393,12 +422,36 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
     });
     write_json(&dir.join("scaling.json"), &figures).map_err(err)?;
     let series = [
-        Series { name: "exhaustive (HOMHT)".into(), points: rows.iter().filter_map(|r| r.3.map(|e| (r.0 as f64, e))).collect(), markers: true },
-        Series { name: "R-FISST (default sampler)".into(), points: rows.iter().map(|r| (r.0 as f64, r.4)).collect(), markers: true },
-        Series { name: "R-FISST, pure sampling (no clusters)".into(), points: rows.iter().map(|r| (r.0 as f64, r.8)).collect(), markers: true },
-        Series { name: "R-FISST, 100,000 steps (paper 003)".into(), points: rows.iter().map(|r| (r.0 as f64, r.6)).collect(), markers: true },
+        Series {
+            name: "exhaustive (HOMHT)".into(),
+            points: rows.iter().filter_map(|r| r.3.map(|e| (r.0 as f64, e))).collect(),
+            markers: true,
+        },
+        Series {
+            name: "R-FISST (default sampler)".into(),
+            points: rows.iter().map(|r| (r.0 as f64, r.4)).collect(),
+            markers: true,
+        },
+        Series {
+            name: "R-FISST, pure sampling (no clusters)".into(),
+            points: rows.iter().map(|r| (r.0 as f64, r.8)).collect(),
+            markers: true,
+        },
+        Series {
+            name: "R-FISST, 100,000 steps (paper 003)".into(),
+            points: rows.iter().map(|r| (r.0 as f64, r.6)).collect(),
+            markers: true,
+        },
     ];
-    plots::plot_series(&dir.join("scaling"), "Children generation time per parent", "possible children A_N(m)", "seconds", Scale::Log10, Scale::Log10, &series)?;
+    plots::plot_series(
+        &dir.join("scaling"),
+        "Children generation time per parent",
+        "possible children A_N(m)",
+        "seconds",
+        Scale::Log10,
+        Scale::Log10,
+        &series,
+    )?;
     let mut brief = figures.clone();
     if let Some(o) = brief.as_object_mut() {
         o.remove("sizes");
@@ -428,7 +481,17 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     for (k, scan) in scenario.scans.iter().enumerate() {
         let zs = setup::measurements(scan);
         let parent = rfisst.snapshot();
-        checks.push(association_check(&parent, &zs, &truth.scans[k].origins, scan.time - previous_time, &motion, &measurement, &weights, &fov, seed ^ k as u64)?);
+        checks.push(association_check(
+            &parent,
+            &zs,
+            &truth.scans[k].origins,
+            scan.time - previous_time,
+            &motion,
+            &measurement,
+            &weights,
+            &fov,
+            seed ^ k as u64,
+        )?);
         let start = Instant::now();
         let outcome = rfisst.step(scan.time, &zs);
         rfisst_ms.push(start.elapsed().as_secs_f64() * 1e3);
@@ -463,7 +526,8 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let true_count: Vec<f64> = (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
+    let true_count: Vec<f64> =
+        (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
     let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
     let gospa = |series: &[(Option<f64>, f64)]| mean(&series.iter().filter_map(|s| s.0).collect::<Vec<_>>());
     let min_children = checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(f64::INFINITY, f64::min);
@@ -481,14 +545,20 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
         "true_final_cardinality": true_count.last().copied().unwrap_or(0.0),
     });
     let mut full = figures.clone();
-    full["per_scan"] = json!((0..scenario.scans.len()).map(|k| json!({
-        "scan": k,
-        "rfisst_gospa": rfisst_series[k].0, "rfisst_expected_cardinality": rfisst_series[k].1,
-        "homht_gospa": homht_series[k].0, "homht_expected_cardinality": homht_series[k].1,
-        "true_cardinality": true_count[k], "check": checks[k],
-    })).collect::<Vec<_>>());
+    full["per_scan"] = json!(
+        (0..scenario.scans.len())
+            .map(|k| json!({
+                "scan": k,
+                "rfisst_gospa": rfisst_series[k].0, "rfisst_expected_cardinality": rfisst_series[k].1,
+                "homht_gospa": homht_series[k].0, "homht_expected_cardinality": homht_series[k].1,
+                "true_cardinality": true_count[k], "check": checks[k],
+            }))
+            .collect::<Vec<_>>()
+    );
     write_json(&dir.join("debris.json"), &full).map_err(err)?;
-    let over_time = |f: &dyn Fn(usize) -> Option<f64>| (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>();
+    let over_time = |f: &dyn Fn(usize) -> Option<f64>| {
+        (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>()
+    };
     plots::plot_series(
         &dir.join("debris_gospa"),
         "Debris crossing: GOSPA of the MAP estimates",
@@ -510,7 +580,11 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
         Scale::Linear,
         &[
             Series { name: "R-FISST".into(), points: over_time(&|k| Some(rfisst_series[k].1)), markers: true },
-            Series { name: "HOMHT, same time budget".into(), points: over_time(&|k| Some(homht_series[k].1)), markers: true },
+            Series {
+                name: "HOMHT, same time budget".into(),
+                points: over_time(&|k| Some(homht_series[k].1)),
+                markers: true,
+            },
             Series { name: "truth".into(), points: over_time(&|k| Some(true_count[k])), markers: false },
         ],
     )?;
@@ -559,9 +633,15 @@ fn association_check(
         }
     }
     let in_view = matrix.columns();
-    matrix.set_baseline(weights.baseline(map.log_weight, weights.event_log_probability(Event::None, in_view), in_view, zs.len()));
+    matrix.set_baseline(weights.baseline(
+        map.log_weight,
+        weights.event_log_probability(Event::None, in_view),
+        in_view,
+        zs.len(),
+    ));
     // Prior labels are the truth ids; a measurement whose object is not a column of this parent is clutter.
-    let truth: Vec<u16> = origins.iter().map(|o| o.and_then(|id| column_label.get(&(id as u32)).copied()).unwrap_or(CLUTTER)).collect();
+    let truth: Vec<u16> =
+        origins.iter().map(|o| o.and_then(|id| column_label.get(&(id as u32)).copied()).unwrap_or(CLUTTER)).collect();
     let truth_score = matrix.score(&truth);
     struct Best<'a> {
         truth: &'a [u16],
@@ -577,7 +657,8 @@ fn association_check(
     // The default budget, and paper 003's 100,000 steps.
     let mut outcomes = vec![];
     for steps in [SamplerConfig::default().steps, 100_000] {
-        let mut generator = ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..SamplerConfig::default() }, seed);
+        let mut generator =
+            ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..SamplerConfig::default() }, seed);
         let mut best = Best { truth: &truth, found: false, best: f64::NEG_INFINITY };
         generator.generate(&matrix, &mut best).map_err(|e| format!("{e:?}"))?;
         outcomes.push(best);

@@ -232,7 +232,8 @@ fn execute(cli: Cli) -> Result<(), Failure> {
 /// Writes a JSON report to `out` and prints it.
 fn write_report(out: &std::path::Path, report: &serde_json::Value) -> Result<(), Failure> {
     let text = serde_json::to_string_pretty(report).unwrap_or_default();
-    std::fs::write(out, format!("{text}\n")).map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
+    std::fs::write(out, format!("{text}\n"))
+        .map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
     println!("{text}");
     Ok(())
 }

@@ -280,24 +280,25 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                 let mut assignment = vec![CLUTTER; rows];
                 let mut used = vec![false; matrix.len()];
                 let limit = self.max_children;
-                let complete = enumerate(&matrix, 0, baseline, &mut assignment, &mut used, &mut |log_weight, assignment| {
-                    if count >= limit {
-                        return false;
-                    }
-                    total.add(log_weight);
-                    count += 1;
-                    children.push(Child {
-                        log_weight,
-                        parent: parent_index as u32,
-                        event,
-                        assignment: assignment.to_vec(),
+                let complete =
+                    enumerate(&matrix, 0, baseline, &mut assignment, &mut used, &mut |log_weight, assignment| {
+                        if count >= limit {
+                            return false;
+                        }
+                        total.add(log_weight);
+                        count += 1;
+                        children.push(Child {
+                            log_weight,
+                            parent: parent_index as u32,
+                            event,
+                            assignment: assignment.to_vec(),
+                        });
+                        if children.len() >= 2 * max_children {
+                            keep_best(&mut children, max_children);
+                            budget_reached = true;
+                        }
+                        true
                     });
-                    if children.len() >= 2 * max_children {
-                        keep_best(&mut children, max_children);
-                        budget_reached = true;
-                    }
-                    true
-                });
                 if !complete {
                     return Err(StepError::ChildBudgetExceeded { budget: limit });
                 }

@@ -9,7 +9,10 @@ use host_sim::digest::{gaussian, region, tracker};
 use host_sim::scenario::Scenario;
 use host_sim::{setup, sim};
 use nalgebra::SVector;
-use tracker_core::{BirthModel, Config, ConstantVelocity, LinearTracker, PositionMeasurement, PriorHypothesis, PriorObject, Real, Sensor};
+use tracker_core::{
+    BirthModel, Config, ConstantVelocity, LinearTracker, PositionMeasurement, PriorHypothesis, PriorObject, Real,
+    Sensor,
+};
 
 /// Per scan: (MAP labels, MAP positions in label order, expected cardinality).
 type Run = Vec<(Vec<u32>, Vec<[f64; 2]>, f64)>;
@@ -66,7 +69,9 @@ fn ssa_f32_tracks_like_f64_for_100_scans() {
     on_big_stack(|| {
         let scenario = sim::fifty_birth_death(1).run();
         let (same, position, cardinality) = ssa(&scenario, 100);
-        eprintln!("SSA, 100 scans: same MAP objects on {same}, MAP positions within {position:.4} km, expected cardinality within {cardinality:.2e}");
+        eprintln!(
+            "SSA, 100 scans: same MAP objects on {same}, MAP positions within {position:.4} km, expected cardinality within {cardinality:.2e}"
+        );
         assert_eq!(same, 100, "the MAP hypothesis holds the same objects on every scan");
         assert!(position < 0.5, "MAP positions within 0.5 km (one measurement sigma): {position} km");
         assert!(cardinality < 1e-2, "expected cardinality within 0.01: {cardinality}");
@@ -80,7 +85,9 @@ fn ssa_f32_tracks_like_f64_for_the_whole_run() {
         let scenario = sim::fifty_birth_death(1).run();
         let scans = scenario.scans.len();
         let (same, position, cardinality) = ssa(&scenario, scans);
-        eprintln!("SSA, {scans} scans: same MAP objects on {same}, MAP positions within {position:.4} km, expected cardinality within {cardinality:.2e}");
+        eprintln!(
+            "SSA, {scans} scans: same MAP objects on {same}, MAP positions within {position:.4} km, expected cardinality within {cardinality:.2e}"
+        );
         assert_eq!(same, scans);
         assert!(position < 2.0, "MAP positions within 2 km: {position} km");
         assert!(cardinality < 1e-2);
@@ -105,7 +112,11 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
             clutter_rate: of(f64_config.sensor.clutter_rate),
             field_of_view: region(&f64_config.sensor.field_of_view),
         },
-        birth: BirthModel { probability: of(f64_config.birth.probability), cells, detection: f64_config.birth.detection },
+        birth: BirthModel {
+            probability: of(f64_config.birth.probability),
+            cells,
+            detection: f64_config.birth.detection,
+        },
         death_probability: of(f64_config.death_probability),
         gate: f64_config.gate.map(of),
         children: f64_config.children,
@@ -115,9 +126,12 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
     };
     let prior: Vec<(T, Vec<PriorObject<T, 4>>)> = setup::prior(scenario)
         .iter()
-        .map(|(w, objects)| (of(*w), objects.iter().map(|o| PriorObject { label: o.label, state: gaussian(&o.state) }).collect()))
+        .map(|(w, objects)| {
+            (of(*w), objects.iter().map(|o| PriorObject { label: o.label, state: gaussian(&o.state) }).collect())
+        })
         .collect();
-    let hypotheses: Vec<PriorHypothesis<'_, T, 4>> = prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let hypotheses: Vec<PriorHypothesis<'_, T, 4>> =
+        prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     LinearTracker::new(config, &hypotheses, scenario.prior.time).expect("linear tracker")
 }
 
@@ -132,7 +146,9 @@ fn linear_f32_tracks_like_f64() {
         let a = replay!(single, scenario, 30, f32);
         let b = replay!(double, scenario, 30, f64);
         let (same, position, cardinality) = compare(&a, &b);
-        eprintln!("linear, 30 scans: same MAP objects on {same}, MAP positions within {position:.2e}, expected cardinality within {cardinality:.2e}");
+        eprintln!(
+            "linear, 30 scans: same MAP objects on {same}, MAP positions within {position:.2e}, expected cardinality within {cardinality:.2e}"
+        );
         assert_eq!(same, 30);
         assert!(position < 1e-3, "MAP positions within 1e-3 units: {position}");
         assert!(cardinality < 1e-4, "expected cardinality within 1e-4: {cardinality}");
