@@ -134,6 +134,8 @@ impl Scores {
         json!({
             "mean_captured_mass": self.captured.iter().sum::<f64>() / n,
             "min_captured_mass": self.captured.iter().copied().fold(1.0, f64::min),
+            // The case index of the minimum, to replay it.
+            "min_captured_case": (0..self.captured.len()).min_by(|&a, &b| self.captured[a].total_cmp(&self.captured[b])),
             "mean_weight_l1": self.l1.iter().sum::<f64>() / n,
             "top1_found_fraction": self.top1.iter().filter(|&&t| t).count() as f64 / n,
             "mean_sampler_steps_per_case": self.steps.iter().sum::<u64>() as f64 / n,

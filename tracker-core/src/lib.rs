@@ -50,6 +50,7 @@ pub mod error;
 pub mod hypothesis;
 mod index;
 pub mod model;
+pub mod optimal;
 pub mod real;
 pub mod report;
 pub mod sampler;

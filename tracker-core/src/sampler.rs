@@ -10,9 +10,14 @@
 //!   running log-score Σ δ. Required columns (p_D = 1, or a birth that must be detected) that are left
 //!   unassigned cost a penalty of [`REQUIRED_PENALTY`] nats in the chain's target, so the chain can cross
 //!   infeasible states; only feasible states are recorded.
-//! - **Start**: greedy (repeatedly the best remaining measurement-object pair that beats clutter, then
-//!   each unassigned required column takes its best free measurement), then hill climbing by improving
-//!   move-or-swap moves. Both are recorded; the chain starts from the local optimum.
+//! - **Start**: the mode of the target, found exactly by a shortest augmenting path assignment
+//!   ([`crate::optimal`], at most R (M + 1) M reduced costs for R rows and M columns), and recorded:
+//!   every chain offers its matrix's best child, whatever its mixing. Then every move-or-swap neighbour
+//!   of the mode (at most R (M + 1)) is recorded, the likeliest candidates for the next best children,
+//!   and the chain starts from the mode. Should that search fail (only a NaN entry can make it),
+//!   greedy (repeatedly the best remaining measurement-object pair that beats clutter, then each
+//!   unassigned required column takes its best free measurement) and hill climbing by improving
+//!   move-or-swap moves take its place.
 //! - **Proposals** (each O(1): one random number picks a row and a column):
 //!   - [`Proposal::Paper`]: paper 003's move. The row takes the column; a measurement that held the
 //!     column goes to clutter. Not symmetric (undoing a conflict needs two moves), which is harmless
@@ -35,6 +40,7 @@
 use crate::association::{AssociationMatrix, CLUTTER};
 use crate::children::{ChildGenerator, ChildSink, GenerateError};
 use crate::index::{At, below, copy_prefix};
+use crate::optimal::best_association;
 use crate::real::{Real, exp};
 use core::cmp::Ordering;
 use rand_core::{Rng, SeedableRng};
@@ -88,7 +94,7 @@ impl Default for SamplerConfig {
 impl SamplerConfig {
     /// The default budget and moves (also usable in a `const` context).
     pub const DEFAULT: Self =
-        Self { burn_in: 100, steps: 2_000, proposal: Proposal::Informed, clusters: true, exhaustive_limit: 2_000 };
+        Self { burn_in: 100, steps: 2_000, proposal: Proposal::Informed, clusters: true, exhaustive_limit: 1_000 };
 }
 
 /// SplitMix64: the per-(row, column) hash of the Zobrist-style association hash, and the seed mixer.
@@ -548,9 +554,26 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
     }
 
+    /// Optimal start: the association that maximises the chain's target ([`best_association`]). Returns
+    /// `false` when that search fails (a NaN entry), leaving the state to [`MetropolisSampler::start_greedy`].
+    fn start_optimal(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
+        if !best_association(matrix, Self::penalty(), &mut self.chain.assignment) {
+            return false;
+        }
+        let chain = &mut self.chain;
+        chain.owner[..matrix.columns()].fill(NONE);
+        for (row, &column) in chain.assignment[..matrix.rows()].iter().enumerate() {
+            if let Some(column) = below::<N>(column) {
+                *chain.owner.at_mut(column) = row as u16;
+            }
+        }
+        self.settle(matrix);
+        true
+    }
+
     /// Greedy start: repeatedly the best remaining (measurement, object) pair that beats clutter, then
     /// each unassigned required column takes its best free row.
-    fn start(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
+    fn start_greedy(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         let (rows, columns) = (matrix.rows(), matrix.columns());
         let chain = &mut self.chain;
         chain.assignment[..rows].fill(CLUTTER);
@@ -602,6 +625,13 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 *chain.owner.at_mut(column) = row as u16;
             }
         }
+        self.settle(matrix);
+    }
+
+    /// Sets the chain's score, required count and hash from its assignment and owners.
+    fn settle(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
+        let (rows, columns) = (matrix.rows(), matrix.columns());
+        let chain = &mut self.chain;
         let mut score = T::zero();
         for row in 0..rows {
             score += Self::entry(matrix, row, chain.assignment[row]);
@@ -856,6 +886,36 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
     }
 
+    /// Records every feasible move-or-swap neighbour of the current state (each row to each of its
+    /// possible columns or clutter), then restores the state: at most rows × (N + 1) moves. From the
+    /// mode these are the likeliest candidates for the next best children.
+    fn record_neighbours(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
+        let saved = (self.chain.score, self.chain.hash, self.chain.unassigned_required);
+        for row in 0..matrix.rows().min(Z) {
+            for k in 0..=self.possible_columns(row).len() {
+                let new = self.possible_columns(row).get(k).copied().unwrap_or(CLUTTER);
+                let old = *self.chain.assignment.at(row);
+                if new == old {
+                    continue;
+                }
+                let other = below::<N>(new).and_then(|column| below::<Z>(*self.chain.owner.at(column)));
+                if let Some(other_row) = other
+                    && old != CLUTTER
+                    && matrix.entry(other_row, usize::from(old)) == T::NEG_INFINITY
+                {
+                    continue;
+                }
+                let (takes, gives_back) = if other.is_none() { (NONE, NONE) } else { (old, new) };
+                self.apply(matrix, row, new, other, takes);
+                self.record(matrix);
+                // The reverse move restores the assignment and owners exactly; the saved values restore
+                // the running score's bits.
+                self.apply(matrix, row, old, other, gives_back);
+                (self.chain.score, self.chain.hash, self.chain.unassigned_required) = saved;
+            }
+        }
+    }
+
     /// Runs one chain on `matrix` and leaves its best distinct children in [`MetropolisSampler::best`].
     pub fn run(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         self.best.clear(matrix.rows());
@@ -867,10 +927,15 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             return;
         }
         self.build_tables(matrix);
-        self.start(matrix);
-        self.record(matrix);
-        self.climb(matrix);
-        self.record(matrix);
+        if self.start_optimal(matrix) {
+            self.record(matrix);
+            self.record_neighbours(matrix);
+        } else {
+            self.start_greedy(matrix);
+            self.record(matrix);
+            self.climb(matrix);
+            self.record(matrix);
+        }
         for _ in 0..self.config.burn_in {
             self.step(matrix);
         }
@@ -997,7 +1062,14 @@ mod tests {
                     seed,
                 );
                 sampler.build_tables(&m);
-                sampler.start(&m);
+                // Both starts, the optimal one and its greedy fallback.
+                if seed % 2 == 0 {
+                    assert!(sampler.start_optimal(&m));
+                } else {
+                    sampler.start_greedy(&m);
+                    check_chain(&sampler, &m);
+                    sampler.climb(&m);
+                }
                 check_chain(&sampler, &m);
                 for _ in 0..2_000 {
                     sampler.step(&m);
@@ -1029,7 +1101,7 @@ mod tests {
         let mut sampler =
             MetropolisSampler::<f64, 8, 6, 16>::new(SamplerConfig { proposal, ..SamplerConfig::default() }, 5);
         sampler.build_tables(&m);
-        sampler.start(&m);
+        assert!(sampler.start_optimal(&m));
         let mut counts: BTreeMap<Vec<u16>, u64> = BTreeMap::new();
         let n = 2_000_000;
         for _ in 0..n {
@@ -1041,6 +1113,34 @@ mod tests {
             let p = w.exp() / total;
             let f = counts.get(a).copied().unwrap_or(0) as f64 / n as f64;
             assert!((f - p).abs() < 0.004 + 0.03 * p, "{proposal:?} {a:?}: frequency {f} vs probability {p}");
+        }
+    }
+
+    #[test]
+    fn a_chain_without_steps_offers_the_best_child_and_its_neighbours() {
+        struct Sink(Vec<(f64, Vec<u16>)>);
+        impl ChildSink<f64> for Sink {
+            fn offer(&mut self, w: f64, a: &[u16]) {
+                self.0.push((w, a.to_vec()));
+            }
+        }
+        for seed in 0..50 {
+            let mut m = random_matrix(seed + 200, 6, 5);
+            m.set_required((seed % 5) as usize, seed % 3 == 0);
+            let mut all = Sink(Vec::new());
+            ExhaustiveChildren::new(u64::MAX).generate(&m, &mut all).unwrap();
+            let best = all.0.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
+            let config = SamplerConfig { burn_in: 0, steps: 0, clusters: false, ..SamplerConfig::default() };
+            let mut sampler = MetropolisSampler::<f64, 8, 6, 64>::new(config, seed);
+            let mut offered = Sink(Vec::new());
+            sampler.generate(&m, &mut offered).unwrap();
+            assert_eq!(sampler.steps_taken(), 0);
+            let found = offered.0.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
+            assert_eq!(found, best, "seed {seed}");
+            if best > f64::NEG_INFINITY {
+                // The mode's feasible neighbours come with it: more than one child whenever one exists.
+                assert!(offered.0.len() > 1 || all.0.len() == 1, "seed {seed}: {} children", offered.0.len());
+            }
         }
     }
 
