@@ -17,7 +17,14 @@ fn sampler(c: &mut Criterion) {
     let mut group = c.benchmark_group("sampler");
     group.throughput(Throughput::Elements(u64::from(STEPS)));
     for proposal in [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed] {
-        let config = SamplerConfig { burn_in: 0, steps: STEPS, proposal, clusters: false, exhaustive_limit: 0 };
+        let config = SamplerConfig {
+            burn_in: 0,
+            steps: STEPS,
+            proposal,
+            clusters: false,
+            exhaustive_limit: 0,
+            ..SamplerConfig::default()
+        };
         let mut chain = MetropolisSampler::<f64, 64, 32, 32>::new(config, 7);
         group.bench_function(format!("mcmc_step/32x64/{proposal:?}"), |b| {
             b.iter(|| {

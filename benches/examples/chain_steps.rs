@@ -14,7 +14,14 @@ fn main() {
     };
     let chains: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(500);
     let matrix = crossing_matrix::<64, 32>(32, 64, 8, 1);
-    let config = SamplerConfig { burn_in: 0, steps: 20_000, proposal, clusters: false, exhaustive_limit: 0 };
+    let config = SamplerConfig {
+        burn_in: 0,
+        steps: 20_000,
+        proposal,
+        clusters: false,
+        exhaustive_limit: 0,
+        ..SamplerConfig::default()
+    };
     let mut chain = MetropolisSampler::<f64, 64, 32, 32>::new(config, 7);
     for _ in 0..chains {
         chain.run(black_box(&matrix));

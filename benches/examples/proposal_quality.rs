@@ -35,7 +35,14 @@ fn main() {
                 for c in all.0.iter().take(C) {
                     best.add(c.0);
                 }
-                let config = SamplerConfig { burn_in: 0, steps, proposal, clusters: false, exhaustive_limit: 0 };
+                let config = SamplerConfig {
+                    burn_in: 0,
+                    steps,
+                    proposal,
+                    clusters: false,
+                    exhaustive_limit: 0,
+                    ..SamplerConfig::default()
+                };
                 let mut sampler = MetropolisSampler::<f64, 16, 12, C>::new(config, case);
                 let mut got = All(vec![]);
                 let start = Instant::now();

@@ -253,7 +253,7 @@ fn region(v: &Value) -> Result<String, String> {
 }
 
 /// The sampler settings, as host-sim's `setup::sampled`; fields the file leaves out keep
-/// `SamplerConfig::default()` (host-sim's `SamplerSpec` defaults are the same).
+/// `SamplerConfig::DEFAULT` (host-sim's `SamplerSpec` defaults are the same).
 fn sampler(v: Option<&Value>) -> Result<String, String> {
     let mut fields = Vec::new();
     if let Some(v) = v {
@@ -279,9 +279,13 @@ fn sampler(v: Option<&Value>) -> Result<String, String> {
         if v.get("exhaustive_limit").is_some() {
             fields.push(format!("exhaustive_limit: {}", unsigned(v, "tracker.sampler.exhaustive_limit", u64::MAX)?));
         }
+        if let Some(exact_start) = v.get("exact_start") {
+            let exact_start = exact_start.as_bool().ok_or("tracker.sampler.exact_start: expected true or false")?;
+            fields.push(format!("exact_start: {exact_start}"));
+        }
     }
-    if fields.len() < 5 {
-        fields.push("..SamplerConfig::default()".into());
+    if fields.len() < 6 {
+        fields.push("..SamplerConfig::DEFAULT".into());
     }
     Ok(format!("SamplerConfig {{ {} }}", fields.join(", ")))
 }

@@ -236,7 +236,7 @@ pub fn run(
     let mut confirmed: HashMap<u64, Option<usize>> = HashMap::new();
     let mut peak_hypotheses = 0;
     let fov = setup::region(&scenario.sensor.field_of_view);
-    let (mut in_view_misses, mut in_view_red_stars) = (0usize, 0usize);
+    let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
     let bar = progress(n, options.quiet, kind.name());
     for (k, scan) in scenario.scans.iter().enumerate() {
         let zs = setup::measurements(scan);
@@ -274,8 +274,13 @@ pub fn run(
                 }
             }
             for (t, within) in map.iter().zip(&s.within_bound) {
-                if !within && fov.contains(&nalgebra::SVector::<f64, 2>::new(t.mean[0], t.mean[1])) {
-                    in_view_red_stars += 1;
+                if !within {
+                    if fov.contains(&nalgebra::SVector::<f64, 2>::new(t.mean[0], t.mean[1])) {
+                        in_view_red_stars += 1;
+                    } else {
+                        // Out of view nothing corrects a track: counted, not a failure of the check.
+                        out_of_view_red_stars += 1;
+                    }
                 }
             }
         }
@@ -345,6 +350,7 @@ pub fn run(
         "label_switches": switches.total(),
         "in_view_misses_after_confirmation": in_view_misses,
         "in_view_red_stars": in_view_red_stars,
+        "out_of_view_red_stars": out_of_view_red_stars,
         "mean_ms_per_scan": mean(&ms),
         "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
         "peak_hypotheses": peak_hypotheses,

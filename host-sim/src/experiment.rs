@@ -38,7 +38,7 @@ use tracker_core::selection::TopChildren;
 use tracker_core::weight::{Event, WeightModel};
 
 /// The experiments, in the order `all` runs them.
-pub const EXPERIMENTS: [&str; 4] = ["fifty", "fifteen", "scaling", "debris"];
+pub const EXPERIMENTS: [&str; 5] = ["fifty", "fifteen", "scaling", "debris", "ablation"];
 
 fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
@@ -109,6 +109,7 @@ fn run_one(name: &str, dir: &Path, seed: u64, quiet: bool) -> Result<Value, Stri
         "fifteen" => fifteen(dir, seed, quiet),
         "scaling" => scaling(dir, seed),
         "debris" => debris(dir, seed, quiet),
+        "ablation" => ablation(dir, seed),
         _ => Err(format!("unknown experiment {name}")),
     }
 }
@@ -233,6 +234,34 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     let mut full = figures.clone();
     full["per_scan"] = json!(per_scan);
     write_json(&dir.join("fifteen.json"), &full).map_err(err)?;
+    let points = |v: &[f64]| v.iter().enumerate().map(|(k, &y)| (k as f64, y)).collect::<Vec<_>>();
+    plots::plot_series(
+        &dir.join("fifteen_gospa"),
+        "Fifteen objects: GOSPA of the MAP estimates",
+        "scan",
+        "GOSPA (km)",
+        Scale::Linear,
+        Scale::Linear,
+        &[
+            Series { name: "R-FISST".into(), points: points(&gospas[0]), markers: false },
+            Series {
+                name: "HOMHT (exhaustive children, same H∞)".into(), points: points(&gospas[1]), markers: false
+            },
+        ],
+    )?;
+    plots::plot_series(
+        &dir.join("fifteen_time"),
+        "Fifteen objects: time per scan",
+        "scan",
+        "ms per scan",
+        Scale::Linear,
+        Scale::Log10,
+        &[
+            Series { name: "R-FISST".into(), points: points(&times[0]), markers: false },
+            Series { name: "HOMHT".into(), points: points(&times[1]), markers: false },
+            Series { name: "unbounded reference (until its budget)".into(), points: points(&times[2]), markers: true },
+        ],
+    )?;
     Ok(figures)
 }
 
@@ -253,6 +282,124 @@ impl ChildSink<f64> for Watch<'_> {
         self.best = self.best.max(log_weight);
         self.top.offer(log_weight, assignment);
     }
+}
+
+/// What the two additions beyond paper 003 gain, each switched off: clusters (`tracker.sampler.clusters`)
+/// and the exact start (`tracker.sampler.exact_start`). Per variant: the fifty-object run (embedded), the
+/// debris crossing (host profile) with its truth-association check, and the scaling family's truth check.
+fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
+    let variants = [
+        ("default", true, true),
+        ("no_clusters", false, true),
+        ("no_exact_start", true, false),
+        ("neither", false, false),
+    ];
+    let fifty_scenario = sim::fifty_birth_death(seed).run();
+    let debris_scenario = sim::debris_crossing(seed).run();
+    let truth = debris_scenario.truth.as_ref().ok_or("debris scenario without truth")?;
+    let mut figures = serde_json::Map::new();
+    for (name, clusters, exact_start) in variants {
+        let config = SamplerConfig { clusters, exact_start, ..SamplerConfig::default() };
+        let with = |scenario: &crate::scenario::Scenario| {
+            let mut scenario = scenario.clone();
+            scenario.tracker.sampler.clusters = clusters;
+            scenario.tracker.sampler.exact_start = exact_start;
+            scenario
+        };
+        // Fifty objects: the run's summary.
+        let sub = dir.join(name).join("fifty");
+        std::fs::create_dir_all(&sub).map_err(|e| format!("{}: {e}", sub.display()))?;
+        let (summary, _) =
+            evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub).map_err(err)?;
+        let pick = |keys: &[&str]| -> Value {
+            Value::Object(
+                keys.iter().map(|&k| (k.to_string(), summary.get(k).cloned().unwrap_or(Value::Null))).collect(),
+            )
+        };
+        let fifty = pick(&[
+            "mean_gospa",
+            "final_expected_cardinality",
+            "births_confirmed",
+            "in_view_red_stars",
+            "in_view_misses_after_confirmation",
+            "mean_captured_mass",
+            "min_captured_mass",
+            "mean_ms_per_scan",
+            "max_ms_per_scan",
+        ]);
+        // Debris: the truth-association check on each scan's MAP parent, then the step.
+        let scenario = with(&debris_scenario);
+        let mut runner =
+            build(TrackerKind::Rfisst, Profile::Host, &scenario, ReferenceBudget::default()).map_err(err)?;
+        let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
+        let measurement = setup::measurement(&scenario.measurement);
+        let tracker_config =
+            setup::config::<TwoBody<f64>, 16>(&scenario, motion, setup::sampled(&scenario)).map_err(err)?;
+        let weights = WeightModel::from_config(&tracker_config);
+        let fov = setup::region(&scenario.sensor.field_of_view);
+        let (mut found, mut gospas, mut ms) = (0usize, vec![], vec![]);
+        let mut previous_time = scenario.prior.time;
+        for (k, scan) in scenario.scans.iter().enumerate() {
+            let zs = setup::measurements(scan);
+            let check = association_check(
+                &runner.snapshot(),
+                &zs,
+                &truth.scans[k].origins,
+                scan.time - previous_time,
+                &motion,
+                &measurement,
+                &weights,
+                &fov,
+                seed ^ k as u64,
+                config,
+            )?;
+            found += usize::from(check["truth_found_or_beaten"] == json!(true));
+            let start = Instant::now();
+            runner.step(scan.time, &zs).map_err(|e| format!("{name}: debris scan {k} rejected: {e}"))?;
+            ms.push(start.elapsed().as_secs_f64() * 1e3);
+            if let Some(g) = score(&scenario, k, &runner.snapshot()) {
+                gospas.push(g.gospa);
+            }
+            previous_time = scan.time;
+        }
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let debris = json!({
+            "truth_association_found_fraction": found as f64 / scenario.scans.len().max(1) as f64,
+            "mean_gospa": mean(&gospas),
+            "final_expected_cardinality": runner.snapshot().expected_cardinality(),
+            "mean_ms_per_scan": mean(&ms),
+            "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
+        });
+        // The scaling family: sizes whose truth association the generator found or beat.
+        let (mut sizes, mut missed) = (0usize, vec![]);
+        let mut shapes: Vec<(usize, usize)> =
+            (1..=40usize).flat_map(|n| [(n, n.saturating_sub(1).max(1)), (n, n)]).collect();
+        shapes.dedup();
+        for (objects, measurements) in shapes {
+            {
+                let children = association_count(objects as u32, measurements as u32);
+                if children == u128::MAX {
+                    break;
+                }
+                let (matrix, truth) = scaling_matrix(objects, measurements, seed);
+                let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(config, seed);
+                let mut watch =
+                    Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
+                generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
+                sizes += 1;
+                if !(watch.truth_found || watch.best >= matrix.score(&truth)) {
+                    missed.push(children as f64);
+                }
+            }
+        }
+        figures.insert(
+            name.to_string(),
+            json!({"clusters": clusters, "exact_start": exact_start, "fifty": fifty, "debris": debris, "scaling_sizes": sizes, "scaling_truth_missed_at": missed}),
+        );
+    }
+    let figures = Value::Object(figures);
+    write_json(&dir.join("ablation.json"), &figures).map_err(err)?;
+    Ok(figures)
 }
 
 /// One scaling problem: `objects` objects spaced 3σ apart on a line, the first `measurements` detected
@@ -424,7 +571,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         "rfisst_100k_found_truth_at_every_size": rows.iter().all(|r| r.7),
         "rfisst_100k_max_seconds": rows.iter().map(|r| r.6).fold(0.0, f64::max),
         "rfisst_max_seconds": rows.iter().map(|r| r.4).fold(0.0, f64::max),
-        "sampler": {"burn_in": SamplerConfig::default().burn_in, "steps": SamplerConfig::default().steps, "exhaustive_limit": SamplerConfig::default().exhaustive_limit},
+        "sampler": {"burn_in": SamplerConfig::default().burn_in, "steps": SamplerConfig::default().steps, "exhaustive_limit": SamplerConfig::default().exhaustive_limit, "exact_start": SamplerConfig::default().exact_start},
         "sizes": rows.iter().map(|r| json!({"children": r.0 as f64, "objects": r.1, "measurements": r.2, "exhaustive_seconds": r.3, "rfisst_seconds": r.4, "rfisst_found_truth": r.5, "rfisst_100k_seconds": r.6, "rfisst_100k_found_truth": r.7, "pure_sampling_seconds": r.8})).collect::<Vec<_>>(),
     });
     write_json(&dir.join("scaling.json"), &figures).map_err(err)?;
@@ -498,6 +645,7 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
             &weights,
             &fov,
             seed ^ k as u64,
+            SamplerConfig::default(),
         )?);
         let start = Instant::now();
         let outcome = rfisst.step(scan.time, &zs);
@@ -622,6 +770,7 @@ fn association_check(
     weights: &WeightModel<f64>,
     fov: &tracker_core::Region<f64>,
     seed: u64,
+    base: SamplerConfig,
 ) -> Result<Value, String> {
     let Some(map) = parent.hypotheses.first() else { return Ok(json!({"possible_children": 0.0})) };
     let mut matrix = AssociationMatrix::<f64, 128, 64>::new(zs.len(), 0, 0.0);
@@ -663,9 +812,8 @@ fn association_check(
     }
     // The default budget, and paper 003's 100,000 steps.
     let mut outcomes = vec![];
-    for steps in [SamplerConfig::default().steps, 100_000] {
-        let mut generator =
-            ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..SamplerConfig::default() }, seed);
+    for steps in [base.steps, 100_000] {
+        let mut generator = ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..base }, seed);
         let mut best = Best { truth: &truth, found: false, best: f64::NEG_INFINITY };
         generator.generate(&matrix, &mut best).map_err(|e| format!("{e:?}"))?;
         outcomes.push(best);

@@ -156,8 +156,14 @@ impl ChainBench {
         let chains = [Proposal::Informed, Proposal::Paper, Proposal::MoveOrSwap]
             .into_iter()
             .map(|proposal| {
-                let config =
-                    SamplerConfig { burn_in: 0, steps: CHAIN_STEPS, proposal, clusters: false, exhaustive_limit: 0 };
+                let config = SamplerConfig {
+                    burn_in: 0,
+                    steps: CHAIN_STEPS,
+                    proposal,
+                    clusters: false,
+                    exhaustive_limit: 0,
+                    ..SamplerConfig::default()
+                };
                 (proposal, Box::new(MetropolisSampler::new(config, 7)))
             })
             .collect();

@@ -200,7 +200,7 @@ pub fn run(cases: usize, seed: u64) -> Result<serde_json::Value, String> {
     fields.insert("max_children_per_case".into(), json!(children.iter().copied().fold(0.0, f64::max)));
     fields.insert(
         "sampler".into(),
-        json!({"burn_in": default.burn_in, "steps": default.steps, "proposal": format!("{:?}", default.proposal), "clusters": default.clusters, "exhaustive_limit": default.exhaustive_limit}),
+        json!({"burn_in": default.burn_in, "steps": default.steps, "proposal": format!("{:?}", default.proposal), "clusters": default.clusters, "exhaustive_limit": default.exhaustive_limit, "exact_start": default.exact_start}),
     );
     fields.insert("pure_sampling".into(), pure_scores.json());
     Ok(report)

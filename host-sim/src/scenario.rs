@@ -209,6 +209,8 @@ pub struct SamplerSpec {
     pub clusters: bool,
     /// Enumerate clusters with at most this many associations; sample larger ones.
     pub exhaustive_limit: u64,
+    /// Start each chain at the exact mode of its matrix (and record the mode's neighbours).
+    pub exact_start: bool,
 }
 
 impl Default for SamplerSpec {
@@ -220,6 +222,7 @@ impl Default for SamplerSpec {
             proposal: ProposalSpec::Informed,
             clusters: d.clusters,
             exhaustive_limit: d.exhaustive_limit,
+            exact_start: d.exact_start,
         }
     }
 }

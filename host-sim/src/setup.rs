@@ -122,6 +122,7 @@ pub fn sampled(scenario: &Scenario) -> ChildGeneration {
         },
         clusters: spec.clusters,
         exhaustive_limit: spec.exhaustive_limit,
+        exact_start: spec.exact_start,
     })
 }
 

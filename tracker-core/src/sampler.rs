@@ -83,6 +83,9 @@ pub struct SamplerConfig {
     /// With `clusters`, enumerate a cluster exhaustively when A_n(m) of its n columns and m rows is at most
     /// this; sample larger ones. 0 samples every cluster.
     pub exhaustive_limit: u64,
+    /// Start each chain at the exact mode of its target and record the mode's neighbours
+    /// ([`crate::optimal`]); `false` starts greedily and climbs, as without it.
+    pub exact_start: bool,
 }
 
 impl Default for SamplerConfig {
@@ -93,8 +96,14 @@ impl Default for SamplerConfig {
 
 impl SamplerConfig {
     /// The default budget and moves (also usable in a `const` context).
-    pub const DEFAULT: Self =
-        Self { burn_in: 100, steps: 2_000, proposal: Proposal::Informed, clusters: true, exhaustive_limit: 1_000 };
+    pub const DEFAULT: Self = Self {
+        burn_in: 100,
+        steps: 2_000,
+        proposal: Proposal::Informed,
+        clusters: true,
+        exhaustive_limit: 1_000,
+        exact_start: true,
+    };
 }
 
 /// SplitMix64: the per-(row, column) hash of the Zobrist-style association hash, and the seed mixer.
@@ -927,7 +936,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             return;
         }
         self.build_tables(matrix);
-        if self.start_optimal(matrix) {
+        if self.config.exact_start && self.start_optimal(matrix) {
             self.record(matrix);
             self.record_neighbours(matrix);
         } else {
@@ -1148,7 +1157,9 @@ mod tests {
     fn offered_children_are_distinct_with_exact_weights() {
         for seed in 0..30 {
             let m = random_matrix(seed + 100, 5, 6);
-            let mut sampler = MetropolisSampler::<f64, 8, 6, 16>::new(SamplerConfig::default(), seed);
+            // Both chain starts: the exact mode and the greedy start with its climb.
+            let config = SamplerConfig { exact_start: seed % 2 == 0, ..SamplerConfig::default() };
+            let mut sampler = MetropolisSampler::<f64, 8, 6, 16>::new(config, seed);
             let mut offered = Vec::new();
             struct Sink<'a>(&'a mut Vec<(f64, Vec<u16>)>);
             impl ChildSink<f64> for Sink<'_> {
