@@ -12,11 +12,11 @@ use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario, ScenarioError};
 use crate::setup;
-use crate::snapshot::Snapshot;
+use crate::snapshot::{Snapshot, match_posteriors};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use serde_json::json;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 use std::time::Instant;
@@ -116,7 +116,7 @@ fn birth_confirmations(
     scenario: &Scenario,
     k: usize,
     snapshot: &Snapshot,
-    confirmed: &mut HashMap<u64, Option<usize>>,
+    confirmed: &mut BTreeMap<u64, Option<usize>>,
 ) {
     let Some(truth) = &scenario.truth else { return };
     let threshold = scenario.evaluation.confirmation_existence;
@@ -233,7 +233,7 @@ pub fn run(
     let mut snapshots: Vec<(usize, Snapshot, Vec<bool>)> = vec![];
     let mut records = vec![];
     let mut switches = LabelSwitches::new();
-    let mut confirmed: HashMap<u64, Option<usize>> = HashMap::new();
+    let mut confirmed: BTreeMap<u64, Option<usize>> = BTreeMap::new();
     let mut peak_hypotheses = 0;
     let fov = setup::region(&scenario.sensor.field_of_view);
     let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
@@ -499,21 +499,10 @@ pub fn compare(
         }
         bar.inc(1);
         let (b, r) = (&snapshots[0], &snapshots[1]);
-        let reference_weights: HashMap<Vec<u64>, f64> =
-            (0..r.hypotheses.len()).map(|i| (r.hypothesis_key(i), r.hypotheses[i].weight)).collect();
-        let bounded_weights: HashMap<Vec<u64>, f64> =
-            (0..b.hypotheses.len()).map(|i| (b.hypothesis_key(i), b.hypotheses[i].weight)).collect();
-        let captured: f64 = bounded_weights.keys().filter_map(|key| reference_weights.get(key)).sum();
-        let mut l1: f64 =
-            bounded_weights.iter().map(|(key, w)| (w - reference_weights.get(key).copied().unwrap_or(0.0)).abs()).sum();
-        l1 += reference_weights
-            .iter()
-            .filter(|(key, _)| !bounded_weights.contains_key(*key))
-            .map(|(_, w)| w)
-            .sum::<f64>();
+        let matched = match_posteriors(r, b);
+        let (captured, l1) = (matched.captured_mass, matched.weight_l1);
         let reference_max = r.hypotheses.first().map_or(0.0, |h| h.weight);
-        let map_weight_in_reference =
-            b.hypotheses.first().and_then(|_| reference_weights.get(&b.hypothesis_key(0))).copied().unwrap_or(0.0);
+        let map_weight_in_reference = matched.exact_weight_of_map;
         let agree = reference_max > 0.0 && (map_weight_in_reference - reference_max).abs() <= 1e-9 * reference_max;
         per_scan.push(json!({
             "scan": k,

@@ -284,6 +284,112 @@ impl ChildSink<f64> for Watch<'_> {
     }
 }
 
+/// One run of `generator` on a scaling matrix: its time in seconds, and whether it offered the truth
+/// association or a child scoring at least as high.
+fn watched_run<G: ChildGenerator<f64, 64, 64>>(
+    generator: &mut G,
+    matrix: &AssociationMatrix<f64, 64, 64>,
+    truth: &[u16],
+) -> Result<(f64, bool), String> {
+    let mut watch = Watch { top: TopChildren::new(), truth, truth_found: false, best: f64::NEG_INFINITY };
+    let start = Instant::now();
+    generator.generate(matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok((seconds, watch.truth_found || watch.best >= matrix.score(truth)))
+}
+
+/// The median of `repeats` runs of a fresh generator per run (`make(r)` for run `r`), and whether every run
+/// found the truth association or beat it.
+fn median_run<G: ChildGenerator<f64, 64, 64>>(
+    repeats: u64,
+    mut make: impl FnMut(u64) -> G,
+    matrix: &AssociationMatrix<f64, 64, 64>,
+    truth: &[u16],
+) -> Result<(f64, bool), String> {
+    let mut times = vec![];
+    let mut found = true;
+    for r in 0..repeats {
+        let (seconds, found_here) = watched_run(&mut make(r), matrix, truth)?;
+        times.push(seconds);
+        found &= found_here;
+    }
+    times.sort_by(f64::total_cmp);
+    Ok((times[times.len() / 2], found))
+}
+
+/// The scaling family's shapes (objects, measurements), smallest first, while A_N(m) fits a `u128`.
+fn scaling_shapes() -> Vec<(usize, usize, u128)> {
+    let mut shapes: Vec<(usize, usize)> =
+        (1..=40usize).flat_map(|n| [(n, n.saturating_sub(1).max(1)), (n, n)]).collect();
+    shapes.dedup();
+    shapes
+        .into_iter()
+        .map(|(objects, measurements)| (objects, measurements, association_count(objects as u32, measurements as u32)))
+        .take_while(|s| s.2 != u128::MAX) // beyond u128: far past 10³³ already
+        .collect()
+}
+
+/// R-FISST through the debris crossing with the scenario's sampler settings, checking before each scan
+/// whether the same generator finds the truth association of the MAP parent (`association_check`). Per scan: the check, ms, and (GOSPA,
+/// expected cardinality) after the step.
+struct DebrisRun {
+    checks: Vec<Value>,
+    ms: Vec<f64>,
+    series: Vec<(Option<f64>, f64)>,
+}
+
+fn debris_rfisst(
+    scenario: &crate::scenario::Scenario,
+    seed: u64,
+    bar: &indicatif::ProgressBar,
+) -> Result<DebrisRun, String> {
+    let config = setup::sampler_config(scenario);
+    let truth = scenario.truth.as_ref().ok_or("debris scenario without truth")?;
+    let mut rfisst = build(TrackerKind::Rfisst, Profile::Host, scenario, ReferenceBudget::default()).map_err(err)?;
+    let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
+    let measurement = setup::measurement(&scenario.measurement);
+    let tracker_config = setup::config::<TwoBody<f64>, 16>(scenario, motion, setup::sampled(scenario)).map_err(err)?;
+    let weights = WeightModel::from_config(&tracker_config);
+    let fov = setup::region(&scenario.sensor.field_of_view);
+    let mut run = DebrisRun { checks: vec![], ms: vec![], series: vec![] };
+    let mut previous_time = scenario.prior.time;
+    for (k, scan) in scenario.scans.iter().enumerate() {
+        let zs = setup::measurements(scan);
+        run.checks.push(association_check(
+            &rfisst.snapshot(),
+            &zs,
+            &truth.scans[k].origins,
+            scan.time - previous_time,
+            &motion,
+            &measurement,
+            &weights,
+            &fov,
+            seed ^ k as u64,
+            config,
+        )?);
+        let start = Instant::now();
+        let outcome = rfisst.step(scan.time, &zs);
+        run.ms.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Err(e) = outcome {
+            return Err(format!("rfisst rejected debris scan {k}: {e}"));
+        }
+        let s = rfisst.snapshot();
+        run.series.push((score(scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
+        previous_time = scan.time;
+        bar.inc(1);
+    }
+    Ok(run)
+}
+
+/// The fraction of `checks` whose `key` is true.
+fn fraction_true(checks: &[Value], key: &str) -> f64 {
+    checks.iter().filter(|c| c[key] == json!(true)).count() as f64 / checks.len().max(1) as f64
+}
+
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 }
+}
+
 /// What the two additions beyond paper 003 gain, each switched off: clusters (`tracker.sampler.clusters`)
 /// and the exact start (`tracker.sampler.exact_start`). Per variant: the fifty-object run (embedded), the
 /// debris crossing (host profile) with its truth-association check, and the scaling family's truth check.
@@ -296,7 +402,6 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
     ];
     let fifty_scenario = sim::fifty_birth_death(seed).run();
     let debris_scenario = sim::debris_crossing(seed).run();
-    let truth = debris_scenario.truth.as_ref().ok_or("debris scenario without truth")?;
     let mut figures = serde_json::Map::new();
     for (name, clusters, exact_start) in variants {
         let config = SamplerConfig { clusters, exact_start, ..SamplerConfig::default() };
@@ -328,68 +433,23 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
             "max_ms_per_scan",
         ]);
         // Debris: the truth-association check on each scan's MAP parent, then the step.
-        let scenario = with(&debris_scenario);
-        let mut runner =
-            build(TrackerKind::Rfisst, Profile::Host, &scenario, ReferenceBudget::default()).map_err(err)?;
-        let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
-        let measurement = setup::measurement(&scenario.measurement);
-        let tracker_config =
-            setup::config::<TwoBody<f64>, 16>(&scenario, motion, setup::sampled(&scenario)).map_err(err)?;
-        let weights = WeightModel::from_config(&tracker_config);
-        let fov = setup::region(&scenario.sensor.field_of_view);
-        let (mut found, mut gospas, mut ms) = (0usize, vec![], vec![]);
-        let mut previous_time = scenario.prior.time;
-        for (k, scan) in scenario.scans.iter().enumerate() {
-            let zs = setup::measurements(scan);
-            let check = association_check(
-                &runner.snapshot(),
-                &zs,
-                &truth.scans[k].origins,
-                scan.time - previous_time,
-                &motion,
-                &measurement,
-                &weights,
-                &fov,
-                seed ^ k as u64,
-                config,
-            )?;
-            found += usize::from(check["truth_found_or_beaten"] == json!(true));
-            let start = Instant::now();
-            runner.step(scan.time, &zs).map_err(|e| format!("{name}: debris scan {k} rejected: {e}"))?;
-            ms.push(start.elapsed().as_secs_f64() * 1e3);
-            if let Some(g) = score(&scenario, k, &runner.snapshot()) {
-                gospas.push(g.gospa);
-            }
-            previous_time = scan.time;
-        }
-        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let run = debris_rfisst(&with(&debris_scenario), seed, &indicatif::ProgressBar::hidden())?;
         let debris = json!({
-            "truth_association_found_fraction": found as f64 / scenario.scans.len().max(1) as f64,
-            "mean_gospa": mean(&gospas),
-            "final_expected_cardinality": runner.snapshot().expected_cardinality(),
-            "mean_ms_per_scan": mean(&ms),
-            "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
+            "truth_association_found_fraction": fraction_true(&run.checks, "truth_found_or_beaten"),
+            "mean_gospa": mean(&run.series.iter().filter_map(|s| s.0).collect::<Vec<_>>()),
+            "final_expected_cardinality": run.series.last().map_or(0.0, |s| s.1),
+            "mean_ms_per_scan": mean(&run.ms),
+            "max_ms_per_scan": run.ms.iter().copied().fold(0.0, f64::max),
         });
         // The scaling family: sizes whose truth association the generator found or beat.
         let (mut sizes, mut missed) = (0usize, vec![]);
-        let mut shapes: Vec<(usize, usize)> =
-            (1..=40usize).flat_map(|n| [(n, n.saturating_sub(1).max(1)), (n, n)]).collect();
-        shapes.dedup();
-        for (objects, measurements) in shapes {
-            {
-                let children = association_count(objects as u32, measurements as u32);
-                if children == u128::MAX {
-                    break;
-                }
-                let (matrix, truth) = scaling_matrix(objects, measurements, seed);
-                let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(config, seed);
-                let mut watch =
-                    Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
-                generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
-                sizes += 1;
-                if !(watch.truth_found || watch.best >= matrix.score(&truth)) {
-                    missed.push(children as f64);
-                }
+        for (objects, measurements, children) in scaling_shapes() {
+            let (matrix, truth) = scaling_matrix(objects, measurements, seed);
+            let (_, found) =
+                watched_run(&mut ClusteredChildren::<f64, 64, 64, 32>::new(config, seed), &matrix, &truth)?;
+            sizes += 1;
+            if !found {
+                missed.push(children as f64);
             }
         }
         figures.insert(
@@ -432,58 +492,27 @@ fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (Associatio
 fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
     // Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
     const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
-    let mut sizes: Vec<(usize, usize)> = vec![];
-    for n in 1..=40usize {
-        sizes.push((n, n.saturating_sub(1).max(1)));
-        sizes.push((n, n));
-    }
-    sizes.dedup();
     let mut rows = vec![];
     let mut exhaustive_broken = false;
     let mut last_rate = 0.0f64; // seconds per child, to predict the next size
-    for (objects, measurements) in sizes {
-        let children = association_count(objects as u32, measurements as u32);
-        if children == u128::MAX {
-            break; // beyond u128: far past 10³³ already
-        }
+    for (objects, measurements, children) in scaling_shapes() {
         let (matrix, truth) = scaling_matrix(objects, measurements, seed);
         // R-FISST: the default sampler (clusters; small clusters enumerated), repeated for a stable median.
         let repeats = 5;
-        let mut rfisst_times = vec![];
-        let mut found_truth = true;
-        for r in 0..repeats {
-            let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(SamplerConfig::default(), seed ^ r);
-            let mut watch =
-                Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
-            let start = Instant::now();
-            generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
-            rfisst_times.push(start.elapsed().as_secs_f64());
-            let truth_score = matrix.score(&truth);
-            found_truth &= watch.truth_found || watch.best >= truth_score;
-        }
-        rfisst_times.sort_by(f64::total_cmp);
-        let rfisst_seconds = rfisst_times[repeats as usize / 2];
+        let (rfisst_seconds, found_truth) = median_run(
+            repeats,
+            |r| ClusteredChildren::<f64, 64, 64, 32>::new(SamplerConfig::default(), seed ^ r),
+            &matrix,
+            &truth,
+        )?;
         // Pure sampling (no clusters, no enumeration): one chain at the default budget.
         let pure_config = SamplerConfig { clusters: false, ..SamplerConfig::default() };
-        let mut pure_times = vec![];
-        for r in 0..repeats {
-            let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(pure_config, seed ^ r);
-            let mut watch =
-                Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
-            let start = Instant::now();
-            generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
-            pure_times.push(start.elapsed().as_secs_f64());
-        }
-        pure_times.sort_by(f64::total_cmp);
-        let pure_seconds = pure_times[repeats as usize / 2];
+        let (pure_seconds, _) =
+            median_run(repeats, |r| ClusteredChildren::<f64, 64, 64, 32>::new(pure_config, seed ^ r), &matrix, &truth)?;
         // Paper 003's budget: one chain of 100,000 steps.
         let paper_config = SamplerConfig { steps: 100_000, ..SamplerConfig::default() };
-        let mut generator = ClusteredChildren::<f64, 64, 64, 32>::new(paper_config, seed);
-        let mut watch = Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
-        let start = Instant::now();
-        generator.generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
-        let paper_seconds = start.elapsed().as_secs_f64();
-        let paper_found = watch.truth_found || watch.best >= matrix.score(&truth);
+        let (paper_seconds, paper_found) =
+            watched_run(&mut ClusteredChildren::<f64, 64, 64, 32>::new(paper_config, seed), &matrix, &truth)?;
         // Exhaustive, while its predicted time fits the budget.
         let predicted = last_rate * children as f64;
         let exhaustive_seconds = if exhaustive_broken || predicted > EXHAUSTIVE_BUDGET_SECONDS {
@@ -492,16 +521,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         } else {
             // The median of as many runs as R-FISST's while a run is short (under 10 ms), else one.
             let runs = if predicted < 0.01 { repeats } else { 1 };
-            let mut times = vec![];
-            for _ in 0..runs {
-                let mut watch =
-                    Watch { top: TopChildren::new(), truth: &truth, truth_found: false, best: f64::NEG_INFINITY };
-                let start = Instant::now();
-                ExhaustiveChildren::new(u64::MAX).generate(&matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
-                times.push(start.elapsed().as_secs_f64());
-            }
-            times.sort_by(f64::total_cmp);
-            let seconds = times[times.len() / 2];
+            let (seconds, _) = median_run(runs, |_| ExhaustiveChildren::new(u64::MAX), &matrix, &truth)?;
             last_rate = seconds / children as f64;
             Some(seconds)
         };
@@ -618,49 +638,13 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     let scenario = sim::debris_crossing(seed).run();
     scenario.save(&dir.join("scenario.json")).map_err(err)?;
     let profile = Profile::Host;
-    let truth = scenario.truth.as_ref().ok_or("debris scenario without truth")?;
 
     // R-FISST first, with the truth-association check on its MAP parent before each scan.
-    let mut rfisst = build(TrackerKind::Rfisst, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
-    let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
-    let measurement = setup::measurement(&scenario.measurement);
-    let config = setup::config::<TwoBody<f64>, 16>(&scenario, motion, setup::sampled(&scenario)).map_err(err)?;
-    let weights = WeightModel::from_config(&config);
-    let fov = setup::region(&scenario.sensor.field_of_view);
     let bar = evaluate::progress(scenario.scans.len() * 2, quiet, "debris");
-    let mut checks = vec![];
-    let mut rfisst_ms = vec![];
-    let mut rfisst_series = vec![];
-    let mut previous_time = scenario.prior.time;
-    for (k, scan) in scenario.scans.iter().enumerate() {
-        let zs = setup::measurements(scan);
-        let parent = rfisst.snapshot();
-        checks.push(association_check(
-            &parent,
-            &zs,
-            &truth.scans[k].origins,
-            scan.time - previous_time,
-            &motion,
-            &measurement,
-            &weights,
-            &fov,
-            seed ^ k as u64,
-            SamplerConfig::default(),
-        )?);
-        let start = Instant::now();
-        let outcome = rfisst.step(scan.time, &zs);
-        rfisst_ms.push(start.elapsed().as_secs_f64() * 1e3);
-        if let Err(e) = outcome {
-            return Err(format!("rfisst rejected debris scan {k}: {e}"));
-        }
-        let s = rfisst.snapshot();
-        rfisst_series.push((score(&scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
-        previous_time = scan.time;
-        bar.inc(1);
-    }
+    let DebrisRun { checks, ms: rfisst_ms, series: rfisst_series } = debris_rfisst(&scenario, seed, &bar)?;
     // HOMHT with the same time budget: as many children per scan as exhaustive enumeration produces in
     // R-FISST's mean time per scan (its measured rate on the scaling family, here measured on the first scan).
-    let mean_rfisst_ms = rfisst_ms.iter().sum::<f64>() / rfisst_ms.len().max(1) as f64;
+    let mean_rfisst_ms = mean(&rfisst_ms);
     let rate = exhaustive_children_per_second(seed);
     let budget = ((mean_rfisst_ms / 1e3) * rate).max(1.0) as u64;
     let mut homht_scenario = scenario.clone();
@@ -683,18 +667,16 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     bar.finish_and_clear();
     let true_count: Vec<f64> =
         (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
-    let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
     let gospa = |series: &[(Option<f64>, f64)]| mean(&series.iter().filter_map(|s| s.0).collect::<Vec<_>>());
     let min_children = checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(f64::INFINITY, f64::min);
-    let found = checks.iter().filter(|c| c["truth_found_or_beaten"] == json!(true)).count();
     let figures = json!({
         "experiment": "debris",
         "seed": seed,
         "scans": scenario.scans.len(),
         "min_possible_children_per_map_parent": min_children,
         "max_possible_children_per_map_parent": checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(0.0, f64::max),
-        "truth_association_found_fraction": found as f64 / checks.len().max(1) as f64,
-        "truth_association_found_fraction_100k_steps": checks.iter().filter(|c| c["truth_found_or_beaten_100k_steps"] == json!(true)).count() as f64 / checks.len().max(1) as f64,
+        "truth_association_found_fraction": fraction_true(&checks, "truth_found_or_beaten"),
+        "truth_association_found_fraction_100k_steps": fraction_true(&checks, "truth_found_or_beaten_100k_steps"),
         "rfisst": {"mean_gospa": gospa(&rfisst_series), "final_expected_cardinality": rfisst_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean_rfisst_ms, "max_ms_per_scan": rfisst_ms.iter().copied().fold(0.0, f64::max)},
         "homht": {"mean_gospa": gospa(&homht_series), "final_expected_cardinality": homht_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean(&homht_ms), "children_budget_per_scan": budget, "rejected_scans": homht_rejected},
         "true_final_cardinality": true_count.last().copied().unwrap_or(0.0),

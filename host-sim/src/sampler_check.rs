@@ -13,10 +13,9 @@
 
 use crate::reference::ReferenceTracker;
 use crate::rng::{Random, Stream};
-use crate::snapshot::Snapshot;
+use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
 use serde_json::json;
-use std::collections::HashMap;
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
@@ -154,19 +153,11 @@ fn run_sampler(case: &Case, sampler: SamplerConfig) -> Result<(Snapshot, u64), S
 }
 
 fn score(exact: &Snapshot, sampled: &Snapshot, scores: &mut Scores) {
-    let exact_weights: HashMap<Vec<u64>, f64> =
-        (0..exact.hypotheses.len()).map(|i| (exact.hypothesis_key(i), exact.hypotheses[i].weight)).collect();
-    let sampled_weights: HashMap<Vec<u64>, f64> =
-        (0..sampled.hypotheses.len()).map(|i| (sampled.hypothesis_key(i), sampled.hypotheses[i].weight)).collect();
-    let captured: f64 = sampled_weights.keys().filter_map(|k| exact_weights.get(k)).sum();
-    let mut l1: f64 =
-        sampled_weights.iter().map(|(k, w)| (w - exact_weights.get(k).copied().unwrap_or(0.0)).abs()).sum();
-    l1 += exact_weights.iter().filter(|(k, _)| !sampled_weights.contains_key(*k)).map(|(_, w)| w).sum::<f64>();
+    let matched = match_posteriors(exact, sampled);
     let map = exact.hypotheses.first().map_or(0.0, |h| h.weight);
-    let top1 = sampled_weights.keys().any(|k| exact_weights.get(k).is_some_and(|&w| w >= map * (1.0 - 1e-12)));
-    scores.captured.push(captured.min(1.0));
-    scores.l1.push(l1);
-    scores.top1.push(top1);
+    scores.captured.push(matched.captured_mass.min(1.0));
+    scores.l1.push(matched.weight_l1);
+    scores.top1.push(matched.best_exact_weight_found > 0.0 && matched.best_exact_weight_found >= map * (1.0 - 1e-12));
 }
 
 /// Runs `cases` random cases from `seed` with the default sampler and with pure sampling (no clusters),

@@ -111,8 +111,13 @@ pub fn exhaustive(scenario: &Scenario) -> ChildGeneration {
 
 /// The R-FISST child generation a scenario asks for.
 pub fn sampled(scenario: &Scenario) -> ChildGeneration {
+    ChildGeneration::Sampled(sampler_config(scenario))
+}
+
+/// The sampler settings a scenario asks for (`tracker.sampler`).
+pub fn sampler_config(scenario: &Scenario) -> tracker_core::sampler::SamplerConfig {
     let spec = scenario.tracker.sampler;
-    ChildGeneration::Sampled(tracker_core::sampler::SamplerConfig {
+    tracker_core::sampler::SamplerConfig {
         burn_in: spec.burn_in,
         steps: spec.steps,
         proposal: match spec.proposal {
@@ -123,7 +128,7 @@ pub fn sampled(scenario: &Scenario) -> ChildGeneration {
         clusters: spec.clusters,
         exhaustive_limit: spec.exhaustive_limit,
         exact_start: spec.exact_start,
-    })
+    }
 }
 
 /// The prior hypotheses as (weight, objects).

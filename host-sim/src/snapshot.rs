@@ -3,6 +3,7 @@
 //! comparisons are written once.
 
 use serde::Serialize;
+use std::collections::{HashMap, HashSet};
 use tracker_core::{MeasurementModel, MotionModel, Tracker};
 
 /// One track.
@@ -106,5 +107,102 @@ impl Snapshot {
             .collect();
         states.sort();
         states.concat()
+    }
+}
+
+/// How much of an exact posterior an approximate one holds, both snapshots of the same scan, hypotheses
+/// matched by [`Snapshot::hypothesis_key`]. Sums run in hypothesis order, so the figures repeat bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PosteriorMatch {
+    /// Exact mass of the approximation's hypotheses.
+    pub captured_mass: f64,
+    /// Σ |w_approx − w_exact| over the union of both sets of hypotheses.
+    pub weight_l1: f64,
+    /// The largest exact weight among the approximation's hypotheses (0 when it holds none of them).
+    pub best_exact_weight_found: f64,
+    /// The exact weight of the approximation's MAP hypothesis (0 when the exact posterior lacks it).
+    pub exact_weight_of_map: f64,
+}
+
+/// Compares `approx` with `exact` (see [`PosteriorMatch`]).
+pub fn match_posteriors(exact: &Snapshot, approx: &Snapshot) -> PosteriorMatch {
+    let exact_keys: Vec<Vec<u64>> = (0..exact.hypotheses.len()).map(|i| exact.hypothesis_key(i)).collect();
+    let approx_keys: Vec<Vec<u64>> = (0..approx.hypotheses.len()).map(|i| approx.hypothesis_key(i)).collect();
+    let exact_weight: HashMap<&[u64], f64> =
+        exact_keys.iter().zip(&exact.hypotheses).map(|(k, h)| (k.as_slice(), h.weight)).collect();
+    let in_approx: HashSet<&[u64]> = approx_keys.iter().map(Vec::as_slice).collect();
+    let found = |k: &Vec<u64>| exact_weight.get(k.as_slice()).copied();
+    let captured_mass = approx_keys.iter().filter_map(found).sum();
+    let mut weight_l1: f64 =
+        approx_keys.iter().zip(&approx.hypotheses).map(|(k, h)| (h.weight - found(k).unwrap_or(0.0)).abs()).sum();
+    weight_l1 += exact_keys
+        .iter()
+        .zip(&exact.hypotheses)
+        .filter(|(k, _)| !in_approx.contains(k.as_slice()))
+        .map(|(_, h)| h.weight)
+        .sum::<f64>();
+    PosteriorMatch {
+        captured_mass,
+        weight_l1,
+        best_exact_weight_found: approx_keys.iter().filter_map(found).fold(0.0, f64::max),
+        exact_weight_of_map: approx_keys.first().and_then(found).unwrap_or(0.0),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn snapshot(hypotheses: &[(f64, &[f64])]) -> Snapshot {
+        // One track per distinct x; a hypothesis holds the tracks at the given x positions.
+        let mut tracks: Vec<TrackOut> = vec![];
+        let hypotheses = hypotheses
+            .iter()
+            .map(|&(weight, xs)| {
+                let indices = xs
+                    .iter()
+                    .map(|&x| {
+                        tracks.iter().position(|t| t.mean[0] == x).unwrap_or_else(|| {
+                            tracks.push(TrackOut {
+                                label: tracks.len() as u32,
+                                mean: [x, 0.0, 0.0, 0.0],
+                                covariance: [
+                                    [1.0, 0.0, 0.0, 0.0],
+                                    [0.0, 1.0, 0.0, 0.0],
+                                    [0.0, 0.0, 1.0, 0.0],
+                                    [0.0, 0.0, 0.0, 1.0],
+                                ],
+                                existence: 0.0,
+                            });
+                            tracks.len() - 1
+                        })
+                    })
+                    .collect();
+                HypothesisOut { weight, log_weight: weight.ln(), tracks: indices }
+            })
+            .collect();
+        Snapshot { hypotheses, tracks }
+    }
+
+    #[test]
+    fn posteriors_match_by_hypothesis_content() {
+        let exact = snapshot(&[(0.5, &[1.0, 2.0]), (0.3, &[1.0]), (0.2, &[])]);
+        // Same hypotheses, other order and other track indices: a full match.
+        let same = snapshot(&[(0.3, &[1.0]), (0.5, &[2.0, 1.0]), (0.2, &[])]);
+        let m = match_posteriors(&exact, &same);
+        assert_eq!(
+            (m.captured_mass, m.weight_l1, m.best_exact_weight_found, m.exact_weight_of_map),
+            (1.0, 0.0, 0.5, 0.3)
+        );
+        // Two of three hypotheses, renormalised, plus one the exact posterior lacks.
+        let approx = snapshot(&[(0.6, &[1.0, 2.0]), (0.3, &[1.0]), (0.1, &[3.0])]);
+        let m = match_posteriors(&exact, &approx);
+        assert_eq!(m.captured_mass, 0.8);
+        assert!((m.weight_l1 - (0.1 + 0.0 + 0.1 + 0.2)).abs() < 1e-15);
+        assert_eq!((m.best_exact_weight_found, m.exact_weight_of_map), (0.5, 0.5));
+        // Nothing in common.
+        let m = match_posteriors(&exact, &snapshot(&[(1.0, &[4.0])]));
+        assert_eq!((m.captured_mass, m.best_exact_weight_found, m.exact_weight_of_map), (0.0, 0.0, 0.0));
+        assert!((m.weight_l1 - 2.0).abs() < 1e-15);
     }
 }
