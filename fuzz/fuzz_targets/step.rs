@@ -127,7 +127,7 @@ enum RegionIn {
 #[derive(Debug, Clone, Copy, Arbitrary)]
 enum Generation {
     Exhaustive(u32),
-    Sampled { burn_in: u8, steps: u16, proposal: u8, clusters: bool, exhaustive_limit: u16 },
+    Sampled { burn_in: u8, steps: u16, proposal: u8, clusters: bool, exhaustive_limit: u16, exact_start: bool },
 }
 
 #[derive(Debug, Clone, Arbitrary)]
@@ -210,13 +210,14 @@ fn config<T: Real, M>(input: &Input, motion: M) -> Config<T, M, PositionMeasurem
         children: match input.generation {
             Generation::Exhaustive(budget) => ChildGeneration::Exhaustive { max_children_per_scan: u64::from(budget) },
             // The chain length is capped so that one input runs in milliseconds; zero stays possible.
-            Generation::Sampled { burn_in, steps, proposal, clusters, exhaustive_limit } => {
+            Generation::Sampled { burn_in, steps, proposal, clusters, exhaustive_limit, exact_start } => {
                 ChildGeneration::Sampled(SamplerConfig {
                     burn_in: u32::from(burn_in),
                     steps: u32::from(steps % 1024),
                     proposal: [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed][usize::from(proposal % 3)],
                     clusters,
                     exhaustive_limit: u64::from(exhaustive_limit),
+                    exact_start,
                 })
             }
         },
