@@ -25,7 +25,13 @@ impl fmt::Display for ScenarioError {
 impl std::error::Error for ScenarioError {}
 
 fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
-    ScenarioError(format!("{field}: {message}"))
+    ScenarioError(one_line(&format!("{field}: {message}")))
+}
+
+/// The message with every control character escaped (`\n`, `\r`, `\u{b}`, ...): a file's keys and values
+/// may hold any of them, and an error is always one line.
+fn one_line(message: &str) -> String {
+    message.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
 }
 
 /// A complete scenario.
@@ -384,14 +390,13 @@ impl Scenario {
     pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
         let deserializer = &mut serde_json::Deserializer::from_str(text);
         let scenario: Scenario = serde_path_to_error::deserialize(&mut *deserializer).map_err(|e| {
-            // One line: a key may contain escaped line breaks or other control characters.
-            let path = e.path().to_string().escape_debug().to_string();
-            let inner = e.into_inner();
-            let message = inner.to_string().replace(['\n', '\r'], " ");
-            if path == "." { ScenarioError(format!("invalid scenario JSON: {message}")) } else { error(path, message) }
+            // One line (`error`, `one_line`): keys and values may hold escaped line breaks.
+            let path = e.path().to_string();
+            let message = e.into_inner().to_string();
+            if path == "." { error("invalid scenario JSON", message) } else { error(path, message) }
         })?;
         // Nothing but whitespace may follow the scenario.
-        deserializer.end().map_err(|e| ScenarioError(format!("invalid scenario JSON: {e}")))?;
+        deserializer.end().map_err(|e| error("invalid scenario JSON", e))?;
         scenario.validate()?;
         Ok(scenario)
     }

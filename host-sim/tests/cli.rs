@@ -723,3 +723,22 @@ fn a_key_with_an_escaped_line_break_gives_a_one_line_error() {
         panic!("{why}\n{}", describe(&output));
     }
 }
+
+#[test]
+fn a_value_with_control_characters_gives_a_one_line_error() {
+    // Found by fuzzing: the format check printed the value with its carriage return.
+    let dir = TempDir::new("escaped-value");
+    let fixture = std::fs::read_to_string(FIXTURE).expect("fixture");
+    for (name, from, to, field) in [
+        ("format.json", r#""rfisst-scenario/1""#, r#""rfisst-scen\rio/1""#, "rfisst-scen\\rio/1"),
+        ("variant.json", r#""constant-velocity""#, r#""constant\u000bvelocity""#, "constant\\u{b}velocity"),
+    ] {
+        assert!(fixture.contains(from), "{name}: the fixture has no {from}");
+        let file = dir.join(name);
+        std::fs::write(&file, fixture.replacen(from, to, 1)).expect("write");
+        let output = host_sim(&["run".as_ref(), file.as_os_str(), "--out".as_ref(), dir.join("out").as_os_str()]);
+        if let Err(why) = check_malformed(&output, field) {
+            panic!("{name}: {why}\n{}", describe(&output));
+        }
+    }
+}
