@@ -1,8 +1,8 @@
 //! Child generators: the producers of a parent's children for one birth/death event.
 //!
 //! A [`ChildGenerator`] walks an [`AssociationMatrix`] and offers children to a [`ChildSink`], each
-//! **distinct child exactly once**, with its exact log-weight from the matrix (digest §4.6: weights are
-//! always computed from the formula, never estimated from how often a sampler visits a child). The sink
+//! **distinct child exactly once**, with its exact log-weight from the matrix (docs/maths.md §6.5: weights
+//! are always computed from the formula, never estimated from how often a sampler visits a child). The sink
 //! keeps the best ones and the running normaliser. [`ExhaustiveChildren`] offers every child with
 //! non-zero weight; the Metropolis sampler implements the same trait.
 
@@ -19,6 +19,17 @@ pub trait ChildSink<T> {
     /// weight, and the captured mass, stay honest). The default ignores it.
     fn unoffered(&mut self, log_mass: T) {
         let _ = log_mass;
+    }
+}
+
+/// A sink borrowed mutably is a sink (so adapters can wrap one without taking it).
+impl<T, Sink: ChildSink<T> + ?Sized> ChildSink<T> for &mut Sink {
+    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+        (**self).offer(log_weight, assignment);
+    }
+
+    fn unoffered(&mut self, log_mass: T) {
+        (**self).unoffered(log_mass);
     }
 }
 
@@ -39,10 +50,10 @@ pub trait ChildGenerator<T: Real, const N: usize, const Z: usize> {
     ///
     /// # Errors
     /// [`GenerateError`] when a budget stops the generator; the sink then holds a partial set.
-    fn generate<K: ChildSink<T>>(
+    fn generate<Sink: ChildSink<T>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
-        sink: &mut K,
+        sink: &mut Sink,
     ) -> Result<u64, GenerateError>;
 }
 
@@ -71,10 +82,10 @@ impl ExhaustiveChildren {
 }
 
 impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for ExhaustiveChildren {
-    fn generate<K: ChildSink<T>>(
+    fn generate<Sink: ChildSink<T>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
-        sink: &mut K,
+        sink: &mut Sink,
     ) -> Result<u64, GenerateError> {
         let rows = matrix.rows();
         let required_total = matrix.required_count();

@@ -19,24 +19,23 @@
 
 use crate::association::{AssociationMatrix, CLUTTER, association_count};
 use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren, GenerateError};
-use crate::index::{At, copy_prefix, insertion_sort_by};
+use crate::index::{At, NONE, insertion_sort_by};
+use crate::random::cluster_seed;
 use crate::real::{LogSumExp, Real, exp, ln};
-use crate::sampler::{MetropolisSampler, SamplerConfig, mix};
+use crate::sampler::{BestChildren, MetropolisSampler, SamplerConfig, association_hash};
 use core::cmp::Ordering;
-
-const NONE: u16 = u16::MAX;
 
 /// A sink that keeps a cluster's best `C` associations (exhaustive enumeration offers each once) and the
 /// log-sum-exp of all of them.
 struct ClusterSink<'a, T, const C: usize, const Z: usize> {
-    best: &'a mut crate::sampler::BestChildren<T, C, Z>,
+    best: &'a mut BestChildren<T, C, Z>,
     total: LogSumExp<T>,
 }
 
 impl<T: Real, const C: usize, const Z: usize> ChildSink<T> for ClusterSink<'_, T, C, Z> {
     fn offer(&mut self, log_weight: T, assignment: &[u16]) {
         self.total.add(log_weight);
-        self.best.insert(log_weight, crate::sampler::association_hash(assignment), assignment);
+        self.best.insert(log_weight, association_hash(assignment), assignment);
     }
 }
 
@@ -74,13 +73,6 @@ pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: u
     combined_len: [u16; Z],
     /// k-best merge frontier: (score, previous entry, choice).
     frontier: [Combination<T>; C],
-    leaves: u64,
-    sampled_clusters: u64,
-    enumerated_clusters: u64,
-    /// The children offered by the last `generate`, for callers that derive more children from them.
-    offered_scores: [T; C],
-    offered_assignments: [[u16; Z]; C],
-    offered_len: usize,
 }
 
 impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<T, N, Z, C> {
@@ -113,12 +105,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             stages: [[blank(); C]; Z],
             combined_len: [0; Z],
             frontier: [blank(); C],
-            leaves: 0,
-            sampled_clusters: 0,
-            enumerated_clusters: 0,
-            offered_scores: [T::NEG_INFINITY; C],
-            offered_assignments: [[CLUTTER; Z]; C],
-            offered_len: 0,
         }
     }
 
@@ -127,29 +113,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         self.seed = seed;
     }
 
-    /// The sampler (for its statistics).
-    pub fn sampler(&self) -> &MetropolisSampler<T, N, Z, C> {
+    /// The Metropolis chain that samples large clusters (for its statistics: moves taken, accepted).
+    pub fn chain(&self) -> &MetropolisSampler<T, N, Z, C> {
         &self.sampler
-    }
-
-    /// Clusters solved by enumeration and by sampling so far.
-    pub fn cluster_counts(&self) -> (u64, u64) {
-        (self.enumerated_clusters, self.sampled_clusters)
-    }
-
-    /// The children offered by the last `generate`, as (log-weight, assignment over `rows` rows).
-    pub fn offered(&self, rows: usize) -> impl Iterator<Item = (T, &[u16])> + '_ {
-        let rows = rows.min(Z);
-        self.offered_scores
-            .iter()
-            .zip(&self.offered_assignments)
-            .take(self.offered_len)
-            .map(move |(&score, assignment)| (score, &assignment[..rows]))
-    }
-
-    /// Leaves visited by exhaustive enumeration of clusters so far.
-    pub fn leaves_visited(&self) -> u64 {
-        self.leaves
     }
 
     /// The union-find parent of `node` (rows are nodes `0..Z`, columns `Z..Z + N`; a node outside the
@@ -245,8 +211,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
     }
 
     /// Solves cluster `index`: fills stage `index`'s scores and the choices table. Returns the log-sum-exp
-    /// of its associations (exact when enumerated) and whether it was sampled.
-    fn solve(&mut self, matrix: &AssociationMatrix<T, N, Z>, index: usize) -> Result<(T, bool), GenerateError> {
+    /// of its associations (exact when enumerated, a lower bound when sampled).
+    fn solve(&mut self, matrix: &AssociationMatrix<T, N, Z>, index: usize) -> Result<T, GenerateError> {
         let (rows, columns) = (matrix.rows(), matrix.columns());
         let mut cluster_rows = [0u16; Z];
         let mut cluster_columns = [0u16; N];
@@ -275,17 +241,14 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         }
         let exhaustive = association_count(n as u32, m as u32) <= u128::from(self.config.exhaustive_limit);
         let total = if exhaustive {
-            self.enumerated_clusters += 1;
             let mut generator = ExhaustiveChildren::new(self.config.exhaustive_limit.max(1));
             let best = self.sampler.best_mut();
             best.clear(m);
             let mut sink = ClusterSink { best, total: LogSumExp::new() };
             generator.generate(&self.cluster, &mut sink)?;
-            self.leaves += generator.leaves_visited();
             sink.total.value()
         } else {
-            self.sampled_clusters += 1;
-            self.sampler.reseed(mix(self.seed ^ mix(index as u64 + 1)));
+            self.sampler.reseed(cluster_seed(self.seed, index));
             self.sampler.run(&self.cluster);
             let mut known = LogSumExp::new();
             for (score, _) in self.sampler.best().iter() {
@@ -320,7 +283,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             }
         }
         *self.stage_len.at_mut(index) = kept as u16;
-        Ok((total, !exhaustive))
+        Ok(total)
     }
 
     /// Stage `index` = best `C` sums of stage `index − 1` and cluster `index` (k-best merge of two sorted
@@ -383,31 +346,26 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
 impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, N, Z>
     for ClusteredChildren<T, N, Z, C>
 {
-    fn generate<K: ChildSink<T>>(
+    fn generate<Sink: ChildSink<T>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
-        sink: &mut K,
+        sink: &mut Sink,
     ) -> Result<u64, GenerateError> {
-        self.offered_len = 0;
         let rows = matrix.rows();
         if !self.config.clusters {
             // Paper 003: one chain on the whole matrix.
-            self.sampled_clusters += 1;
             self.sampler.reseed(self.seed);
             self.sampler.run(matrix);
             for (score, assignment) in self.sampler.best().iter() {
-                *self.offered_scores.at_mut(self.offered_len) = score;
-                copy_prefix(self.offered_assignments.at_mut(self.offered_len), assignment);
-                self.offered_len += 1;
                 sink.offer(score, assignment);
             }
-            return Ok(self.offered_len as u64);
+            return Ok(self.sampler.best().len() as u64);
         }
         let Some(clusters) = self.split(matrix) else { return Ok(0) };
         let mut log_total = matrix.baseline();
         // The choices of all clusters share one table: clusters have disjoint rows.
         for index in 0..clusters {
-            let (total, _) = self.solve(matrix, index)?;
+            let total = self.solve(matrix, index)?;
             log_total += total;
             if *self.stage_len.at(index) == 0 {
                 return Ok(0); // a cluster with no feasible association
@@ -435,9 +393,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, 
             if exact > T::NEG_INFINITY {
                 offered_total.add(exact);
                 sink.offer(exact, &assignment[..rows]);
-                *self.offered_scores.at_mut(self.offered_len) = exact;
-                *self.offered_assignments.at_mut(self.offered_len) = assignment;
-                self.offered_len += 1;
             }
         }
         // Mass of the children not offered: Π of the clusters' sums minus what was offered.
@@ -473,7 +428,7 @@ mod tests {
     fn sparse_matrix(seed: u64, rows: usize, columns: usize) -> AssociationMatrix<f64, 10, 8> {
         let mut state = seed;
         let mut next = || {
-            state = mix(state);
+            state = crate::random::mix(state);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut m = AssociationMatrix::new(rows, columns, -2.0);

@@ -54,8 +54,7 @@ impl<T: Real, const N: usize> Hypothesis<T, N> {
 /// Up to `H` hypotheses, best first after every scan.
 #[derive(Debug, Clone)]
 pub struct HypothesisSet<T, const N: usize, const H: usize> {
-    items: [Hypothesis<T, N>; H],
-    len: usize,
+    items: heapless::Vec<Hypothesis<T, N>, H>,
 }
 
 impl<T: Real, const N: usize, const H: usize> Default for HypothesisSet<T, N, H> {
@@ -67,40 +66,36 @@ impl<T: Real, const N: usize, const H: usize> Default for HypothesisSet<T, N, H>
 impl<T: Real, const N: usize, const H: usize> HypothesisSet<T, N, H> {
     /// An empty set (usable in a `const` context).
     pub const fn new() -> Self {
-        Self { items: [Hypothesis::EMPTY; H], len: 0 }
+        Self { items: heapless::Vec::new() }
     }
 
     /// The hypotheses.
     pub fn as_slice(&self) -> &[Hypothesis<T, N>] {
-        &self.items[..self.len()]
+        &self.items
     }
 
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Hypothesis<T, N>] {
-        let len = self.len();
-        &mut self.items[..len]
+        &mut self.items
     }
 
     /// Number of hypotheses (at most `H`).
     pub fn len(&self) -> usize {
         // The `min` only shows the optimiser the invariant `len ≤ H`.
-        self.len.min(H)
+        self.items.len().min(H)
     }
 
     /// Whether there is no hypothesis.
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.items.is_empty()
     }
 
     pub(crate) fn clear(&mut self) {
-        self.len = 0;
+        self.items.clear();
     }
 
     /// Appends a hypothesis and returns its index, or hands it back when the set is full.
     pub(crate) fn push(&mut self, hypothesis: Hypothesis<T, N>) -> Result<usize, Hypothesis<T, N>> {
-        let index = self.len;
-        let Some(item) = self.items.get_mut(index) else { return Err(hypothesis) };
-        *item = hypothesis;
-        self.len = index + 1;
-        Ok(index)
+        let index = self.items.len();
+        self.items.push(hypothesis).map(|()| index)
     }
 }

@@ -14,6 +14,10 @@
 //!
 //! Arrays whose length may be zero (the birth-cell arrays, `B = 0`) use `get`.
 
+/// The "no index" marker of the index tables ("no slot", "no row", "missed"); the same value as
+/// [`crate::association::CLUTTER`], so [`below`] tells both from an index.
+pub(crate) const NONE: u16 = u16::MAX;
+
 /// Indexing of a fixed-size array of non-zero length without a panic path.
 pub(crate) trait At<X> {
     /// The element at `index`, which must be in bounds (debug builds assert it; release builds clamp it).
@@ -76,6 +80,85 @@ pub(crate) fn insertion_sort_by<X>(items: &mut [X], mut less: impl FnMut(&X, &X)
     }
 }
 
+/// A binary heap of up to `C` item indices with the **worst** item at the root, under an order the caller
+/// passes to each operation (the items live in the caller's arrays). The scan's selection and a chain's
+/// best children both keep their best items and evict the worst.
+#[derive(Debug, Clone)]
+pub(crate) struct WorstFirstHeap<const C: usize> {
+    heap: [u16; C],
+    len: usize,
+}
+
+impl<const C: usize> WorstFirstHeap<C> {
+    /// An empty heap (usable in a `const` context).
+    pub(crate) const fn new() -> Self {
+        Self { heap: [0; C], len: 0 }
+    }
+
+    /// Number of items (at most `C`).
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        // The `min` only shows the optimiser the invariant `len ≤ C`.
+        self.len.min(C)
+    }
+
+    /// Removes every item.
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Whether the heap holds `C` items.
+    #[inline]
+    pub(crate) fn is_full(&self) -> bool {
+        self.len >= C
+    }
+
+    /// The worst item (`None` when empty).
+    #[inline]
+    pub(crate) fn root(&self) -> Option<u16> {
+        if self.len > 0 { self.heap.first().copied() } else { None }
+    }
+
+    /// Adds `item` (the caller has written it) when there is room. `worse(a, b)`: item `a` ranks below `b`.
+    #[inline]
+    pub(crate) fn push(&mut self, item: u16, worse: impl Fn(u16, u16) -> bool) {
+        let Some(entry) = self.heap.get_mut(self.len) else { return };
+        *entry = item;
+        self.len += 1;
+        let mut at = self.len - 1;
+        while at > 0 {
+            let parent = (at - 1) / 2;
+            if !worse(*self.heap.at(at), *self.heap.at(parent)) {
+                return;
+            }
+            self.heap.swap_at(at, parent);
+            at = parent;
+        }
+    }
+
+    /// Restores the order after the caller replaced the root's item with a better one.
+    #[inline]
+    pub(crate) fn root_replaced(&mut self, worse: impl Fn(u16, u16) -> bool) {
+        let mut at = 0;
+        // Each pass moves one level down: at most log2(C) + 1 passes.
+        loop {
+            let (left, right) = (2 * at + 1, 2 * at + 2);
+            let mut worst = at;
+            if left < self.len && worse(*self.heap.at(left), *self.heap.at(worst)) {
+                worst = left;
+            }
+            if right < self.len && worse(*self.heap.at(right), *self.heap.at(worst)) {
+                worst = right;
+            }
+            if worst == at {
+                return;
+            }
+            self.heap.swap_at(at, worst);
+            at = worst;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,6 +181,33 @@ mod tests {
     fn below_tells_indices_from_markers() {
         assert_eq!(below::<4>(3), Some(3));
         assert_eq!(below::<4>(u16::MAX), None);
+    }
+
+    #[test]
+    fn worst_first_heap_keeps_the_worst_item_at_the_root() {
+        let values = [5, 3, 9, 1, 7, 4];
+        let mut heap = WorstFirstHeap::<4>::new();
+        let mut items = [0; 4];
+        let worse = |items: &[i32; 4], a: u16, b: u16| items[a as usize] < items[b as usize];
+        for &value in &values {
+            if !heap.is_full() {
+                let item = heap.len();
+                items[item] = value;
+                let snapshot = items;
+                heap.push(item as u16, |a, b| worse(&snapshot, a, b));
+            } else if let Some(root) = heap.root()
+                && value > items[root as usize]
+            {
+                items[root as usize] = value;
+                let snapshot = items;
+                heap.root_replaced(|a, b| worse(&snapshot, a, b));
+            }
+        }
+        // The best four of the values are kept and the worst of them is at the root.
+        let mut kept = items;
+        kept.sort();
+        assert_eq!(kept, [4, 5, 7, 9]);
+        assert_eq!(items[heap.root().unwrap() as usize], 4);
     }
 
     #[test]

@@ -2,12 +2,13 @@
 //!
 //! [`TopChildren`] is the [`ChildSink`] of a scan. It keeps the `H` children of largest log-weight in a
 //! fixed-size binary min-heap (the worst kept child at the root) and accumulates the log-sum-exp of
-//! **every** child offered, over all parents and events: the one global normaliser of digest §4.4.
+//! **every** child offered, over all parents and events: the one global normaliser of docs/maths.md §3.
+//! Children of one (parent, event) reach it through an [`EventSink`], which knows their origin.
 //! Equal weights are ordered by arrival (the generator's deterministic enumeration order), so the
 //! selection is a total order and the same inputs always keep the same children.
 
 use crate::children::ChildSink;
-use crate::index::{At, below, copy_prefix, insertion_sort_by};
+use crate::index::{At, WorstFirstHeap, copy_prefix, insertion_sort_by};
 use crate::real::{LogSumExp, Real, ln};
 pub use crate::weight::Event;
 use core::cmp::Ordering;
@@ -61,13 +62,10 @@ impl<T: Real, const Z: usize> Candidate<T, Z> {
 #[derive(Debug, Clone)]
 pub struct TopChildren<T, const H: usize, const Z: usize> {
     items: [Candidate<T, Z>; H],
-    /// Min-heap of indices into `items` by "better than": the root is the worst kept child.
-    heap: [u16; H],
-    len: usize,
+    /// Indices into `items` by "better than", the worst kept child at the root.
+    heap: WorstFirstHeap<H>,
     offered: u64,
     total: LogSumExp<T>,
-    parent: u16,
-    event: Event,
     /// When selecting by sampling: the stream of Gumbel perturbations.
     gumbel: Option<Xoshiro256PlusPlus>,
 }
@@ -83,19 +81,16 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     pub const fn new() -> Self {
         Self {
             items: [Candidate::EMPTY; H],
-            heap: [0; H],
-            len: 0,
+            heap: WorstFirstHeap::new(),
             offered: 0,
             total: LogSumExp::new(),
-            parent: 0,
-            event: Event::None,
             gumbel: None,
         }
     }
 
     /// Empties the selection for a new scan that keeps the H children of largest weight.
     pub fn clear(&mut self) {
-        self.len = 0;
+        self.heap.clear();
         self.offered = 0;
         self.total = LogSumExp::new();
         self.gumbel = None;
@@ -108,21 +103,19 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
         self.gumbel = Some(Xoshiro256PlusPlus::seed_from_u64(seed));
     }
 
-    /// Sets the parent and event of the children offered next.
-    pub fn set_context(&mut self, parent: u16, event: Event) {
-        self.parent = parent;
-        self.event = event;
+    /// The sink of the children of `parent` under `event`.
+    pub fn for_event(&mut self, parent: u16, event: Event) -> EventSink<'_, T, H, Z> {
+        EventSink { top: self, parent, event }
     }
 
     /// Number of children kept (at most `H`).
     pub fn len(&self) -> usize {
-        // The `min` only shows the optimiser the invariant `len ≤ H`.
-        self.len.min(H)
+        self.heap.len()
     }
 
     /// Whether no child is kept.
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.heap.len() == 0
     }
 
     /// Number of children offered (with non-zero weight).
@@ -133,8 +126,8 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
     /// The key a new child must beat to be kept (`-inf` while there is room). With
     /// [`TopChildren::clear_sampling`] keys are perturbed, so this bounds keys, not weights.
     pub fn threshold(&self) -> T {
-        match self.heap.first() {
-            Some(&worst) if self.len >= H => self.items.at(usize::from(worst)).key,
+        match self.heap.root() {
+            Some(worst) if self.heap.is_full() => self.items.at(usize::from(worst)).key,
             _ => T::NEG_INFINITY,
         }
     }
@@ -172,47 +165,14 @@ impl<T: Real, const H: usize, const Z: usize> TopChildren<T, H, Z> {
         len
     }
 
-    fn worse(&self, a: u16, b: u16) -> bool {
-        self.items.at(usize::from(b)).better_than(self.items.at(usize::from(a)))
-    }
-
-    fn sift_up(&mut self, mut at: usize) {
-        while at > 0 {
-            let parent = (at - 1) / 2;
-            if self.worse(*self.heap.at(at), *self.heap.at(parent)) {
-                self.heap.swap_at(at, parent);
-                at = parent;
-            } else {
-                break;
-            }
-        }
-    }
-
-    fn sift_down(&mut self, mut at: usize) {
-        loop {
-            let (left, right) = (2 * at + 1, 2 * at + 2);
-            let mut worst = at;
-            if left < self.len && self.worse(*self.heap.at(left), *self.heap.at(worst)) {
-                worst = left;
-            }
-            if right < self.len && self.worse(*self.heap.at(right), *self.heap.at(worst)) {
-                worst = right;
-            }
-            if worst == at {
-                break;
-            }
-            self.heap.swap_at(at, worst);
-            at = worst;
-        }
-    }
-}
-
-impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H, Z> {
-    fn unoffered(&mut self, log_mass: T) {
+    /// Reports the mass of children that exist but were not offered.
+    pub fn unoffered(&mut self, log_mass: T) {
         self.total.add(log_mass);
     }
 
-    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+    /// Offers the child of `parent` under `event` with `log_weight` and `assignment`; keeps it if it is
+    /// among the best `H` so far.
+    pub fn offer_child(&mut self, parent: u16, event: Event, log_weight: T, assignment: &[u16]) {
         if log_weight == T::NEG_INFINITY {
             return;
         }
@@ -225,30 +185,65 @@ impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H,
                 log_weight - ln(-ln(T::of_f64(uniform)))
             }
         };
-        let mut candidate = Candidate {
-            log_weight,
-            key,
-            sequence: self.offered,
-            parent: self.parent,
-            event: self.event,
-            assignment: [0; Z],
-        };
+        let mut candidate = Candidate { log_weight, key, sequence: self.offered, parent, event, assignment: [0; Z] };
         self.offered += 1;
-        if self.len < H {
-            let index = self.len;
+        let items = &mut self.items;
+        if !self.heap.is_full() {
+            let index = self.heap.len();
             copy_prefix(&mut candidate.assignment, assignment);
-            self.items[index] = candidate;
-            self.heap[index] = index as u16;
-            self.len = index + 1;
-            self.sift_up(index);
-        } else if let Some(worst) = self.heap.first().and_then(|&worst| below::<H>(worst)) {
-            if !candidate.better_than(&self.items[worst]) {
+            *items.at_mut(index) = candidate;
+            self.heap.push(index as u16, |a, b| ranks_below(items, a, b));
+        } else if let Some(worst) = self.heap.root() {
+            let worst = items.at_mut(usize::from(worst));
+            if !candidate.better_than(worst) {
                 return;
             }
             copy_prefix(&mut candidate.assignment, assignment);
-            self.items[worst] = candidate;
-            self.sift_down(0);
+            *worst = candidate;
+            self.heap.root_replaced(|a, b| ranks_below(items, a, b));
         }
+    }
+}
+
+/// Whether kept child `a` ranks below `b`.
+#[inline]
+fn ranks_below<T: Real, const H: usize, const Z: usize>(items: &[Candidate<T, Z>; H], a: u16, b: u16) -> bool {
+    items.at(usize::from(b)).better_than(items.at(usize::from(a)))
+}
+
+/// The sink of one (parent, event)'s children: offers them to the scan's [`TopChildren`] with their origin.
+#[derive(Debug)]
+pub struct EventSink<'a, T, const H: usize, const Z: usize> {
+    top: &'a mut TopChildren<T, H, Z>,
+    parent: u16,
+    event: Event,
+}
+
+impl<T: Real, const H: usize, const Z: usize> EventSink<'_, T, H, Z> {
+    /// The scan's selection behind this sink.
+    pub fn top(&self) -> &TopChildren<T, H, Z> {
+        self.top
+    }
+}
+
+impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for EventSink<'_, T, H, Z> {
+    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+        self.top.offer_child(self.parent, self.event, log_weight, assignment);
+    }
+
+    fn unoffered(&mut self, log_mass: T) {
+        self.top.unoffered(log_mass);
+    }
+}
+
+/// A [`TopChildren`] used directly as a sink takes the children of a single matrix: parent 0, no event.
+impl<T: Real, const H: usize, const Z: usize> ChildSink<T> for TopChildren<T, H, Z> {
+    fn offer(&mut self, log_weight: T, assignment: &[u16]) {
+        self.offer_child(0, Event::None, log_weight, assignment);
+    }
+
+    fn unoffered(&mut self, log_mass: T) {
+        TopChildren::unoffered(self, log_mass);
     }
 }
 

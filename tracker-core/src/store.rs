@@ -42,11 +42,10 @@ impl<T: Real, const S: usize> Track<T, S> {
     const EMPTY: Self = Self { label: TrackLabel(0), state: Gaussian::ZERO, existence: T::ZERO };
 }
 
-/// A fixed-capacity array of tracks; slots `0..len` are live.
+/// The tracks of a scan, at most `K`; a track's slot is its index.
 #[derive(Debug, Clone)]
 pub struct TrackStore<T: Real, const S: usize, const K: usize> {
-    tracks: [Track<T, S>; K],
-    len: usize,
+    tracks: heapless::Vec<Track<T, S>, K>,
 }
 
 impl<T: Real, const S: usize, const K: usize> Default for TrackStore<T, S, K> {
@@ -58,40 +57,36 @@ impl<T: Real, const S: usize, const K: usize> Default for TrackStore<T, S, K> {
 impl<T: Real, const S: usize, const K: usize> TrackStore<T, S, K> {
     /// An empty store (usable in a `const` context).
     pub const fn new() -> Self {
-        Self { tracks: [Track::EMPTY; K], len: 0 }
+        Self { tracks: heapless::Vec::new() }
     }
 
     /// The live tracks.
     pub fn as_slice(&self) -> &[Track<T, S>] {
-        &self.tracks[..self.len()]
+        &self.tracks
     }
 
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Track<T, S>] {
-        let len = self.len();
-        &mut self.tracks[..len]
+        &mut self.tracks
     }
 
     /// Number of live tracks (at most `K`).
     pub fn len(&self) -> usize {
         // The `min` only shows the optimiser the invariant `len ≤ K`.
-        self.len.min(K)
+        self.tracks.len().min(K)
     }
 
     /// Whether no track is live.
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.tracks.is_empty()
     }
 
     pub(crate) fn clear(&mut self) {
-        self.len = 0;
+        self.tracks.clear();
     }
 
     /// Appends a track and returns its slot, or hands it back when the store is full.
     pub(crate) fn push(&mut self, track: Track<T, S>) -> Result<u16, Track<T, S>> {
-        let slot = self.len;
-        let Some(item) = self.tracks.get_mut(slot) else { return Err(track) };
-        *item = track;
-        self.len = slot + 1;
-        Ok(slot as u16)
+        let slot = self.tracks.len() as u16;
+        self.tracks.push(track).map(|()| slot)
     }
 }

@@ -1,0 +1,341 @@
+//! Stage 3 of a scan: the kept children become the next hypotheses and tracks.
+//!
+//! Only the kept children are built, best first. A child's objects are keyed by (source, measurement): the
+//! source is a track of the previous store or a birth cell, the measurement the row that the child's
+//! association gives it (read back through the column layout of its (parent, event)), or none when it is
+//! missed. A key seen before reuses its track, a new key gets one EKF update. Children that hold exactly
+//! the same tracks are merged (their weights add), and the weights are normalised over the kept
+//! hypotheses (docs/maths.md §3.2).
+
+use super::finish_hypotheses;
+use super::generate::Generation;
+use super::score::{BirthCells, Scores};
+use crate::association::{Column, ColumnLayout};
+use crate::config::{Config, StoreOverflow};
+use crate::digest::Fnv1a;
+use crate::ekf::{self, Gaussian, Innovation};
+use crate::error::StepError;
+use crate::hypothesis::{Hypothesis, HypothesisSet};
+use crate::index::{At, NONE, insertion_sort_by};
+use crate::model::MeasurementModel;
+use crate::real::{LogSumExp, Real, log_add};
+use crate::selection::Candidate;
+use crate::store::{Track, TrackLabel, TrackStore};
+use crate::weight::Event;
+use nalgebra::SVector;
+
+/// Where a child's track comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// A predicted track of the previous store (its slot).
+    Track(u16),
+    /// A birth cell.
+    Birth(u16),
+}
+
+/// Scratch space of stage 3.
+#[derive(Debug, Clone)]
+pub(super) struct Materialisation<const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+    order: [u16; H],
+    /// First new slot made from each old slot / birth cell, and the chain of new slots per source.
+    source_head: [u16; K],
+    birth_head: [u16; B],
+    next_same_source: [u16; K],
+    /// The measurement each new slot took, or `NONE` when missed.
+    new_slot_measurement: [u16; K],
+    /// The measurement each object of the current parent takes, or `NONE`.
+    row_of_position: [u16; N],
+    child_sources: [(Source, u16); N],
+    child_slots: [u16; N],
+    hashes: [u64; H],
+    /// The label of the object born from each measurement this scan, whatever its birth cell.
+    birth_label_of_row: [Option<TrackLabel>; Z],
+    /// The label of the undetected object born in each cell this scan.
+    birth_label_of_cell: [Option<TrackLabel>; B],
+}
+
+/// What stage 3 reports besides the new buffers.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Materialised<T> {
+    /// ln Σ w̃ over the kept hypotheses (before normalisation).
+    pub(super) kept_total: LogSumExp<T>,
+    pub(super) next_label: u32,
+    pub(super) dropped_for_store: usize,
+    pub(super) merged: usize,
+}
+
+/// The read-only inputs of stage 3.
+pub(super) struct Inputs<
+    'a,
+    T: Real,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> {
+    pub(super) config: &'a Config<T, M, G, S, B>,
+    pub(super) birth_cells: &'a BirthCells<T, D, B>,
+    pub(super) scores: &'a Scores<T, S, D, Z, K, B>,
+    pub(super) generation: &'a Generation<T, H, N, Z>,
+    pub(super) store: &'a TrackStore<T, S, K>,
+    pub(super) parents: &'a HypothesisSet<T, N, H>,
+    pub(super) measurements: &'a [SVector<T, D>],
+}
+
+impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Materialisation<H, N, Z, K, B> {
+    pub(super) const fn new() -> Self {
+        Self {
+            order: [0; H],
+            source_head: [NONE; K],
+            birth_head: [NONE; B],
+            next_same_source: [NONE; K],
+            new_slot_measurement: [NONE; K],
+            row_of_position: [NONE; N],
+            child_sources: [(Source::Track(0), NONE); N],
+            child_slots: [0; N],
+            hashes: [0; H],
+            birth_label_of_row: [None; Z],
+            birth_label_of_cell: [None; B],
+        }
+    }
+
+    /// Builds the kept children's tracks and hypotheses into `next_store` and `next_set`, best first.
+    ///
+    /// # Errors
+    /// [`StepError::TrackStoreFull`] (with [`StoreOverflow::Error`]), [`StepError::LabelsExhausted`],
+    /// [`StepError::Numerical`] from an EKF update.
+    pub(super) fn run<T: Real, M, G, const S: usize, const D: usize>(
+        &mut self,
+        inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
+        next_store: &mut TrackStore<T, S, K>,
+        next_set: &mut HypothesisSet<T, N, H>,
+        next_label: u32,
+    ) -> Result<Materialised<T>, StepError>
+    where
+        G: MeasurementModel<T, S, D>,
+    {
+        next_store.clear();
+        next_set.clear();
+        self.source_head[..inputs.store.len()].fill(NONE);
+        self.birth_head.fill(NONE);
+        self.birth_label_of_row.fill(None);
+        self.birth_label_of_cell.fill(None);
+        let mut outcome = Materialised { kept_total: LogSumExp::new(), next_label, dropped_for_store: 0, merged: 0 };
+        let top = &inputs.generation.top;
+        let kept = top.best_first(&mut self.order);
+        for rank in 0..kept {
+            // A candidate naming a parent or a birth cell that does not exist cannot occur; it would be
+            // skipped like a child that does not fit.
+            let Some(candidate) = top.kept().get(usize::from(*self.order.at(rank))) else { continue };
+            let Some(parent) = inputs.parents.as_slice().get(usize::from(candidate.parent)) else { continue };
+            let Some(layout) = inputs.generation.layout(candidate.parent, candidate.event, inputs.birth_cells) else {
+                continue;
+            };
+            let count = self.child_sources(candidate, parent, &layout, inputs.measurements.len());
+            if !self.has_room(count, next_store) {
+                match inputs.config.store_overflow {
+                    StoreOverflow::PruneChildren => {
+                        outcome.dropped_for_store += 1;
+                        continue;
+                    }
+                    StoreOverflow::Error => return Err(StepError::TrackStoreFull { capacity: K }),
+                }
+            }
+            for index in 0..count {
+                let (source, row) = *self.child_sources.at(index);
+                let slot = match self.lookup(source, row) {
+                    Some(slot) => slot,
+                    None => self.new_track(inputs, source, row, next_store, &mut outcome.next_label)?,
+                };
+                *self.child_slots.at_mut(index) = slot;
+            }
+            self.keep_or_merge(candidate.log_weight, count, next_store, next_set, &mut outcome.merged);
+        }
+        // Normalise over the kept hypotheses.
+        for hypothesis in next_set.as_slice() {
+            outcome.kept_total.add(hypothesis.log_weight);
+        }
+        for hypothesis in next_set.as_mut_slice() {
+            hypothesis.log_weight = outcome.kept_total.normalise(hypothesis.log_weight);
+        }
+        finish_hypotheses(next_set, next_store);
+        Ok(outcome)
+    }
+
+    /// Writes the child's objects as (source, measurement) keys into `child_sources`, in the parent's
+    /// order with a born object last; returns how many.
+    fn child_sources<T: Real, const M: usize>(
+        &mut self,
+        candidate: &Candidate<T, M>,
+        parent: &Hypothesis<T, N>,
+        layout: &ColumnLayout<'_>,
+        rows: usize,
+    ) -> usize {
+        // Which measurement each column's object takes.
+        self.row_of_position[..parent.len()].fill(NONE);
+        let mut birth_row = NONE;
+        for (row, &column) in candidate.assignment.iter().enumerate().take(rows) {
+            match layout.column(usize::from(column)) {
+                Some(Column::Object { position }) => *self.row_of_position.at_mut(usize::from(position)) = row as u16,
+                Some(Column::Birth { .. }) => birth_row = row as u16,
+                None => {}
+            }
+        }
+        let mut count = 0usize;
+        for (position, &slot) in parent.slots().iter().enumerate() {
+            if candidate.event == (Event::Death { object: position as u16 }) {
+                continue;
+            }
+            *self.child_sources.at_mut(count) = (Source::Track(slot), *self.row_of_position.at(position));
+            count += 1;
+        }
+        if let Event::Birth { cell } = candidate.event {
+            *self.child_sources.at_mut(count) = (Source::Birth(cell), birth_row);
+            count += 1;
+        }
+        // A child holds at most N objects; the clamp shows it to the optimiser.
+        count.min(N)
+    }
+
+    /// Whether the child's new tracks fit the store.
+    fn has_room<T: Real, const S: usize>(&self, count: usize, next_store: &TrackStore<T, S, K>) -> bool {
+        let new_tracks =
+            self.child_sources[..count].iter().filter(|&&(source, row)| self.lookup(source, row).is_none()).count();
+        next_store.len() + new_tracks <= K
+    }
+
+    /// Finds the new slot made from `source` with measurement `row` (or missed), if any.
+    fn lookup(&self, source: Source, row: u16) -> Option<u16> {
+        let mut slot = match source {
+            Source::Track(old) => *self.source_head.at(usize::from(old)),
+            Source::Birth(cell) => self.birth_head.get(usize::from(cell)).copied().unwrap_or(NONE),
+        };
+        // Each source has at most Z + 1 distinct new slots (one per measurement, one missed).
+        while slot != NONE {
+            if *self.new_slot_measurement.at(usize::from(slot)) == row {
+                return Some(slot);
+            }
+            slot = *self.next_same_source.at(usize::from(slot));
+        }
+        None
+    }
+
+    /// Makes the new track of `source` with measurement `row` (missed: `NONE`) and returns its slot.
+    fn new_track<T: Real, M, G, const S: usize, const D: usize>(
+        &mut self,
+        inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
+        source: Source,
+        row: u16,
+        next_store: &mut TrackStore<T, S, K>,
+        next_label: &mut u32,
+    ) -> Result<u16, StepError>
+    where
+        G: MeasurementModel<T, S, D>,
+    {
+        let (label, prior, innovation) = self.source_state(inputs, source, row, next_label)?;
+        // Missed: the prediction; else the update with the measurement.
+        let state = match inputs.measurements.get(usize::from(row)) {
+            None => prior,
+            Some(z) => ekf::update(&inputs.config.measurement, &prior, &innovation, z)
+                .map_err(|error| StepError::Numerical { label, error })?,
+        };
+        // Room was checked before; the error path is unreachable but kept panic-free.
+        let new_slot = next_store
+            .push(Track { label, state, existence: T::zero() })
+            .map_err(|_| StepError::TrackStoreFull { capacity: K })?;
+        let head = match source {
+            Source::Track(old) => Some(self.source_head.at_mut(usize::from(old))),
+            Source::Birth(cell) => self.birth_head.get_mut(usize::from(cell)),
+        };
+        if let Some(head) = head {
+            *self.next_same_source.at_mut(usize::from(new_slot)) = *head;
+            *head = new_slot;
+        }
+        *self.new_slot_measurement.at_mut(usize::from(new_slot)) = row;
+        Ok(new_slot)
+    }
+
+    /// The label, predicted Gaussian and innovation of `source`; a birth gets a fresh label unless the
+    /// same measurement (or, undetected, the same cell) already gave one this scan.
+    #[allow(clippy::type_complexity)]
+    fn source_state<T: Real, M, G, const S: usize, const D: usize>(
+        &mut self,
+        inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
+        source: Source,
+        row: u16,
+        next_label: &mut u32,
+    ) -> Result<(TrackLabel, Gaussian<T, S>, Innovation<T, D>), StepError> {
+        match source {
+            Source::Track(old) => {
+                let old = usize::from(old);
+                let label = inputs.store.as_slice().get(old).map_or(TrackLabel(0), |track| track.label);
+                let predicted = inputs.scores.predicted(old);
+                Ok((label, predicted.state, predicted.innovation))
+            }
+            Source::Birth(cell) => {
+                let cell = usize::from(cell);
+                let prior = inputs.config.birth.cells.get(cell).copied().unwrap_or(Gaussian::ZERO);
+                let innovation = inputs.birth_cells.innovations.get(cell).copied().unwrap_or(Innovation::EMPTY);
+                // One new object per measurement (or per cell when undetected): the same birth explained by
+                // different cells' pdfs is one object with one label.
+                let known = match self.birth_label_of_row.get_mut(usize::from(row)) {
+                    Some(by_row) => Some(by_row),
+                    None => self.birth_label_of_cell.get_mut(cell),
+                };
+                let Some(known) = known else { return Err(StepError::NoViableChild) };
+                let label = match *known {
+                    Some(label) => label,
+                    None => {
+                        let label = TrackLabel(*next_label);
+                        *next_label = next_label.checked_add(1).ok_or(StepError::LabelsExhausted)?;
+                        *known = Some(label);
+                        label
+                    }
+                };
+                Ok((label, prior, innovation))
+            }
+        }
+    }
+
+    /// Sorts the child's slots by label and keeps it, or merges it into an identical child kept earlier.
+    fn keep_or_merge<T: Real, const S: usize>(
+        &mut self,
+        log_weight: T,
+        count: usize,
+        next_store: &TrackStore<T, S, K>,
+        next_set: &mut HypothesisSet<T, N, H>,
+        merged: &mut usize,
+    ) {
+        let tracks = next_store.as_slice();
+        let slots = &mut self.child_slots[..count];
+        // Labels are distinct within a child, so the order is unique.
+        let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
+        insertion_sort_by(slots, |&a, &b| label(a) < label(b));
+        let mut hash = Fnv1a::new();
+        for &slot in slots.iter() {
+            hash.write(&slot.to_le_bytes());
+        }
+        let hash = hash.finish();
+        let existing = next_set
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.hashes.iter())
+            .find(|(hypothesis, other)| **other == hash && hypothesis.slots() == &*slots);
+        match existing {
+            Some((hypothesis, _)) => {
+                hypothesis.log_weight = log_add(hypothesis.log_weight, log_weight);
+                *merged += 1;
+            }
+            None => {
+                if let Ok(index) = next_set.push(Hypothesis::new(log_weight, slots)) {
+                    *self.hashes.at_mut(index) = hash;
+                }
+            }
+        }
+    }
+}

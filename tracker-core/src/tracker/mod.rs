@@ -1,0 +1,464 @@
+//! The tracker: one scan of the hypothesis-level FISST recursion with birth and death (docs/maths.md §2).
+//!
+//! [`Tracker::step`] is a pipeline of three stages, each with its own scratch space:
+//!
+//! 1. [`score`]: predict every track of the shared store once (EKF), decide whether it is in the field of
+//!    view, and score it against every measurement once: the entry δ of docs/maths.md §4.1 for each
+//!    (track, measurement) pair, `-inf` outside the gate or the field of view. Birth cells likewise.
+//! 2. [`generate`]: for each parent and each event (no event, a birth in each cell, the death of each
+//!    object in the field of view), the event's association matrix and its column layout; a child
+//!    generator offers every child to the scan's selection ([`TopChildren`]), which keeps the H best and
+//!    the global log-sum-exp.
+//! 3. [`materialise`]: only the kept children become hypotheses and tracks, reading each child's
+//!    association back through its column layout; identical children merge; weights are normalised over
+//!    the kept hypotheses and the mass of the rest is reported as `1 − captured_mass`.
+//!
+//! Then the scan is **committed**: everything above wrote into the inactive half of the double-buffered
+//! store and hypotheses and into scratch space, and only a scan that succeeds swaps them in. A failed
+//! `step` leaves the tracker bit-for-bit as it was.
+//!
+//! # Panics
+//! [`Tracker::new`], [`Tracker::step`] and [`Tracker::digest`] do not panic on any input in a release
+//! build: capacity, finiteness and time are checked first, numerical failure is returned as
+//! [`StepError::Numerical`], and every index into the fixed-size tables is proved in bounds or clamped
+//! (the private `index` module), so no panic path is left. This is proved at link time: `nostd-check`'s
+//! `panic_free` binary calls them on inputs the optimiser cannot see through, with a panic handler that
+//! references an undefined symbol, and it links only when the optimiser removed every path to a panic
+//! (`cd nostd-check && cargo build --release --bin panic_free`; see `docs/embedded.md`, "Panic-freedom").
+//! The proof covers the monomorphisations that binary instantiates. Debug builds keep `debug_assert!`s on
+//! internal invariants.
+//!
+//! [`TopChildren`]: crate::selection::TopChildren
+
+mod generate;
+mod materialise;
+mod prior;
+mod scan;
+mod score;
+
+pub use scan::check_scan;
+
+use crate::config::Config;
+use crate::digest::Fnv1a;
+use crate::ekf::Gaussian;
+use crate::error::{ConfigError, StepError};
+use crate::hypothesis::{Hypothesis, HypothesisSet};
+use crate::index::{At, insertion_sort_by};
+use crate::model::{MeasurementModel, MotionModel};
+use crate::random::scan_seed;
+use crate::real::{Real, exp};
+use crate::report::StepReport;
+use crate::sampler::SamplerConfig;
+use crate::store::{Track, TrackLabel, TrackStore};
+use crate::weight::WeightModel;
+use generate::Generation;
+use materialise::{Inputs, Materialisation};
+use nalgebra::SVector;
+use score::{BirthCells, Scores};
+
+/// One object of a prior hypothesis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PriorObject<T: Real, const S: usize> {
+    /// The object's label; the same object in several prior hypotheses carries the same label.
+    pub label: TrackLabel,
+    /// Its Gaussian at the prior time.
+    pub state: Gaussian<T, S>,
+}
+
+/// One hypothesis of the prior: a weight (normalised over the prior by the tracker) and its objects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PriorHypothesis<'a, T: Real, const S: usize> {
+    /// Relative weight (≥ 0).
+    pub weight: T,
+    /// The objects.
+    pub objects: &'a [PriorObject<T, S>],
+}
+
+/// The R-FISST / hypothesis-level FISST tracker with fixed capacities.
+///
+/// - `T`: scalar (`f32` or `f64`); `M`: [`MotionModel`]; `G`: [`MeasurementModel`].
+/// - `S`, `D`: state and measurement dimensions.
+/// - `H`: hypotheses kept per scan (H∞); `N`: objects per hypothesis; `Z`: measurements per scan;
+///   `K`: tracks in the shared store (≥ N); `B`: birth cells.
+///
+/// All memory is inside the value; `step` allocates nothing. The capacities are checked at compile time.
+///
+/// # Examples
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{Config, ConstantVelocity, PositionMeasurement, Region, Sensor, Tracker, BirthModel, Gaussian};
+/// use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
+///
+/// let config = Config {
+///     motion: ConstantVelocity { acceleration_noise: 0.01 },
+///     measurement: PositionMeasurement::isotropic(0.5),
+///     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] } },
+///     birth: BirthModel::none(),
+///     death_probability: 0.0,
+///     gate: None,
+///     children: ChildGeneration::default(),
+///     selection: Selection::default(),
+///     store_overflow: StoreOverflow::default(),
+///     seed: 1,
+/// };
+/// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// let mut tracker: Tracker<f64, _, _, 4, 2, 8, 4, 4, 16, 1> = Tracker::with_objects(config, &[object], 0.0).unwrap();
+/// let report = tracker.step(1.0, &[SVector::from([1.1, 0.05])]).unwrap();
+/// assert_eq!(report.hypotheses, 2); // z from the object, or clutter and the object missed
+/// assert!(tracker.map_hypothesis().weight() > 0.9);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Tracker<
+    T: Real,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> {
+    config: Config<T, M, G, S, B>,
+    weight_model: WeightModel<T>,
+    birth_cells: BirthCells<T, D, B>,
+    stores: [TrackStore<T, S, K>; 2],
+    hypotheses: [HypothesisSet<T, N, H>; 2],
+    /// Which half of `stores` and `hypotheses` is live (`false`: index 0).
+    active: bool,
+    time: f64,
+    scans: u64,
+    next_label: u32,
+    /// Whether a prior has been loaded ([`Tracker::reset`]).
+    initialised: bool,
+    scores: Scores<T, S, D, Z, K, B>,
+    generation: Generation<T, H, N, Z>,
+    materialisation: Materialisation<H, N, Z, K, B>,
+}
+
+/// A read-only view of one hypothesis and the tracks it holds.
+#[derive(Debug, Clone, Copy)]
+pub struct HypothesisView<'a, T: Real, const S: usize, const N: usize> {
+    hypothesis: &'a Hypothesis<T, N>,
+    tracks: &'a [Track<T, S>],
+}
+
+impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
+    /// Normalised weight w.
+    pub fn weight(&self) -> T {
+        exp(self.hypothesis.log_weight)
+    }
+
+    /// Normalised log-weight ln w.
+    pub fn log_weight(&self) -> T {
+        self.hypothesis.log_weight
+    }
+
+    /// Number of objects.
+    pub fn len(&self) -> usize {
+        self.hypothesis.len()
+    }
+
+    /// Whether the hypothesis holds no object.
+    pub fn is_empty(&self) -> bool {
+        self.hypothesis.is_empty()
+    }
+
+    /// Store slots of its tracks (in label order).
+    pub fn slots(&self) -> &'a [u16] {
+        self.hypothesis.slots()
+    }
+
+    /// Its tracks, in label order.
+    pub fn tracks(&self) -> impl Iterator<Item = &'a Track<T, S>> + 'a {
+        let tracks = self.tracks;
+        // Every slot of a hypothesis is a live track of the store.
+        self.hypothesis.slots().iter().filter_map(move |&slot| tracks.get(usize::from(slot)))
+    }
+}
+
+impl<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Tracker<T, M, G, S, D, H, N, Z, K, B>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D>,
+{
+    const CAPACITY_CHECK: () = {
+        assert!(S > 0 && D > 0, "state and measurement dimensions must be > 0");
+        assert!(H > 0 && N > 0 && Z > 0, "capacities H, N and Z must be > 0");
+        assert!(K >= N, "the track store must hold at least N tracks so that the best child always fits");
+        assert!(
+            H < u16::MAX as usize
+                && N < u16::MAX as usize
+                && Z < u16::MAX as usize
+                && K < u16::MAX as usize
+                && B < u16::MAX as usize,
+            "capacities must fit in u16"
+        );
+    };
+
+    /// Builds a tracker from a configuration, a prior (one or more weighted hypotheses) and the prior's
+    /// time in seconds.
+    ///
+    /// The tracker is returned by value, which can take a few times its size of stack; on a small target
+    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead.
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the first invalid parameter or prior entry.
+    pub fn new(
+        config: Config<T, M, G, S, B>,
+        prior: &[PriorHypothesis<'_, T, S>],
+        time: f64,
+    ) -> Result<Self, ConfigError> {
+        let mut tracker = Self::empty(config);
+        tracker.reset(prior, time)?;
+        Ok(tracker)
+    }
+
+    /// A tracker holding `config` but no prior yet, built in a `const` context so that it can be the
+    /// initial value of a `static` (no stack is used for its storage):
+    ///
+    /// ```ignore
+    /// static TRACKER: Mutex<RefCell<SsaTracker<f32>>> = Mutex::new(RefCell::new(SsaTracker::empty(CONFIG)));
+    /// ```
+    ///
+    /// The configuration is checked, and the prior loaded, by [`Tracker::reset`]; until then `step` fails
+    /// with [`StepError::NotInitialised`].
+    pub const fn empty(config: Config<T, M, G, S, B>) -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CAPACITY_CHECK;
+        let sampler = match config.children {
+            crate::config::ChildGeneration::Sampled(sampler) => sampler,
+            crate::config::ChildGeneration::Exhaustive { .. } => SamplerConfig::DEFAULT,
+        };
+        Self {
+            config,
+            weight_model: WeightModel::EMPTY,
+            birth_cells: BirthCells::EMPTY,
+            stores: [TrackStore::new(), TrackStore::new()],
+            hypotheses: [HypothesisSet::new(), HypothesisSet::new()],
+            active: false,
+            time: 0.0,
+            scans: 0,
+            next_label: 0,
+            initialised: false,
+            scores: Scores::new(),
+            generation: Generation::new(sampler),
+            materialisation: Materialisation::new(),
+        }
+    }
+
+    /// Checks the configuration and loads `prior` at `time` (seconds), in place: the tracker restarts
+    /// from this prior with no scan processed.
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the first invalid parameter or prior entry; the tracker is then unchanged.
+    pub fn reset(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<(), ConfigError> {
+        let birth_cells = prior::check_config::<T, M, G, S, D, N, B>(&self.config)?;
+        if !time.is_finite() {
+            return Err(ConfigError::PriorTime);
+        }
+        // Into the inactive buffers; swapped in only on success.
+        let inactive = usize::from(!self.active);
+        let next_label = prior::load_prior(prior, self.stores.at_mut(inactive), self.hypotheses.at_mut(inactive))?;
+        self.active = !self.active;
+        self.weight_model = WeightModel::from_config(&self.config);
+        self.birth_cells = birth_cells;
+        self.time = time;
+        self.scans = 0;
+        self.next_label = next_label;
+        self.initialised = true;
+        self.generation.reset(self.config.children);
+        Ok(())
+    }
+
+    /// Builds a tracker whose prior is one hypothesis (weight 1) holding `objects`, labelled 0, 1, ...
+    ///
+    /// # Errors
+    /// As [`Tracker::new`].
+    pub fn with_objects(
+        config: Config<T, M, G, S, B>,
+        objects: &[Gaussian<T, S>],
+        time: f64,
+    ) -> Result<Self, ConfigError> {
+        let mut prior: heapless::Vec<PriorObject<T, S>, N> = heapless::Vec::new();
+        for (index, state) in objects.iter().enumerate() {
+            prior
+                .push(PriorObject { label: TrackLabel(index as u32), state: *state })
+                .map_err(|_| ConfigError::PriorTooManyObjects { hypothesis: 0 })?;
+        }
+        Self::new(config, &[PriorHypothesis { weight: T::one(), objects: &prior }], time)
+    }
+
+    /// Processes one scan taken at `time` (seconds, after the previous scan) with `measurements`.
+    ///
+    /// # Errors
+    /// [`StepError`]; the tracker is then exactly as it was before the call.
+    pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
+        if !self.initialised {
+            return Err(StepError::NotInitialised);
+        }
+        check_scan(&self.config.sensor, self.time, time, measurements, Z)?;
+        let live = self.live();
+        let dt = T::of_f64(time - self.time);
+        let (store, next_store) = split_pair(&mut self.stores, self.active);
+        let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
+
+        self.scores.run(&self.config, &self.weight_model, &self.birth_cells, store.as_slice(), dt, measurements)?;
+        let generated = self.generation.run(
+            &self.config,
+            &self.weight_model,
+            &self.birth_cells,
+            &self.scores,
+            parents.as_slice(),
+            measurements.len(),
+            scan_seed(self.config.seed, self.scans + 1),
+        )?;
+        let inputs = Inputs {
+            config: &self.config,
+            birth_cells: &self.birth_cells,
+            scores: &self.scores,
+            generation: &self.generation,
+            store,
+            parents,
+            measurements,
+        };
+        let outcome = self.materialisation.run(&inputs, next_store, next_set, self.next_label)?;
+
+        // Commit.
+        self.active = !self.active;
+        debug_assert_ne!(live, self.live());
+        self.time = time;
+        self.scans += 1;
+        self.next_label = outcome.next_label;
+        let top = &self.generation.top;
+        Ok(StepReport {
+            scan: self.scans,
+            measurements: measurements.len(),
+            hypotheses: self.hypotheses[self.live()].len(),
+            tracks: self.stores[self.live()].len(),
+            children: top.offered(),
+            // The kept sum is part of the total: a ratio above 1 is rounding.
+            captured_mass: exp(outcome.kept_total.log_ratio(top.total())).min(T::one()),
+            merged_children: outcome.merged,
+            children_dropped_for_store: outcome.dropped_for_store,
+            births_beyond_object_capacity: generated.births_skipped,
+            sampler_steps: generated.sampler_moves,
+            expected_cardinality: self.expected_cardinality(),
+        })
+    }
+
+    /// Index of the live half of the double buffers (0 or 1).
+    fn live(&self) -> usize {
+        usize::from(self.active)
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &Config<T, M, G, S, B> {
+        &self.config
+    }
+
+    /// Time of the last scan (or of the prior), in seconds.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Number of scans processed.
+    pub fn scans(&self) -> u64 {
+        self.scans
+    }
+
+    /// The hypotheses, best first, with normalised weights.
+    pub fn hypotheses(&self) -> impl ExactSizeIterator<Item = HypothesisView<'_, T, S, N>> + '_ {
+        let tracks = self.stores[self.live()].as_slice();
+        self.hypotheses[self.live()].as_slice().iter().map(move |hypothesis| HypothesisView { hypothesis, tracks })
+    }
+
+    /// The maximum a posteriori hypothesis (the first of [`Tracker::hypotheses`]; ties keep the
+    /// deterministic enumeration order).
+    pub fn map_hypothesis(&self) -> HypothesisView<'_, T, S, N> {
+        let tracks = self.stores[self.live()].as_slice();
+        // There is always at least one hypothesis: the prior has one and every scan keeps one.
+        HypothesisView { hypothesis: &self.hypotheses[self.live()].as_slice()[0], tracks }
+    }
+
+    /// Every track of the shared store, with its existence probability.
+    pub fn tracks(&self) -> &[Track<T, S>] {
+        self.stores[self.live()].as_slice()
+    }
+
+    /// Existence probability of the object `label`: the total weight of the hypotheses that hold a
+    /// track with that label.
+    pub fn label_existence(&self, label: TrackLabel) -> T {
+        self.tracks().iter().filter(|track| track.label == label).fold(T::zero(), |sum, track| sum + track.existence)
+    }
+
+    /// P(number of objects = `n`).
+    pub fn cardinality_probability(&self, n: usize) -> T {
+        self.hypotheses().filter(|h| h.len() == n).fold(T::zero(), |sum, h| sum + h.weight())
+    }
+
+    /// Expected number of objects Σ_h w_h N_h.
+    pub fn expected_cardinality(&self) -> T {
+        self.hypotheses().fold(T::zero(), |sum, h| sum + h.weight() * T::of_f64(h.len() as f64))
+    }
+
+    /// A 64-bit digest (FNV-1a) of everything the tracker exposes: time, scan count, and for every
+    /// hypothesis in order its log-weight and its tracks' labels, means and covariances, as raw bits.
+    /// Two trackers with the same digest agree bit for bit (up to hash collisions); it is how the host and
+    /// an embedded target are compared.
+    pub fn digest(&self) -> u64 {
+        let mut hash = Fnv1a::new();
+        hash.write_u64(self.time.to_bits());
+        hash.write_u64(self.scans);
+        for hypothesis in self.hypotheses() {
+            hash.write_u64(hypothesis.log_weight().as_f64().to_bits());
+            for track in hypothesis.tracks() {
+                hash.write(&track.label.0.to_le_bytes());
+                for value in track.state.mean.iter().chain(track.state.covariance.iter()) {
+                    hash.write_u64(value.as_f64().to_bits());
+                }
+            }
+        }
+        hash.finish()
+    }
+}
+
+/// The live half of a double buffer and the other half, mutably.
+fn split_pair<X>(pair: &mut [X; 2], active: bool) -> (&X, &mut X) {
+    let [first, second] = pair;
+    if active { (second, first) } else { (first, second) }
+}
+
+/// Orders hypotheses best first (stable, so ties keep their order) and sets every track's existence.
+fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(
+    set: &mut HypothesisSet<T, N, H>,
+    store: &mut TrackStore<T, S, K>,
+) {
+    // Insertion sort: merging only raises weights of earlier entries, so few moves are needed.
+    insertion_sort_by(set.as_mut_slice(), |a, b| a.log_weight > b.log_weight);
+    let tracks = store.as_mut_slice();
+    for track in tracks.iter_mut() {
+        track.existence = T::zero();
+    }
+    for hypothesis in set.as_slice() {
+        let weight = exp(hypothesis.log_weight);
+        for &slot in hypothesis.slots() {
+            if let Some(track) = tracks.get_mut(usize::from(slot)) {
+                track.existence += weight;
+            }
+        }
+    }
+}

@@ -1,0 +1,151 @@
+//! Loading a tracker: the configuration check and the prior.
+
+use super::PriorHypothesis;
+use super::finish_hypotheses;
+use super::score::BirthCells;
+use crate::config::{ChildGeneration, Config};
+use crate::ekf::{self, Innovation};
+use crate::error::ConfigError;
+use crate::hypothesis::{Hypothesis, HypothesisSet};
+use crate::index::insertion_sort_by;
+use crate::model::{MeasurementModel, MotionModel};
+use crate::real::{Real, ln};
+use crate::store::{Track, TrackStore};
+
+/// Checks every parameter of `config` for a tracker of at most `N` objects per hypothesis, and returns how
+/// the sensor sees its birth cells.
+///
+/// # Errors
+/// [`ConfigError`] naming the first invalid parameter.
+pub(super) fn check_config<T, M, G, const S: usize, const D: usize, const N: usize, const B: usize>(
+    config: &Config<T, M, G, S, B>,
+) -> Result<BirthCells<T, D, B>, ConfigError>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D>,
+{
+    config.motion.validate().map_err(ConfigError::Motion)?;
+    config.sensor.validate(D).map_err(ConfigError::Sensor)?;
+    if !ekf::is_valid_covariance(&config.measurement.noise_covariance()) {
+        return Err(ConfigError::MeasurementNoise);
+    }
+    check_event_probabilities::<T, M, G, S, N, B>(config)?;
+    if let Some(gate) = config.gate
+        && !(gate.is_finite_value() && gate > T::zero())
+    {
+        return Err(ConfigError::Gate);
+    }
+    let budget_is_zero = match config.children {
+        ChildGeneration::Exhaustive { max_children_per_scan } => max_children_per_scan == 0,
+        ChildGeneration::Sampled(sampler) => sampler.steps == 0,
+    };
+    if budget_is_zero {
+        return Err(ConfigError::ChildBudget);
+    }
+    let mut cells = BirthCells { innovations: [Innovation::default(); B], in_field_of_view: [false; B] };
+    let views = cells.innovations.iter_mut().zip(cells.in_field_of_view.iter_mut());
+    for (cell, (birth, (innovation, in_view))) in config.birth.cells.iter().zip(views).enumerate() {
+        if !(birth.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&birth.covariance)) {
+            return Err(ConfigError::BirthCell { cell });
+        }
+        *innovation = ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
+        *in_view = config.sensor.field_of_view.contains(&innovation.predicted);
+    }
+    Ok(cells)
+}
+
+/// α and β in [0, 1], and P(no event) = 1 − M_b α − M_d β > 0 for every parent: M_d ≤ N
+/// (docs/maths.md §5.1).
+fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, const B: usize>(
+    config: &Config<T, M, G, S, B>,
+) -> Result<(), ConfigError> {
+    let alpha = config.birth.probability;
+    if !(alpha.is_finite_value() && alpha >= T::zero() && alpha <= T::one()) {
+        return Err(ConfigError::BirthProbability);
+    }
+    let beta = config.death_probability;
+    if !(beta.is_finite_value() && beta >= T::zero() && beta <= T::one()) {
+        return Err(ConfigError::DeathProbability);
+    }
+    let cells = T::of_f64(config.birth.cells.len() as f64);
+    if !(T::one() - cells * alpha - T::of_f64(N as f64) * beta > T::zero()) {
+        return Err(ConfigError::EventProbabilities);
+    }
+    Ok(())
+}
+
+/// Checks `prior` and writes it into `store` and `set`; returns the next free label.
+///
+/// # Errors
+/// [`ConfigError`] naming the first invalid prior entry; `store` and `set` are then partly written (they
+/// are the tracker's inactive buffers).
+pub(super) fn load_prior<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(
+    prior: &[PriorHypothesis<'_, T, S>],
+    store: &mut TrackStore<T, S, K>,
+    set: &mut HypothesisSet<T, N, H>,
+) -> Result<u32, ConfigError> {
+    let total = prior_weight_total::<T, S, H>(prior)?;
+    store.clear();
+    set.clear();
+    let mut next_label: u32 = 0;
+    for (index, hypothesis) in prior.iter().enumerate() {
+        if hypothesis.objects.len() > N {
+            return Err(ConfigError::PriorTooManyObjects { hypothesis: index });
+        }
+        let mut slots = [0u16; N];
+        for (position, (object, slot)) in hypothesis.objects.iter().zip(slots.iter_mut()).enumerate() {
+            let state = &object.state;
+            if !(state.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&state.covariance)) {
+                return Err(ConfigError::PriorObject { hypothesis: index, object: position });
+            }
+            if hypothesis.objects.iter().take(position).any(|other| other.label == object.label) {
+                return Err(ConfigError::PriorDuplicateLabel { hypothesis: index });
+            }
+            next_label = next_label.max(object.label.0.saturating_add(1));
+            let existing = store.as_slice().iter().position(|t| t.label == object.label && t.state == *state);
+            *slot = match existing {
+                Some(slot) => slot as u16,
+                None => store
+                    .push(Track { label: object.label, state: *state, existence: T::zero() })
+                    .map_err(|_| ConfigError::PriorTrackStoreFull)?,
+            };
+        }
+        if hypothesis.weight == T::zero() {
+            continue;
+        }
+        let slots = &mut slots[..hypothesis.objects.len()];
+        // Labels are distinct within a hypothesis, so the order is unique.
+        let tracks = store.as_slice();
+        let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
+        insertion_sort_by(slots, |&a, &b| label(a) < label(b));
+        // The prior has at most H hypotheses, so this push cannot fail.
+        let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), slots));
+    }
+    finish_hypotheses(set, store);
+    Ok(next_label)
+}
+
+/// The sum of the prior's weights, after checking that there are 1 to `H` hypotheses with finite
+/// non-negative weights and a finite positive sum.
+fn prior_weight_total<T: Real, const S: usize, const H: usize>(
+    prior: &[PriorHypothesis<'_, T, S>],
+) -> Result<T, ConfigError> {
+    if prior.is_empty() {
+        return Err(ConfigError::PriorEmpty);
+    }
+    if prior.len() > H {
+        return Err(ConfigError::PriorTooManyHypotheses);
+    }
+    let mut total = T::zero();
+    for (index, hypothesis) in prior.iter().enumerate() {
+        if !(hypothesis.weight.is_finite_value() && hypothesis.weight >= T::zero()) {
+            return Err(ConfigError::PriorWeight { hypothesis: index });
+        }
+        total += hypothesis.weight;
+    }
+    if !(total > T::zero() && total.is_finite_value()) {
+        return Err(ConfigError::PriorWeight { hypothesis: 0 });
+    }
+    Ok(total)
+}
