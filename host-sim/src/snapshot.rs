@@ -95,7 +95,7 @@ impl Snapshot {
 
     /// A key that identifies hypothesis `index` by the exact bits of its tracks' states, independent of
     /// labels and of track order: two trackers that run the same EKF code on the same association history
-    /// produce the same key (digest §1.1, Theorem 1: tracks are almost surely distinct).
+    /// produce the same key (docs/maths.md §2.1, [000] Theorem 1: tracks are almost surely distinct).
     pub fn hypothesis_key(&self, index: usize) -> Vec<u64> {
         let mut states: Vec<Vec<u64>> = self.hypotheses[index]
             .tracks

@@ -75,7 +75,7 @@ impl<const B: usize> TextbookKf<'_, B> {
 }
 
 /// Every association of `rows` measurements to `objects` objects (`None` = clutter), each object at
-/// most once: the A_N(m) children of digest §0.
+/// most once: the A_N(m) children of docs/maths.md §7.1.
 pub fn all_associations(rows: usize, objects: usize) -> Vec<Vec<Option<usize>>> {
     let mut out = vec![vec![]];
     for _ in 0..rows {

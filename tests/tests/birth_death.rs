@@ -1,4 +1,4 @@
-//! Birth and death (digest §1.3 (3), (4), (5), (9); §4.4 event probabilities).
+//! Birth and death (docs/maths.md §5, §10.4).
 
 use conformance::*;
 use tracker_core::{BirthDetection, BirthModel, Gaussian, LinearConfig, LinearTracker, TrackLabel};
@@ -69,7 +69,7 @@ fn detected_birth_factor_is_alpha_pd_g_over_clutter() {
 
 #[test]
 fn undetected_births_rank_below_their_companions() {
-    // Digest §1.3 (4)-(5) in the first-order model: an undetected birth in a cell weighs
+    // docs/maths.md §5.2, in the first-order model: an undetected birth in a cell weighs
     // α (1 − p_D) / P(no event) times its companion without the birth.
     let alpha = 0.01;
     let cells = [birth_cell(), gaussian([-10.0, 5.0, 0.0, 0.0], 4.0), gaussian([5.0, -10.0, 0.0, 0.0], 4.0)];

@@ -1,4 +1,4 @@
-//! Paper 004's Fig. 4 data association matrix (digest §4.6): the exhaustive generator's count, MAP and
+//! Paper 004's Fig. 4 data association matrix (docs/maths.md §10.5): the exhaustive generator's count, MAP and
 //! deterministic tie order.
 
 use tracker_core::association::{AssociationMatrix, CLUTTER};
@@ -53,7 +53,7 @@ fn exhaustive_children_of_fig4() {
     // The paper's illustrative green hypothesis [5 4 2 1 7].
     let green = ranked.iter().position(|c| c.1 == vec![5, 4, 2, 1, 7]).unwrap();
     assert!((ranked[green].0 - 1.69e-6).abs() < 5e-9, "green probability {}", ranked[green].0);
-    // Its rank is 10,755 in the digest; several children share its probability, so the rank is any
+    // Its rank is 10,755 in docs/maths.md §10.5; several children share its probability, so the rank is any
     // position within its tie group.
     let green_weight = ranked[green].0;
     let better = ranked.iter().filter(|c| c.0 > green_weight * (1.0 + 1e-12)).count();

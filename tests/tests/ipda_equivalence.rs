@@ -1,5 +1,5 @@
-//! Digest §3.3: with one object of existence 0.5, no birth and death probability 0.02, R-FISST's
-//! existence probability equals IPDA's, with the digest's worked numbers.
+//! docs/maths.md §2.4, §10.3: with one object of existence 0.5, no birth and death probability 0.02, R-FISST's
+//! existence probability equals IPDA's, with the worked numbers there.
 //! P_D = 0.9, λ = 2 clutter returns in V = 100 (λ_C = 0.02), survival 0.98.
 
 use conformance::*;
@@ -96,7 +96,7 @@ fn five_empty_scans_decay_as_ipda() {
 
 #[test]
 fn no_birth_from_empty_and_prediction_keeps_existence_times_survival() {
-    // Digest §3.3 (5) and (6): an empty hypothesis has exactly one child, and with no measurement and
+    // docs/maths.md §10.3: an empty hypothesis has exactly one child, and with no measurement and
     // p_D → 0 (here: the object outside the field of view) existence becomes γ₁₁ × prior.
     let mut config = linear_config::<1>(PD, 2.0, 100.0);
     config.death_probability = BETA;
@@ -123,7 +123,7 @@ fn no_birth_from_empty_and_prediction_keeps_existence_times_survival() {
 
 #[test]
 fn children_factors_sum_to_one_minus_delta() {
-    // Digest §3.3 (8): the surviving object's children (missed + each z) over λ_C^m sum to 1 − δ.
+    // docs/maths.md §2.4: the surviving object's children (missed + each z) over λ_C^m sum to 1 − δ.
     let (mut tracker, predicted) = tracker();
     let z1 = measurement_with_likelihood(&predicted, 0.1);
     tracker.step(1.0, &[z1]).unwrap();

@@ -1,5 +1,5 @@
 //! Properties of the recursion: child counts A_N(m), normalisation, pruning preserves ratios, invariance
-//! to the order of objects and measurements, recursive weights = batch weights (digest §1.3, §2.3).
+//! to the order of objects and measurements, recursive weights = batch weights (docs/maths.md §10.6).
 
 use conformance::*;
 use tracker_core::association::association_count;
@@ -109,7 +109,7 @@ fn invariant_to_the_order_of_objects_and_measurements() {
 
 #[test]
 fn recursive_weights_equal_batch_weights_over_two_scans() {
-    // Digest §2.3 (2): C(h₂) = Pr{γ₁} Pr{γ₂} ∫ℓ₁p⁻ ∫ℓ₂p⁻ for every global hypothesis, normalised once.
+    // docs/maths.md §2.3, [001] (19)–(20): C(h₂) = Pr{γ₁} Pr{γ₂} ∫ℓ₁p⁻ ∫ℓ₂p⁻ for every global hypothesis, normalised once.
     let (pd, clutter_rate, volume) = (0.8, 1.0, 200.0);
     let lambda = clutter_rate / volume;
     let config = linear_config::<1>(pd, clutter_rate, volume);
@@ -188,7 +188,7 @@ fn tracks_are_shared_between_hypotheses() {
 
 #[test]
 fn child_pdfs_do_not_depend_on_parent_weights() {
-    // Digest §1.3 (10): changing prior weights never changes a child's EKF mean or covariance.
+    // docs/maths.md §2.1: changing prior weights never changes a child's EKF mean or covariance.
     let a = [PriorObject { label: TrackLabel(0), state: gaussian([0.0, 0.0, 1.0, 0.0], 0.5) }];
     let b = [
         PriorObject { label: TrackLabel(0), state: gaussian([0.0, 0.0, 1.0, 0.0], 0.5) },

@@ -1,4 +1,4 @@
-//! Digest §1.3 (1): without birth or death the R-FISST weights equal Reid's HOMHT (30), and the
+//! docs/maths.md §2.2: without birth or death the R-FISST weights equal Reid's HOMHT (30), and the
 //! per-hypothesis Kalman states are the textbook ones.
 
 use conformance::*;
@@ -68,7 +68,7 @@ fn thirteen_children_with_reid_weights_and_kalman_states() {
 
 #[test]
 fn weight_is_a_product_of_per_object_factors_and_scales_with_clutter() {
-    // Digest §1.3 (2): changing λ_C rescales a child by λ_C^k before normalisation, so the ratio of two
+    // docs/maths.md §4.1, §10.2: changing λ_C rescales a child by λ_C^k before normalisation, so the ratio of two
     // children with k and k' clutter measurements changes by (λ'/λ)^(k − k').
     let priors = [gaussian([0.0, 0.0, 1.0, 0.0], 0.5)];
     let zs = [V2::new(1.1, 0.1), V2::new(0.9, -0.2)];

@@ -1,4 +1,4 @@
-//! R-FISST's sampled children against the exhaustive answer (issue 4, digest §4.6).
+//! R-FISST's sampled children against the exhaustive answer (issue 4, docs/maths.md §7).
 
 use conformance::*;
 use tracker_core::association::{AssociationMatrix, CLUTTER};

@@ -2,8 +2,9 @@
 //!
 //! A multi-object tracker that keeps many data association hypotheses at once, with birth and death, in
 //! memory fixed at compile time and with a bounded cost per scan. `#![no_std]`, no `alloc`, no `unsafe`.
-//! The maths follows `shared/docs/seed-digest.md`; equation numbers in comments refer to it and to the
-//! papers it covers ([000] = Chakravorty et al., the FISST form used here).
+//! The maths is written out in the repository's `docs/maths.md`, with numbered sections that comments
+//! cite as "docs/maths.md §n"; [000]–[004] are the papers listed there ([000] = Chakravorty et al., the
+//! FISST form used here).
 //!
 //! ## Layers
 //!
@@ -71,6 +72,11 @@ pub use report::StepReport;
 pub use sensor::{Region, Sensor};
 pub use store::{Track, TrackLabel};
 pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, Tracker};
+
+/// The README's rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;
 
 /// Capacities of the default SSA (embedded) configuration: the 50-object scenario of paper 003 §IV.
 pub mod ssa_caps {
