@@ -21,6 +21,7 @@ use crate::scenario::Scenario;
 use crate::setup;
 use nalgebra::SVector;
 use std::fmt::Write as _;
+use tracker_core::digest::Fnv1a;
 use tracker_core::{
     BirthModel, Config, Gaussian, PositionMeasurement, PriorHypothesis, PriorObject, Real, Region, Sensor, SsaConfig,
     SsaTracker, TwoBody, ssa_caps,
@@ -136,26 +137,6 @@ pub fn region<T: Real>(region: &Region<f64>) -> Region<T> {
 /// An `f64` Gaussian in scalar `T`.
 pub fn gaussian<T: Real>(gaussian: &Gaussian<f64, 4>) -> Gaussian<T, 4> {
     Gaussian { mean: gaussian.mean.map(T::of_f64), covariance: gaussian.covariance.map(T::of_f64) }
-}
-
-/// 64-bit FNV-1a, as the firmware folds its per-scan digests.
-struct Fnv1a(u64);
-
-impl Fnv1a {
-    fn new() -> Self {
-        Fnv1a(0xcbf2_9ce4_8422_2325)
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            self.0 ^= u64::from(byte);
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Child generators: the producers of a parent's children for one birth/death event.
 //!
 //! A [`ChildGenerator`] walks an [`AssociationMatrix`] and offers children to a [`ChildSink`], each
-//! **distinct child exactly once**, with its exact log-weight from the matrix (docs/maths.md §6.5: weights
+//! **distinct child exactly once**, with its exact log-weight from the matrix (docs/maths.md §7.6: weights
 //! are always computed from the formula, never estimated from how often a sampler visits a child). The sink
 //! keeps the best ones and the running normaliser. [`ExhaustiveChildren`] offers every child with
 //! non-zero weight; the Metropolis sampler implements the same trait.

@@ -7,7 +7,7 @@ use crate::ekf::Gaussian;
 use crate::real::Real;
 use crate::sensor::Sensor;
 
-/// Whether a born object may go undetected in the scan it is born (digest §1.1, [000] (34)–(43)).
+/// Whether a born object may go undetected in the scan it is born (docs/maths.md §5.2, [000] (34)–(43)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -16,7 +16,7 @@ pub enum BirthDetection {
     /// object. **The default.** Every child with an undetected birth weighs at most (1 − p_D) α / P(no
     /// event) of its companion without that birth ([000] (39)), and its track would carry only the broad
     /// birth pdf; dropping those children keeps H∞ for hypotheses that explain measurements. The mass
-    /// discarded per scan is about (1 − p_D) M_b α (digest §1.3 (5)).
+    /// discarded per scan, relative to the kept children, is about M_b α (1 − p_D) / P(no event) (docs/maths.md §5.2).
     #[default]
     AllDetected,
     /// The exact first-order model: a born object is detected with p_D like any other, so undetected
@@ -25,7 +25,7 @@ pub enum BirthDetection {
 }
 
 /// R-FISST's first-order birth model: per scan at most one birth, in one of the cells, each with
-/// probability α ([003] §II-C; digest §4.4 "Event probabilities").
+/// probability α ([003] §II-C; docs/maths.md §5.1).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BirthModel<T: Real, const S: usize, const B: usize> {

@@ -4,7 +4,7 @@
 //! - Innovation: ẑ = h(x̂⁻), S = H P⁻ Hᵀ + R, factored once as S = L Lᵀ (Cholesky). A failed
 //!   factorisation is [`NumericalError::NotPositiveDefinite`], never ignored.
 //! - Likelihood: ln ĝ = ln N(z; ẑ, S) = −½ |L⁻¹ν|² − Σ ln Lᵢᵢ − (D/2) ln 2π with ν = z − ẑ; no explicit
-//!   inverse. For a linear model ĝ is the exact predicted likelihood ∫ g(z|x) p⁻(x) dx (digest §4.1).
+//!   inverse. For a linear model ĝ is the exact predicted likelihood ∫ g(z|x) p⁻(x) dx (docs/maths.md §6.2).
 //! - Update: K = P⁻ Hᵀ S⁻¹ (solved through L), x̂ = x̂⁻ + K ν and the Joseph form
 //!   P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ, which keeps P symmetric positive semi-definite.
 //!

@@ -12,14 +12,15 @@
 //!   updated by an EKF (Joseph form, Cholesky-factored innovation covariance).
 //! - **Sensor** ([`sensor`]): a field of view (p_D inside, 0 outside) and Poisson clutter of intensity
 //!   λ_C over it.
-//! - **Association** ([`association`], [`children`], [`selection`]): for each parent hypothesis and
-//!   birth/death event, a data association matrix of log ratios δ_{z,o}; a child generator offers the
-//!   children (association vectors) with their exact log-weights; the best H∞ are kept and the global
+//! - **Association** ([`association`], [`children`], [`sampler`], [`cluster`], [`selection`]): for each
+//!   parent hypothesis and birth/death event, a data association matrix of log ratios δ_{z,o} and its
+//!   column layout; a child generator offers the children (association vectors) with their exact
+//!   log-weights to a sink that knows their (parent, event); the best H∞ are kept and the global
 //!   log-sum-exp normalises them.
 //! - **Hypotheses** ([`store`], [`hypothesis`], [`tracker`]): hypotheses hold indices into one track
 //!   store shared by all of them, so a track with one history is stored, predicted and scored once.
 //!
-//! ## The weight (digest §4.4, [000]'s FISST form)
+//! ## The weight (docs/maths.md §4.1–§4.2, [000]'s FISST form)
 //!
 //! ```text
 //! w̃_ij = w_i P(e) (1 − p_D)^{N'_F} λ_C^m Π_{(z,o)∈σ} p_D ĝ_{z,o} / ((1 − p_D) λ_C)
@@ -27,8 +28,8 @@
 //!
 //! normalised by one log-sum-exp over all parents and all their children. P(e) is R-FISST's first-order
 //! birth/death model: no event 1 − M_b α − M_d β, a birth in one of M_b cells α each, the death of one of
-//! the M_d objects in the field of view β each. No 1/A_N(m) or (m choose k) k! factor is applied (digest
-//! §4.3 shows they are not normalised across cardinalities).
+//! the M_d objects in the field of view β each. No 1/A_N(m) or (m choose k) k! factor is applied (docs/maths.md
+//! §4.5: they are not normalised across cardinalities).
 //!
 //! ## Determinism
 //!

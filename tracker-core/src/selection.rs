@@ -2,7 +2,7 @@
 //!
 //! [`TopChildren`] is the [`ChildSink`] of a scan. It keeps the `H` children of largest log-weight in a
 //! fixed-size binary min-heap (the worst kept child at the root) and accumulates the log-sum-exp of
-//! **every** child offered, over all parents and events: the one global normaliser of docs/maths.md §3.
+//! **every** child offered, over all parents and events: the one global normaliser of docs/maths.md §4.6.
 //! Children of one (parent, event) reach it through an [`EventSink`], which knows their origin.
 //! Equal weights are ordered by arrival (the generator's deterministic enumeration order), so the
 //! selection is a total order and the same inputs always keep the same children.

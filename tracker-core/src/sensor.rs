@@ -2,7 +2,7 @@
 //!
 //! An object whose predicted measurement h(x̂⁻) lies inside the field of view is detected with
 //! probability p_D; outside it p_D = 0 and it contributes no missed-detection factor (paper 004's remark
-//! on M_t, digest §4.4 "Objects outside the FOV"). Clutter is Poisson with mean `clutter_rate` returns per
+//! on M_t, docs/maths.md §3.1). Clutter is Poisson with mean `clutter_rate` returns per
 //! scan, uniform over the field of view, so its intensity is λ_C = clutter_rate / V with V the area of
 //! the field of view in measurement space.
 

@@ -1,4 +1,4 @@
-//! The weight of a child hypothesis (digest §4.4, [000]'s FISST form), in the pieces the association
+//! The weight of a child hypothesis (docs/maths.md §4.1–§4.2, [000]'s FISST form), in the pieces the association
 //! matrix needs. The tracker and the host's unbounded reference tracker both compute weights here.
 //!
 //! ```text

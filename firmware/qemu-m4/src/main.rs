@@ -16,6 +16,7 @@ mod stack;
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{debug, hprintln};
 use tracker_core::{ConfigError, SsaTracker, StepError};
+use tracker_core::digest::Fnv1a;
 
 /// Scans replayed.
 const SCANS: usize = scenario::SCANS.len();
@@ -163,26 +164,6 @@ fn exit(status: debug::ExitStatus) -> ! {
     // Only reached without a semihosting host.
     loop {
         cortex_m::asm::wfi();
-    }
-}
-
-/// 64-bit FNV-1a, as `host-sim digest` folds the per-scan digests.
-struct Fnv1a(u64);
-
-impl Fnv1a {
-    fn new() -> Self {
-        Fnv1a(0xcbf2_9ce4_8422_2325)
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            self.0 ^= u64::from(byte);
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
     }
 }
 

@@ -1,4 +1,4 @@
-//! The data association matrix of one parent hypothesis and one birth/death event (docs/maths.md §4).
+//! The data association matrix of one parent hypothesis and one birth/death event (docs/maths.md §4.2).
 //!
 //! Rows are the scan's measurements z₁..z_m; columns are the objects that can be detected in the child
 //! (the parent's objects in the field of view, minus a dead one, plus a born one); clutter is implicit and
@@ -12,7 +12,7 @@
 //! δ_{z,o}  = ln( p_D ĝ_{z,o} / ((1 − p_D) λ_C) )
 //! ```
 //!
-//! which is the weight of docs/maths.md §3, `w̃ = w_i P(e) (1−p_D)^{N'_F} λ_C^m Π p_D ĝ / ((1−p_D) λ_C)`.
+//! which is the weight of docs/maths.md §4.1, `w̃ = w_i P(e) (1−p_D)^{N'_F} λ_C^m Π p_D ĝ / ((1−p_D) λ_C)`.
 //! An impossible entry (outside a gate, or a column that cannot be assigned) is `-inf`. When p_D = 1 the
 //! ratio is undefined: the missed factor is dropped from the baseline and the entry, and every such column
 //! is *required* instead (a child that leaves it unassigned has weight 0). A birth that must be detected
@@ -221,7 +221,7 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
 }
 
 /// A_N(m) = Σ_{n=0}^{min(m,N)} C(N,n) C(m,n) n!: the number of associations of `measurements` measurements
-/// with `objects` objects ([003] (4), docs/maths.md §4.3), saturating at `u128::MAX`.
+/// with `objects` objects ([003] (4), docs/maths.md §7.1), saturating at `u128::MAX`.
 ///
 /// # Examples
 /// ```

@@ -1,6 +1,6 @@
 //! The Metropolis chain of one association matrix (R-FISST, paper 003 §III, paper 004 §III-B): a bounded
 //! number of moves that search the matrix's associations and record the best distinct ones, each with its
-//! exact weight (docs/maths.md §6).
+//! exact weight (docs/maths.md §7.3–§7.7).
 
 use super::best::{BestChildren, association_hash, cell_hash};
 use super::{Proposal, REQUIRED_PENALTY, SamplerConfig};

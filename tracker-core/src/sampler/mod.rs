@@ -1,6 +1,6 @@
 //! The bounded Metropolis sampler of child hypotheses (R-FISST, paper 003 §III, paper 004 §III-B).
 //!
-//! Heads up: read docs/maths.md §6 before changing anything here. The chain only *searches*; it never
+//! Heads up: read docs/maths.md §7.6 before changing anything here. The chain only *searches*; it never
 //! estimates weights. Every child it offers carries its exact log-weight, recomputed from the
 //! association matrix, and the tracker renormalises over all offered children of all parents.
 //!

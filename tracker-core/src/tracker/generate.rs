@@ -2,12 +2,12 @@
 //!
 //! For each parent hypothesis the stage builds its **no-event matrix** (one column per object in the field
 //! of view, entries from stage 1) and records its column layout ([`ParentColumns`]); the matrix of each
-//! other event is a copy of it (docs/maths.md §5): a birth in a cell appends the cell's column when the
+//! other event is a copy of it (docs/maths.md §5.1): a birth in a cell appends the cell's column when the
 //! sensor can see the cell; the death of an object makes its column impossible. A child generator offers
 //! each matrix's children to the selection through an [`EventSink`], which knows their (parent, event).
 //!
 //! **Deaths with sampled children.** The death child of object o with association σ (σ leaves o's column
-//! free) weighs exactly the no-event child σ times β / (P(no event) (1 − p_D)) (docs/maths.md §5.3), so
+//! free) weighs exactly the no-event child σ times β / (P(no event) (1 − p_D)) (docs/maths.md §5.4), so
 //! the no-event children pass through a recording sink and each one's death children are derived from it
 //! once the generator has offered them all, instead of one chain per object. (With p_D = 1 the sets
 //! differ, and each death gets its own matrix and chain.)

@@ -5,7 +5,7 @@
 //! association gives it (read back through the column layout of its (parent, event)), or none when it is
 //! missed. A key seen before reuses its track, a new key gets one EKF update. Children that hold exactly
 //! the same tracks are merged (their weights add), and the weights are normalised over the kept
-//! hypotheses (docs/maths.md §3.2).
+//! hypotheses (docs/maths.md §8.2–§8.3).
 
 use super::finish_hypotheses;
 use super::generate::Generation;

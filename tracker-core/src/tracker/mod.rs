@@ -3,7 +3,7 @@
 //! [`Tracker::step`] is a pipeline of three stages, each with its own scratch space:
 //!
 //! 1. [`score`]: predict every track of the shared store once (EKF), decide whether it is in the field of
-//!    view, and score it against every measurement once: the entry δ of docs/maths.md §4.1 for each
+//!    view, and score it against every measurement once: the entry δ of docs/maths.md §4.2 for each
 //!    (track, measurement) pair, `-inf` outside the gate or the field of view. Birth cells likewise.
 //! 2. [`generate`]: for each parent and each event (no event, a birth in each cell, the death of each
 //!    object in the field of view), the event's association matrix and its column layout; a child

@@ -1,5 +1,5 @@
 //! Stage 1 of a scan: predict every track of the shared store once, and score it against every measurement
-//! once. The entries δ of docs/maths.md §4.1 computed here serve every parent hypothesis that holds the
+//! once. The entries δ of docs/maths.md §4.2 computed here serve every parent hypothesis that holds the
 //! track; birth cells are scored the same way.
 
 use crate::config::Config;
