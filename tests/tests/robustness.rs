@@ -634,6 +634,32 @@ fn invalid_configuration_is_a_typed_error() {
         }
         let zero_steps = SamplerConfig { steps: 0, ..SamplerConfig::default() };
         assert_eq!(build(&|c| c.children = ChildGeneration::Sampled(zero_steps)), Some(ConfigError::ChildBudget));
+        // Work parameters that would make one scan endless (issue 17): each above its documented limit.
+        let above = |parameter, limit| Some(ConfigError::AboveLimit { parameter, limit });
+        let endless_chain = SamplerConfig { steps: u32::MAX, ..SamplerConfig::default() };
+        let chain_limit = u64::from(SamplerConfig::MAX_CHAIN_STEPS);
+        assert_eq!(
+            build(&|c| c.children = ChildGeneration::Sampled(endless_chain)),
+            above("sampler burn_in + steps", chain_limit)
+        );
+        let long_burn_in =
+            SamplerConfig { burn_in: SamplerConfig::MAX_CHAIN_STEPS, steps: 1, ..SamplerConfig::default() };
+        assert_eq!(
+            build(&|c| c.children = ChildGeneration::Sampled(long_burn_in)),
+            above("sampler burn_in + steps", chain_limit)
+        );
+        let at_limit = SamplerConfig { burn_in: 0, steps: SamplerConfig::MAX_CHAIN_STEPS, ..SamplerConfig::default() };
+        assert_eq!(build(&|c| c.children = ChildGeneration::Sampled(at_limit)), None);
+        let endless_clusters = SamplerConfig { exhaustive_limit: u64::MAX, ..SamplerConfig::default() };
+        assert_eq!(
+            build(&|c| c.children = ChildGeneration::Sampled(endless_clusters)),
+            above("sampler exhaustive_limit", SamplerConfig::MAX_EXHAUSTIVE_LIMIT)
+        );
+        let endless_homht = ChildGeneration::Exhaustive { max_children_per_scan: u64::MAX };
+        assert_eq!(
+            build(&|c| c.children = endless_homht),
+            above("max_children_per_scan", ChildGeneration::MAX_CHILDREN_PER_SCAN)
+        );
         let flat = Region::Rectangle { min: [c(0.0), c(0.0)], max: [c(0.0), c(1.0)] };
         assert!(sensor(build(&|c| c.sensor.field_of_view = flat)));
         let wide =

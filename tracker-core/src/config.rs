@@ -61,6 +61,12 @@ pub enum ChildGeneration {
     Sampled(crate::sampler::SamplerConfig),
 }
 
+impl ChildGeneration {
+    /// The largest accepted `max_children_per_scan` of [`ChildGeneration::Exhaustive`]: 10⁹ leaves, tens
+    /// of seconds of one host core, so that no configuration makes one scan endless.
+    pub const MAX_CHILDREN_PER_SCAN: u64 = 1_000_000_000;
+}
+
 impl Default for ChildGeneration {
     fn default() -> Self {
         ChildGeneration::Exhaustive { max_children_per_scan: 1_000_000 }

@@ -31,6 +31,16 @@ pub enum ConfigError {
     Gate,
     /// The child budget is zero.
     ChildBudget,
+    /// A work parameter is above the limit that keeps one scan's work bounded
+    /// ([`crate::config::ChildGeneration::MAX_CHILDREN_PER_SCAN`],
+    /// [`crate::sampler::SamplerConfig::MAX_CHAIN_STEPS`],
+    /// [`crate::sampler::SamplerConfig::MAX_EXHAUSTIVE_LIMIT`]).
+    AboveLimit {
+        /// The parameter.
+        parameter: &'static str,
+        /// Its largest accepted value.
+        limit: u64,
+    },
     /// The prior has no hypothesis.
     PriorEmpty,
     /// The prior has more hypotheses than the capacity `H`.
@@ -84,6 +94,7 @@ impl core::fmt::Display for ConfigError {
             ConfigError::EventProbabilities => f.write_str("M_b alpha + N beta must be < 1 (N = object capacity)"),
             ConfigError::Gate => f.write_str("gate must be finite and > 0"),
             ConfigError::ChildBudget => f.write_str("child budget must be > 0"),
+            ConfigError::AboveLimit { parameter, limit } => write!(f, "{parameter} must be at most {limit}"),
             ConfigError::PriorEmpty => f.write_str("prior has no hypothesis"),
             ConfigError::PriorTooManyHypotheses => f.write_str("prior has more hypotheses than the capacity H"),
             ConfigError::PriorWeight { hypothesis } => {

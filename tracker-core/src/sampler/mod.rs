@@ -90,6 +90,42 @@ impl Default for SamplerConfig {
 }
 
 impl SamplerConfig {
+    /// The largest accepted `burn_in + steps` of one chain (10⁶; the papers use 10⁵). A scan runs at most
+    /// H (1 + B + N) chains (one per parent and event), so this bounds its moves.
+    pub const MAX_CHAIN_STEPS: u32 = 1_000_000;
+
+    /// The largest accepted `exhaustive_limit` (10⁶ associations enumerated per cluster).
+    pub const MAX_EXHAUSTIVE_LIMIT: u64 = 1_000_000;
+
+    /// Checks the work limits: at least one recorded step, `burn_in + steps` ≤
+    /// [`SamplerConfig::MAX_CHAIN_STEPS`], `exhaustive_limit` ≤ [`SamplerConfig::MAX_EXHAUSTIVE_LIMIT`].
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::ChildBudget`] for zero steps, [`crate::ConfigError::AboveLimit`] naming the
+    /// parameter above its limit.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::{ConfigError, sampler::SamplerConfig};
+    /// assert_eq!(SamplerConfig::DEFAULT.check(), Ok(()));
+    /// let endless = SamplerConfig { steps: u32::MAX, ..SamplerConfig::DEFAULT };
+    /// assert!(matches!(endless.check(), Err(ConfigError::AboveLimit { parameter: "sampler burn_in + steps", .. })));
+    /// ```
+    pub fn check(&self) -> Result<(), crate::ConfigError> {
+        if self.steps == 0 {
+            return Err(crate::ConfigError::ChildBudget);
+        }
+        if u64::from(self.burn_in) + u64::from(self.steps) > u64::from(Self::MAX_CHAIN_STEPS) {
+            let limit = u64::from(Self::MAX_CHAIN_STEPS);
+            return Err(crate::ConfigError::AboveLimit { parameter: "sampler burn_in + steps", limit });
+        }
+        if self.exhaustive_limit > Self::MAX_EXHAUSTIVE_LIMIT {
+            let limit = Self::MAX_EXHAUSTIVE_LIMIT;
+            return Err(crate::ConfigError::AboveLimit { parameter: "sampler exhaustive_limit", limit });
+        }
+        Ok(())
+    }
+
     /// The default budget and moves (also usable in a `const` context).
     pub const DEFAULT: Self = Self {
         burn_in: 100,

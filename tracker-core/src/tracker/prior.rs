@@ -36,12 +36,15 @@ where
     {
         return Err(ConfigError::Gate);
     }
-    let budget_is_zero = match config.children {
-        ChildGeneration::Exhaustive { max_children_per_scan } => max_children_per_scan == 0,
-        ChildGeneration::Sampled(sampler) => sampler.steps == 0,
-    };
-    if budget_is_zero {
-        return Err(ConfigError::ChildBudget);
+    match config.children {
+        ChildGeneration::Exhaustive { max_children_per_scan: 0 } => return Err(ConfigError::ChildBudget),
+        ChildGeneration::Exhaustive { max_children_per_scan } => {
+            let limit = ChildGeneration::MAX_CHILDREN_PER_SCAN;
+            if max_children_per_scan > limit {
+                return Err(ConfigError::AboveLimit { parameter: "max_children_per_scan", limit });
+            }
+        }
+        ChildGeneration::Sampled(sampler) => sampler.check()?,
     }
     let mut cells = BirthCells { innovations: [Innovation::default(); B], in_field_of_view: [false; B] };
     let views = cells.innovations.iter_mut().zip(cells.in_field_of_view.iter_mut());
