@@ -7,6 +7,8 @@
 //!   the gate of every object and every birth cell, so every association matrix is dense.
 
 use nalgebra::{SMatrix, SVector};
+use rand_core::{Rng, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use tracker_core::association::AssociationMatrix;
 use tracker_core::config::{ChildGeneration, Selection};
 use tracker_core::sampler::SamplerConfig;
@@ -15,13 +17,13 @@ use tracker_core::{
     Region, Sensor, StepError, StepReport, StoreOverflow, TrackLabel, Tracker, TwoBody,
 };
 
-/// SplitMix64 step, for deterministic bench inputs.
+/// The next output of the SplitMix64 stream whose state is `state` (advanced), for deterministic bench
+/// inputs.
 pub fn splitmix(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    let mut stream = SplitMix64::seed_from_u64(*state);
+    let value = stream.next_u64();
+    *state = u64::from_le_bytes(stream.state());
+    value
 }
 
 /// A uniform draw in [0, 1) from [`splitmix`].

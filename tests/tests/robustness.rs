@@ -478,15 +478,15 @@ fn long_runs_of_empty_scans() {
 }
 
 /// A small deterministic generator for clutter (SplitMix64).
-struct SplitMix(u64);
+struct SplitMix(rand_xoshiro::SplitMix64);
 
 impl SplitMix {
+    fn new(seed: u64) -> Self {
+        SplitMix(rand_core::SeedableRng::seed_from_u64(seed))
+    }
+
     fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        (rand_core::Rng::next_u64(&mut self.0) >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 
@@ -502,7 +502,7 @@ fn all_clutter_scans() {
         config.birth.cells[0].covariance[(2, 2)] = c(1.0);
         config.birth.cells[0].covariance[(3, 3)] = c(1.0);
         let mut t = Small::<T>::with_objects(config, &[], 0.0).unwrap();
-        let mut random = SplitMix(5);
+        let mut random = SplitMix::new(5);
         let mut worst: f64 = 0.0;
         for k in 1..=200 {
             let zs: Vec<SVector<T, 2>> =

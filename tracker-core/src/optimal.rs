@@ -139,14 +139,7 @@ pub fn best_association<T: Real, const N: usize, const Z: usize>(
 mod tests {
     use super::*;
     use crate::children::{ChildGenerator, ChildSink, ExhaustiveChildren};
-
-    fn splitmix(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49eb_133b_111f);
-        z ^ (z >> 31)
-    }
+    use rand_core::Rng;
 
     /// The best child by exhaustive enumeration.
     struct Best(f64);
@@ -158,14 +151,14 @@ mod tests {
 
     #[test]
     fn finds_the_exhaustive_maximum_on_random_matrices() {
-        let mut state = 11u64;
+        let mut stream = crate::random::test_stream(11);
         for case in 0..2_000u32 {
-            let rows = 1 + (splitmix(&mut state) % 6) as usize;
-            let columns = (splitmix(&mut state) % 7) as usize;
+            let rows = 1 + (stream.next_u64() % 6) as usize;
+            let columns = (stream.next_u64() % 7) as usize;
             let mut matrix = AssociationMatrix::<f64, 6, 6>::new(rows, columns, 0.0);
             for column in 0..columns {
                 let entries: [f64; 6] = core::array::from_fn(|_| {
-                    let draw = splitmix(&mut state);
+                    let draw = stream.next_u64();
                     if draw.is_multiple_of(3) {
                         f64::NEG_INFINITY
                     } else if case.is_multiple_of(2) {
