@@ -244,6 +244,15 @@ impl<T: Real> WeightModel<T> {
     }
 
     /// Number of birth cells M_b.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::WeightModel;
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 100.0 } };
+    /// let model = WeightModel::new(&sensor, None, 0.01, 3, BirthDetection::AllDetected, 0.0);
+    /// assert_eq!(model.birth_cells(), 3);
+    /// ```
     pub fn birth_cells(&self) -> usize {
         self.birth_cells
     }
@@ -257,9 +266,10 @@ impl<T: Real> WeightModel<T> {
     /// # // p_D = 0.9, λ_C = 1 / 100.
     /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
     /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
-    /// assert!(WeightModel::new(&sensor, None, 0.01, 1, BirthDetection::AllDetected, 0.0).births_possible());
-    /// assert!(!WeightModel::new(&sensor, None, 0.01, 0, BirthDetection::AllDetected, 0.0).births_possible()); // no cell
-    /// assert!(!WeightModel::new(&sensor, None, 0.0, 1, BirthDetection::AllDetected, 0.0).births_possible()); // α = 0
+    /// let model = |alpha, cells| WeightModel::new(&sensor, None, alpha, cells, BirthDetection::AllDetected, 0.0);
+    /// assert!(model(0.01, 1).births_possible());
+    /// assert!(!model(0.01, 0).births_possible()); // no cell
+    /// assert!(!model(0.0, 1).births_possible()); // α = 0
     /// ```
     pub fn births_possible(&self) -> bool {
         self.birth_probability > T::zero() && self.birth_cells > 0

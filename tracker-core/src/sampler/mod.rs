@@ -88,7 +88,8 @@ pub enum Proposal {
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
 /// use tracker_core::ChildGeneration;
 /// use tracker_core::sampler::SamplerConfig;
-/// const QUICK: SamplerConfig = SamplerConfig { burn_in: 10, steps: 200, exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+/// const QUICK: SamplerConfig =
+///     SamplerConfig { burn_in: 10, steps: 200, exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
 /// assert_eq!(SamplerConfig::default(), SamplerConfig::DEFAULT);
 ///
 /// let config = Config { children: ChildGeneration::Sampled(QUICK), ..config };

@@ -470,7 +470,11 @@ where
     /// const CONFIG: LinearConfig<f64, 1> = Config {
     ///     motion: ConstantVelocity { acceleration_noise: 0.01 },
     ///     measurement: PositionMeasurement { noise: identity() },
-    ///     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 1e4 } },
+    ///     sensor: Sensor {
+    ///         detection_probability: 0.9,
+    ///         clutter_rate: 1.0,
+    ///         field_of_view: Region::Everywhere { volume: 1e4 },
+    ///     },
     ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected },
     ///     death_probability: 0.0,
     ///     gate: None,
