@@ -35,6 +35,20 @@ use nalgebra::{Cholesky, SMatrix, SVector};
 /// assert!(ekf::is_valid_covariance(&posterior.covariance));
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
+///
+/// [`update`] with P = I and R = 0.25 I: the position gain is 1 / 1.25 = 0.8.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{Gaussian, PositionMeasurement, ekf};
+/// let sensor = PositionMeasurement::isotropic(0.5);
+/// let track = Gaussian { mean: SVector::zeros(), covariance: SMatrix::<f64, 4, 4>::identity() };
+/// let innovation = ekf::innovation(&sensor, &track)?;
+/// let updated = ekf::update(&sensor, &track, &innovation, &SVector::from([1.0, -2.0]))?;
+/// assert!((updated.mean - SVector::from([0.8, -1.6, 0.0, 0.0])).abs().max() < 1e-12);
+/// assert!((updated.covariance[(0, 0)] - 0.2).abs() < 1e-12); // (1 − 0.8) · 1
+/// assert_eq!(updated.covariance[(2, 2)], 1.0); // the velocity is not correlated with the position
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gaussian<T: Real, const S: usize> {
@@ -188,9 +202,6 @@ impl<T: Real, const D: usize> Innovation<T, D> {
 
 /// Predicts `prior` over `dt`: x̂⁻ = f(x̂), P⁻ = Φ P Φᵀ + Q.
 ///
-/// # Errors
-/// The motion model's error, or [`NumericalError::NonFinite`].
-///
 /// # Examples
 /// ```
 /// use nalgebra::{SMatrix, SVector};
@@ -203,6 +214,9 @@ impl<T: Real, const D: usize> Innovation<T, D> {
 /// assert!((predicted.covariance[(0, 0)] - (1.0 + 4.0 + q * 8.0 / 3.0)).abs() < 1e-12);
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
+///
+/// # Errors
+/// The motion model's error, or [`NumericalError::NonFinite`].
 pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
     model: &M,
     prior: &Gaussian<T, S>,
@@ -251,21 +265,6 @@ pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D
 ///
 /// # Errors
 /// [`NumericalError::NonFinite`] when the result is not finite.
-///
-/// # Examples
-/// With P = I and R = 0.25 I the position gain is 1 / 1.25 = 0.8:
-/// ```
-/// use nalgebra::{SMatrix, SVector};
-/// use tracker_core::{Gaussian, PositionMeasurement, ekf};
-/// let sensor = PositionMeasurement::isotropic(0.5);
-/// let track = Gaussian { mean: SVector::zeros(), covariance: SMatrix::<f64, 4, 4>::identity() };
-/// let innovation = ekf::innovation(&sensor, &track)?;
-/// let updated = ekf::update(&sensor, &track, &innovation, &SVector::from([1.0, -2.0]))?;
-/// assert!((updated.mean - SVector::from([0.8, -1.6, 0.0, 0.0])).abs().max() < 1e-12);
-/// assert!((updated.covariance[(0, 0)] - 0.2).abs() < 1e-12); // (1 − 0.8) · 1
-/// assert_eq!(updated.covariance[(2, 2)], 1.0); // the velocity is not correlated with the position
-/// # Ok::<(), tracker_core::NumericalError>(())
-/// ```
 pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
