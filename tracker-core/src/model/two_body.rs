@@ -25,18 +25,6 @@ use nalgebra::{SMatrix, SVector};
 /// let p = model.propagate(&SVector::from([r, 0.0, 0.0, v]), period).unwrap();
 /// assert!((p.state[0] - r).abs() < 1e-3 && p.state[1].abs() < 1e-3);
 /// ```
-///
-/// A step that needs more sub-steps than `max_substeps` is an error, not a silent long loop; the centre of
-/// attraction is singular:
-/// ```
-/// use nalgebra::SVector;
-/// use tracker_core::model::{ModelError, MotionModel, TwoBody};
-/// let model = TwoBody { mu: 398_600.441_8_f64, acceleration_noise: 1e-9, max_step: 10.0, max_substeps: 100 };
-/// let state = SVector::from([7000.0, 0.0, 0.0, 7.5]);
-/// assert!(model.propagate(&state, 1000.0).is_ok()); // 100 sub-steps
-/// assert_eq!(model.propagate(&state, 1000.1).unwrap_err(), ModelError::TimeStepTooLarge);
-/// assert_eq!(model.propagate(&SVector::zeros(), 1.0).unwrap_err(), ModelError::Singular);
-/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
