@@ -11,6 +11,35 @@ use crate::index::{At, below};
 use crate::real::Real;
 
 /// Receives children.
+///
+/// # Examples
+/// A sink that counts the children and sums their weights:
+/// ```
+/// use tracker_core::association::AssociationMatrix;
+/// use tracker_core::children::{ChildGenerator, ChildSink, ExhaustiveChildren};
+///
+/// #[derive(Default)]
+/// struct Sum {
+///     children: usize,
+///     weight: f64,
+/// }
+///
+/// impl ChildSink<f64> for Sum {
+///     fn offer(&mut self, log_weight: f64, _assignment: &[u16]) {
+///         self.children += 1;
+///         self.weight += log_weight.exp();
+///     }
+/// }
+///
+/// // One measurement, one object: clutter (weight 1) or the object (weight e).
+/// let mut matrix = AssociationMatrix::<f64, 1, 1>::new(1, 1, 0.0);
+/// matrix.set_column(0, &[1.0], false);
+/// let mut sum = Sum::default();
+/// ExhaustiveChildren::new(10).generate(&matrix, &mut sum)?;
+/// assert_eq!(sum.children, 2);
+/// assert!((sum.weight - (1.0 + 1f64.exp())).abs() < 1e-12);
+/// # Ok::<(), tracker_core::children::GenerateError>(())
+/// ```
 pub trait ChildSink<T> {
     /// Offers one distinct child: its log-weight and, per row, the column it takes or [`CLUTTER`].
     fn offer(&mut self, log_weight: T, assignment: &[u16]);
@@ -63,6 +92,28 @@ pub trait ChildGenerator<T: Real, const N: usize, const Z: usize> {
 /// deterministic tie-break of equal weights downstream. Branches that can no longer assign every
 /// required column are cut, and impossible (`-inf`) entries are skipped, so with gating the cost follows
 /// the number of feasible children, not A_N(m).
+///
+/// # Examples
+/// ```
+/// use tracker_core::association::{AssociationMatrix, association_count};
+/// use tracker_core::children::{ChildGenerator, ExhaustiveChildren, GenerateError};
+/// use tracker_core::selection::TopChildren;
+/// let mut matrix = AssociationMatrix::<f64, 2, 2>::new(2, 2, 0.0);
+/// matrix.set_column(0, &[1.0, 0.5], false);
+/// matrix.set_column(1, &[0.2, 2.0], false);
+///
+/// let mut top = TopChildren::<f64, 8, 2>::new();
+/// let offered = ExhaustiveChildren::new(1_000).generate(&matrix, &mut top)?;
+/// assert_eq!(u128::from(offered), association_count(2, 2)); // A_2(2) = 7
+/// assert_eq!(top.len(), 7);
+/// let best = top.kept().iter().map(|child| child.log_weight).fold(f64::NEG_INFINITY, f64::max);
+/// assert_eq!(best, 1.0 + 2.0);
+///
+/// let mut top = TopChildren::<f64, 8, 2>::new();
+/// let error = ExhaustiveChildren::new(5).generate(&matrix, &mut top).unwrap_err();
+/// assert_eq!(error, GenerateError::BudgetExceeded { budget: 5 });
+/// # Ok::<(), GenerateError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ExhaustiveChildren {
     budget: u64,
@@ -71,11 +122,41 @@ pub struct ExhaustiveChildren {
 
 impl ExhaustiveChildren {
     /// A generator that visits at most `budget` leaves over its lifetime (one scan).
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::AssociationMatrix;
+    /// use tracker_core::children::{ChildGenerator, ExhaustiveChildren};
+    /// use tracker_core::selection::TopChildren;
+    /// // One budget over a whole scan: three matrices of 2 children each need 6 leaves.
+    /// let mut matrix = AssociationMatrix::<f64, 1, 1>::new(1, 1, 0.0);
+    /// matrix.set_column(0, &[0.0], false);
+    /// let mut generator = ExhaustiveChildren::new(5);
+    /// let mut top = TopChildren::<f64, 8, 1>::new();
+    /// assert!(generator.generate(&matrix, &mut top).is_ok());
+    /// assert!(generator.generate(&matrix, &mut top).is_ok());
+    /// assert!(generator.generate(&matrix, &mut top).is_err());
+    /// ```
     pub fn new(budget: u64) -> Self {
         Self { budget, leaves: 0 }
     }
 
     /// Leaves visited so far.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::AssociationMatrix;
+    /// use tracker_core::children::{ChildGenerator, ExhaustiveChildren};
+    /// use tracker_core::selection::TopChildren;
+    /// let mut matrix = AssociationMatrix::<f64, 3, 2>::new(2, 3, 0.0);
+    /// for column in 0..3 {
+    ///     matrix.set_column(column, &[0.0, 0.0], false);
+    /// }
+    /// let mut generator = ExhaustiveChildren::new(u64::MAX);
+    /// generator.generate(&matrix, &mut TopChildren::<f64, 4, 2>::new())?;
+    /// assert_eq!(generator.leaves_visited(), 13); // A_3(2)
+    /// # Ok::<(), tracker_core::children::GenerateError>(())
+    /// ```
     pub fn leaves_visited(&self) -> u64 {
         self.leaves
     }

@@ -50,6 +50,41 @@ struct Combination<T> {
 
 /// Children of a matrix by clusters (see the module documentation). `C` is the number of children kept per
 /// matrix; the tracker uses `C = H`.
+///
+/// # Examples
+/// ```
+/// use tracker_core::association::AssociationMatrix;
+/// use tracker_core::children::{ChildGenerator, ExhaustiveChildren};
+/// use tracker_core::cluster::ClusteredChildren;
+/// use tracker_core::sampler::SamplerConfig;
+/// use tracker_core::selection::TopChildren;
+///
+/// // Two pairs of measurements, each gated to its own pair of objects: two clusters of 7 associations.
+/// let ninf = f64::NEG_INFINITY;
+/// let mut matrix = AssociationMatrix::<f64, 4, 4>::new(4, 4, -6.0);
+/// matrix.set_column(0, &[1.0, 0.3, ninf, ninf], false);
+/// matrix.set_column(1, &[0.2, 2.0, ninf, ninf], false);
+/// matrix.set_column(2, &[ninf, ninf, 1.5, -0.5], false);
+/// matrix.set_column(3, &[ninf, ninf, 0.1, 0.7], false);
+///
+/// let mut clustered = TopChildren::<f64, 8, 4>::new();
+/// ClusteredChildren::<f64, 4, 4, 8>::new(SamplerConfig::DEFAULT, 1).generate(&matrix, &mut clustered)?;
+/// let mut exact = TopChildren::<f64, 8, 4>::new();
+/// ExhaustiveChildren::new(1_000).generate(&matrix, &mut exact)?;
+/// assert_eq!((clustered.offered(), exact.offered()), (8, 7 * 7));
+///
+/// let best_weights = |top: &TopChildren<f64, 8, 4>| {
+///     let mut weights: Vec<f64> = top.kept().iter().map(|c| c.log_weight).collect();
+///     weights.sort_by(|a, b| b.total_cmp(a));
+///     weights
+/// };
+/// for (a, b) in best_weights(&clustered).iter().zip(&best_weights(&exact)) {
+///     assert!((a - b).abs() < 1e-12); // the exact 8 best
+/// }
+/// // Both clusters were enumerated, so the mass of the children not offered is exact too.
+/// assert!((clustered.log_total() - exact.log_total()).abs() < 1e-12);
+/// # Ok::<(), tracker_core::children::GenerateError>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: usize> {
     config: SamplerConfig,
@@ -77,6 +112,33 @@ pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: u
 
 impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<T, N, Z, C> {
     /// A generator with `config`; without `config.clusters` it runs one chain on the whole matrix.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::AssociationMatrix;
+    /// # use tracker_core::children::ChildGenerator;
+    /// # use tracker_core::cluster::ClusteredChildren;
+    /// # use tracker_core::sampler::SamplerConfig;
+    /// # use tracker_core::selection::TopChildren;
+    /// # let ninf = f64::NEG_INFINITY;
+    /// # // Two pairs of measurements, each gated to its own pair of objects: two clusters.
+    /// # let mut matrix = AssociationMatrix::<f64, 4, 4>::new(4, 4, -6.0);
+    /// # matrix.set_column(0, &[1.0, 0.3, ninf, ninf], false);
+    /// # matrix.set_column(1, &[0.2, 2.0, ninf, ninf], false);
+    /// # matrix.set_column(2, &[ninf, ninf, 1.5, -0.5], false);
+    /// # matrix.set_column(3, &[ninf, ninf, 0.1, 0.7], false);
+    /// # let children = |generator: &mut ClusteredChildren<f64, 4, 4, 8>| {
+    /// #     let mut top = TopChildren::<f64, 8, 4>::new();
+    /// #     generator.generate(&matrix, &mut top).unwrap();
+    /// #     top.kept().iter().map(|c| (c.log_weight, c.assignment)).collect::<Vec<_>>()
+    /// # };
+    /// # // Every cluster sampled.
+    /// # let sampled = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+    /// let (mut a, mut b) = (ClusteredChildren::new(sampled, 11), ClusteredChildren::new(sampled, 11));
+    /// assert_eq!(children(&mut a), children(&mut b)); // deterministic
+    /// assert_eq!(a.chain().accepted(), b.chain().accepted());
+    /// assert_eq!(children(&mut a).len(), 8);
+    /// ```
     pub fn new(config: SamplerConfig, seed: u64) -> Self {
         let mut generator = Self::empty(config);
         generator.reseed(seed);
@@ -86,6 +148,35 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
 
     /// A generator in a `const` context (for a tracker in a `static`): the sampler gets its random
     /// stream at the first matrix (every matrix is reseeded).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::AssociationMatrix;
+    /// # use tracker_core::children::ChildGenerator;
+    /// # use tracker_core::cluster::ClusteredChildren;
+    /// # use tracker_core::sampler::SamplerConfig;
+    /// # use tracker_core::selection::TopChildren;
+    /// # let ninf = f64::NEG_INFINITY;
+    /// # // Two pairs of measurements, each gated to its own pair of objects: two clusters.
+    /// # let mut matrix = AssociationMatrix::<f64, 4, 4>::new(4, 4, -6.0);
+    /// # matrix.set_column(0, &[1.0, 0.3, ninf, ninf], false);
+    /// # matrix.set_column(1, &[0.2, 2.0, ninf, ninf], false);
+    /// # matrix.set_column(2, &[ninf, ninf, 1.5, -0.5], false);
+    /// # matrix.set_column(3, &[ninf, ninf, 0.1, 0.7], false);
+    /// # let children = |generator: &mut ClusteredChildren<f64, 4, 4, 8>| {
+    /// #     let mut top = TopChildren::<f64, 8, 4>::new();
+    /// #     generator.generate(&matrix, &mut top).unwrap();
+    /// #     top.kept().iter().map(|c| (c.log_weight, c.assignment)).collect::<Vec<_>>()
+    /// # };
+    /// # // Every cluster sampled.
+    /// # let sampled = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+    /// const CONFIG: SamplerConfig = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+    /// static GENERATOR: std::sync::Mutex<ClusteredChildren<f64, 4, 4, 8>> =
+    ///     std::sync::Mutex::new(ClusteredChildren::empty(CONFIG));
+    /// let mut generator = GENERATOR.lock().unwrap();
+    /// generator.reseed(11);
+    /// assert_eq!(children(&mut generator), children(&mut ClusteredChildren::new(sampled, 11)));
+    /// ```
     pub const fn empty(config: SamplerConfig) -> Self {
         const fn blank<T: Real>() -> Combination<T> {
             Combination { score: T::ZERO, previous: 0, choice: 0 }
@@ -109,11 +200,75 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
     }
 
     /// Sets the seed of the next matrix's samplers.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::AssociationMatrix;
+    /// # use tracker_core::children::ChildGenerator;
+    /// # use tracker_core::cluster::ClusteredChildren;
+    /// # use tracker_core::sampler::SamplerConfig;
+    /// # use tracker_core::selection::TopChildren;
+    /// # let ninf = f64::NEG_INFINITY;
+    /// # // Two pairs of measurements, each gated to its own pair of objects: two clusters.
+    /// # let mut matrix = AssociationMatrix::<f64, 4, 4>::new(4, 4, -6.0);
+    /// # matrix.set_column(0, &[1.0, 0.3, ninf, ninf], false);
+    /// # matrix.set_column(1, &[0.2, 2.0, ninf, ninf], false);
+    /// # matrix.set_column(2, &[ninf, ninf, 1.5, -0.5], false);
+    /// # matrix.set_column(3, &[ninf, ninf, 0.1, 0.7], false);
+    /// # let children = |generator: &mut ClusteredChildren<f64, 4, 4, 8>| {
+    /// #     let mut top = TopChildren::<f64, 8, 4>::new();
+    /// #     generator.generate(&matrix, &mut top).unwrap();
+    /// #     top.kept().iter().map(|c| (c.log_weight, c.assignment)).collect::<Vec<_>>()
+    /// # };
+    /// # // Every cluster sampled.
+    /// # let sampled = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+    /// // Moves accepted by the chains of one matrix under `seed`.
+    /// let mut generator = ClusteredChildren::new(sampled, 1);
+    /// let mut accepted = |seed| {
+    ///     generator.reseed(seed);
+    ///     let before = generator.chain().accepted();
+    ///     children(&mut generator);
+    ///     generator.chain().accepted() - before
+    /// };
+    /// let (first, second, again) = (accepted(1), accepted(2), accepted(1));
+    /// assert_eq!(first, again);
+    /// assert_ne!(first, second);
+    /// ```
     pub fn reseed(&mut self, seed: u64) {
         self.seed = seed;
     }
 
     /// The Metropolis chain that samples large clusters (for its statistics: moves taken, accepted).
+    ///
+    /// # Examples
+    /// Small clusters are enumerated, not sampled, by default:
+    /// ```
+    /// # use tracker_core::association::AssociationMatrix;
+    /// # use tracker_core::children::ChildGenerator;
+    /// # use tracker_core::cluster::ClusteredChildren;
+    /// # use tracker_core::sampler::SamplerConfig;
+    /// # use tracker_core::selection::TopChildren;
+    /// # let ninf = f64::NEG_INFINITY;
+    /// # // Two pairs of measurements, each gated to its own pair of objects: two clusters.
+    /// # let mut matrix = AssociationMatrix::<f64, 4, 4>::new(4, 4, -6.0);
+    /// # matrix.set_column(0, &[1.0, 0.3, ninf, ninf], false);
+    /// # matrix.set_column(1, &[0.2, 2.0, ninf, ninf], false);
+    /// # matrix.set_column(2, &[ninf, ninf, 1.5, -0.5], false);
+    /// # matrix.set_column(3, &[ninf, ninf, 0.1, 0.7], false);
+    /// # let children = |generator: &mut ClusteredChildren<f64, 4, 4, 8>| {
+    /// #     let mut top = TopChildren::<f64, 8, 4>::new();
+    /// #     generator.generate(&matrix, &mut top).unwrap();
+    /// #     top.kept().iter().map(|c| (c.log_weight, c.assignment)).collect::<Vec<_>>()
+    /// # };
+    /// # // Every cluster sampled.
+    /// # let sampled = SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+    /// let mut enumerated = ClusteredChildren::new(SamplerConfig::DEFAULT, 1);
+    /// children(&mut enumerated);
+    /// assert_eq!(enumerated.chain().steps_taken(), 0);
+    /// let mut sampling = ClusteredChildren::new(sampled, 1);
+    /// children(&mut sampling);
+    /// assert!(sampling.chain().steps_taken() > 0);
+    /// ```
     pub fn chain(&self) -> &MetropolisSampler<T, N, Z, C> {
         &self.sampler
     }

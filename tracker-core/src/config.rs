@@ -26,6 +26,42 @@ pub enum BirthDetection {
 
 /// R-FISST's first-order birth model: per scan at most one birth, in one of the cells, each with
 /// probability α ([003] §II-C; docs/maths.md §5.1).
+///
+/// # Examples
+/// One birth cell around (30, 30): a measurement there that no object explains becomes a new object.
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::{BirthDetection, TrackLabel};
+/// let cell = Gaussian { mean: SVector::from([30.0, 30.0, 0.0, 0.0]), covariance: SMatrix::identity() * 25.0 };
+/// let mut cells = heapless::Vec::new();
+/// cells.push(cell).unwrap();
+/// let birth = BirthModel { probability: 0.05, cells, detection: BirthDetection::AllDetected };
+/// let config = Config { birth, ..config };
+/// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+/// tracker.step(1.0, &[SVector::from([1.0, 0.0]), SVector::from([31.0, 29.0])])?;
+/// let map = tracker.map_hypothesis();
+/// assert_eq!(map.len(), 2);
+/// assert!(map.tracks().any(|t| t.label == TrackLabel(1) && (t.state.mean[0] - 31.0).abs() < 1.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BirthModel<T: Real, const S: usize, const B: usize> {
@@ -39,12 +75,62 @@ pub struct BirthModel<T: Real, const S: usize, const B: usize> {
 
 impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
     /// No births.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::BirthModel;
+    /// let births = BirthModel::<f64, 4, 2>::none();
+    /// assert_eq!(births.probability, 0.0);
+    /// assert!(births.cells.is_empty());
+    /// ```
     pub fn none() -> Self {
         Self { probability: T::zero(), cells: heapless::Vec::new(), detection: BirthDetection::AllDetected }
     }
 }
 
 /// How the children of each parent are produced.
+///
+/// # Examples
+/// Exhaustive enumeration fails the scan when it needs more children than its budget; the sampler
+/// finds the same best hypothesis on a small scan:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::{ChildGeneration, StepError};
+/// use tracker_core::sampler::SamplerConfig;
+/// let scan = [SVector::from([1.0, 0.0]), SVector::from([-3.0, 2.0])];
+///
+/// let tight = Config { children: ChildGeneration::Exhaustive { max_children_per_scan: 2 }, ..config.clone() };
+/// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(tight, &[object], 0.0)?;
+/// // Three children: the object takes z₁, takes z₂, or is missed.
+/// assert_eq!(tracker.step(1.0, &scan), Err(StepError::ChildBudgetExceeded { budget: 2 }));
+///
+/// let exhaustive = Config { children: ChildGeneration::Exhaustive { max_children_per_scan: 3 }, ..config.clone() };
+/// let sampled = Config { children: ChildGeneration::Sampled(SamplerConfig::DEFAULT), ..config };
+/// let mut a = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(exhaustive, &[object], 0.0)?;
+/// let mut b = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(sampled, &[object], 0.0)?;
+/// assert_eq!(a.step(1.0, &scan)?.hypotheses, 3);
+/// b.step(1.0, &scan)?;
+/// assert_eq!(a.map_hypothesis().tracks().next(), b.map_hypothesis().tracks().next());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -74,6 +160,42 @@ impl Default for ChildGeneration {
 }
 
 /// What to do when the kept children need more distinct tracks than the track store holds.
+///
+/// # Examples
+/// One object and two measurements give three children with three different tracks; a store of
+/// K = 2 tracks cannot hold them all:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::{StepError, StoreOverflow};
+/// let scan = [SVector::from([1.0, 0.0]), SVector::from([-3.0, 2.0])];
+/// let strict = Config { store_overflow: StoreOverflow::Error, ..config.clone() };
+/// let mut tracker = LinearTracker::<f64, 8, 2, 4, 2, 1>::with_objects(strict, &[object], 0.0)?;
+/// assert_eq!(tracker.step(1.0, &scan), Err(StepError::TrackStoreFull { capacity: 2 }));
+///
+/// let mut tracker = LinearTracker::<f64, 8, 2, 4, 2, 1>::with_objects(config, &[object], 0.0)?;
+/// let report = tracker.step(1.0, &scan)?;
+/// assert_eq!((report.hypotheses, report.children_dropped_for_store), (2, 1));
+/// assert!(report.captured_mass < 1.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -88,6 +210,39 @@ pub enum StoreOverflow {
 }
 
 /// How the H∞ hypotheses are chosen among the children (paper 003 §III-A).
+///
+/// # Examples
+/// Both keep the best child when H∞ is large enough to keep every child:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::config::Selection;
+/// let scan = [SVector::from([1.0, 0.0])];
+/// let sampled = Config { selection: Selection::SampledByWeight, ..config.clone() };
+/// let mut a = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+/// let mut b = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(sampled, &[object], 0.0)?;
+/// a.step(1.0, &scan)?;
+/// b.step(1.0, &scan)?;
+/// assert_eq!(a.map_hypothesis().weight(), b.map_hypothesis().weight());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -102,6 +257,37 @@ pub enum Selection {
 }
 
 /// The complete configuration of a tracker.
+///
+/// # Examples
+/// Every field is checked when a tracker is built:
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{BirthModel, Config, ConfigError, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement};
+/// use tracker_core::{Region, Sensor};
+///
+/// let config = Config {
+///     motion: ConstantVelocity { acceleration_noise: 0.01 },
+///     measurement: PositionMeasurement::isotropic(0.5),
+///     sensor: Sensor {
+///         detection_probability: 0.9,
+///         clutter_rate: 1.0,
+///         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+///     },
+///     birth: BirthModel::none(),
+///     death_probability: 0.01,
+///     gate: Some(25.0),
+///     children: Default::default(),
+///     selection: Default::default(),
+///     store_overflow: Default::default(),
+///     seed: 7,
+/// };
+/// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// assert!(LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config.clone(), &[object], 0.0).is_ok());
+///
+/// let bad_gate = Config { gate: Some(-1.0), ..config };
+/// let error = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(bad_gate, &[object], 0.0).unwrap_err();
+/// assert_eq!(error, ConfigError::Gate);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Config<T: Real, M, G, const S: usize, const B: usize> {

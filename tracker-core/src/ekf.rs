@@ -15,6 +15,40 @@ use crate::real::{Real, c, ln};
 use nalgebra::{Cholesky, SMatrix, SVector};
 
 /// A Gaussian density N(mean, covariance): the pdf of one object under one hypothesis.
+///
+/// # Examples
+/// One EKF cycle: predict, score a measurement, update.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{ConstantVelocity, Gaussian, PositionMeasurement, ekf};
+/// let prior = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::<f64, 4, 4>::identity() };
+/// let motion = ConstantVelocity { acceleration_noise: 0.01 };
+/// let sensor = PositionMeasurement::isotropic(0.5);
+///
+/// let predicted = ekf::predict(&motion, &prior, 1.0)?;
+/// let innovation = ekf::innovation(&sensor, &predicted)?;
+/// let z = SVector::from([1.2, -0.1]);
+/// let (distance_squared, log_likelihood) = innovation.score(&z);
+/// assert!(distance_squared < 1.0 && log_likelihood.is_finite());
+/// let posterior = ekf::update(&sensor, &predicted, &innovation, &z)?;
+/// assert!(posterior.covariance[(0, 0)] < predicted.covariance[(0, 0)]);
+/// assert!(ekf::is_valid_covariance(&posterior.covariance));
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
+///
+/// [`update`] with P = I and R = 0.25 I: the position gain is 1 / 1.25 = 0.8.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{Gaussian, PositionMeasurement, ekf};
+/// let sensor = PositionMeasurement::isotropic(0.5);
+/// let track = Gaussian { mean: SVector::zeros(), covariance: SMatrix::<f64, 4, 4>::identity() };
+/// let innovation = ekf::innovation(&sensor, &track)?;
+/// let updated = ekf::update(&sensor, &track, &innovation, &SVector::from([1.0, -2.0]))?;
+/// assert!((updated.mean - SVector::from([0.8, -1.6, 0.0, 0.0])).abs().max() < 1e-12);
+/// assert!((updated.covariance[(0, 0)] - 0.2).abs() < 1e-12); // (1 − 0.8) · 1
+/// assert_eq!(updated.covariance[(2, 2)], 1.0); // the velocity is not correlated with the position
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gaussian<T: Real, const S: usize> {
@@ -89,6 +123,21 @@ impl<T: Real, const D: usize> Innovation<T, D> {
     /// # Errors
     /// [`NumericalError::NotPositiveDefinite`] when the Cholesky factorisation fails,
     /// [`NumericalError::NonFinite`] on a non-finite input.
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{SMatrix, SVector};
+    /// use tracker_core::NumericalError;
+    /// use tracker_core::ekf::Innovation;
+    /// let s = SMatrix::<f64, 2, 2>::new(4.0, 2.0, 2.0, 3.0);
+    /// let innovation = Innovation::new(SVector::zeros(), s)?;
+    /// let l = innovation.cholesky;
+    /// assert!((l * l.transpose() - s).abs().max() < 1e-12);
+    ///
+    /// let indefinite = SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0);
+    /// assert_eq!(Innovation::new(SVector::zeros(), indefinite), Err(NumericalError::NotPositiveDefinite));
+    /// # Ok::<(), NumericalError>(())
+    /// ```
     pub fn new(predicted: SVector<T, D>, covariance: SMatrix<T, D, D>) -> Result<Self, NumericalError> {
         if !predicted.iter().chain(covariance.iter()).all(|v| v.is_finite_value()) {
             return Err(NumericalError::NonFinite);
@@ -132,6 +181,18 @@ impl<T: Real, const D: usize> Innovation<T, D> {
     }
 
     /// The squared Mahalanobis distance d² = νᵀ S⁻¹ ν of `z` and ln N(z; ẑ, S).
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{SMatrix, SVector};
+    /// use tracker_core::ekf::Innovation;
+    /// let innovation = Innovation::new(SVector::from([1.0, 1.0]), SMatrix::<f64, 2, 2>::identity())?;
+    /// let (distance_squared, log_likelihood) = innovation.score(&SVector::from([4.0, 5.0]));
+    /// assert_eq!(distance_squared, 25.0); // ν = (3, 4), S = I
+    /// let expected = -12.5 - (2.0 * core::f64::consts::PI).ln();
+    /// assert!((log_likelihood - expected).abs() < 1e-12);
+    /// # Ok::<(), tracker_core::NumericalError>(())
+    /// ```
     pub fn score(&self, z: &SVector<T, D>) -> (T, T) {
         let whitened = self.solve_lower(&(z - self.predicted));
         let distance_squared = whitened.norm_squared();
@@ -140,6 +201,19 @@ impl<T: Real, const D: usize> Innovation<T, D> {
 }
 
 /// Predicts `prior` over `dt`: x̂⁻ = f(x̂), P⁻ = Φ P Φᵀ + Q.
+///
+/// # Examples
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{ConstantVelocity, Gaussian, ekf};
+/// let prior = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::<f64, 4, 4>::identity() };
+/// let q = 0.01;
+/// let predicted = ekf::predict(&ConstantVelocity { acceleration_noise: q }, &prior, 2.0)?;
+/// assert_eq!(predicted.mean, SVector::from([2.0, 0.0, 1.0, 0.0]));
+/// // Φ P Φᵀ + Q on x: 1 + dt² from the velocity, plus q dt³ / 3.
+/// assert!((predicted.covariance[(0, 0)] - (1.0 + 4.0 + q * 8.0 / 3.0)).abs() < 1e-12);
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 ///
 /// # Errors
 /// The motion model's error, or [`NumericalError::NonFinite`].
@@ -164,6 +238,19 @@ pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
 ///
 /// # Errors
 /// [`NumericalError::NotPositiveDefinite`] when S cannot be factored.
+///
+/// # Examples
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::{Gaussian, PositionMeasurement, ekf};
+/// let track = Gaussian { mean: SVector::from([3.0, 4.0, 1.0, 0.0]), covariance: SMatrix::<f64, 4, 4>::identity() };
+/// let innovation = ekf::innovation(&PositionMeasurement::isotropic(0.5), &track)?;
+/// assert_eq!(innovation.predicted, SVector::from([3.0, 4.0]));
+/// // S = H P Hᵀ + R = (1 + 0.25) I.
+/// let l = innovation.cholesky;
+/// assert!((l * l.transpose() - SMatrix::<f64, 2, 2>::identity() * 1.25).abs().max() < 1e-12);
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
@@ -213,6 +300,16 @@ pub(crate) fn symmetrise<T: Real, const S: usize>(a: &SMatrix<T, S, S>) -> SMatr
 }
 
 /// Whether `covariance` is finite, symmetric and positive definite (checked by Cholesky).
+///
+/// # Examples
+/// ```
+/// use nalgebra::SMatrix;
+/// use tracker_core::ekf::is_valid_covariance;
+/// assert!(is_valid_covariance(&SMatrix::<f64, 2, 2>::new(2.0, 0.5, 0.5, 1.0)));
+/// assert!(!is_valid_covariance(&SMatrix::<f64, 2, 2>::new(2.0, 0.5, 0.4, 1.0))); // not symmetric
+/// assert!(!is_valid_covariance(&SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0))); // indefinite
+/// assert!(!is_valid_covariance(&SMatrix::<f64, 2, 2>::new(f64::NAN, 0.0, 0.0, 1.0)));
+/// ```
 pub fn is_valid_covariance<T: Real, const S: usize>(covariance: &SMatrix<T, S, S>) -> bool {
     covariance.iter().all(|v| v.is_finite_value())
         && *covariance == covariance.transpose()

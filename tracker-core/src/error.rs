@@ -7,6 +7,36 @@ use crate::ekf::NumericalError;
 use crate::store::TrackLabel;
 
 /// A configuration or prior that cannot be used.
+///
+/// # Examples
+/// A prior object whose covariance is not positive definite is named by its position:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::ConfigError;
+/// let flat = Gaussian { covariance: SMatrix::zeros(), ..object };
+/// match LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object, flat], 0.0) {
+///     Err(ConfigError::PriorObject { hypothesis, object }) => assert_eq!((hypothesis, object), (0, 1)),
+///     other => panic!("expected a bad prior object, got {other:?}"),
+/// }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ConfigError {
@@ -126,6 +156,41 @@ impl core::fmt::Display for ConfigError {
 impl core::error::Error for ConfigError {}
 
 /// Why a scan was rejected. The tracker is unchanged after any of these.
+///
+/// # Examples
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::StepError;
+/// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+/// let scan = [SVector::from([1.0, 0.0]); 5]; // the tracker holds Z = 4 measurements per scan
+/// match tracker.step(1.0, &scan) {
+///     Err(StepError::TooManyMeasurements { received, capacity }) => assert_eq!((received, capacity), (5, 4)),
+///     other => panic!("expected too many measurements, got {other:?}"),
+/// }
+/// let error = tracker.step(1.0, &[SVector::from([f64::NAN, 0.0])]).unwrap_err();
+/// assert_eq!(error, StepError::NonFiniteMeasurement { index: 0 });
+/// assert_eq!(error.to_string(), "measurement 0 is not finite");
+/// assert_eq!(tracker.scans(), 0); // nothing was processed
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum StepError {

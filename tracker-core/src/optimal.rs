@@ -25,6 +25,27 @@ const ROOT: usize = usize::MAX - 1;
 /// Writes into `assignment[..rows]` an association vector that maximises Σ δ + `required_bonus` ×
 /// (required columns taken) over `matrix`, and returns whether it succeeded. It fails only when the
 /// search meets no finite reduced cost, which needs a NaN entry; `assignment` is then unspecified.
+///
+/// # Examples
+/// ```
+/// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+/// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+/// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+/// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+/// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+/// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+/// use tracker_core::optimal::best_association;
+/// let mut assignment = [CLUTTER; 3];
+/// assert!(best_association(&matrix, 0.0, &mut assignment));
+/// assert_eq!(assignment, [0, 1, 2]);
+///
+/// // A required column is taken even at a loss, given a large enough bonus.
+/// let mut required = AssociationMatrix::<f64, 1, 1>::new(1, 1, 0.0);
+/// required.set_column(0, &[-3.0], true);
+/// let mut one = [CLUTTER; 1];
+/// assert!(best_association(&required, 0.0, &mut one) && one == [CLUTTER]);
+/// assert!(best_association(&required, 64.0, &mut one) && one == [0]);
+/// ```
 pub fn best_association<T: Real, const N: usize, const Z: usize>(
     matrix: &AssociationMatrix<T, N, Z>,
     required_bonus: T,

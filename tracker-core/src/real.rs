@@ -98,54 +98,114 @@ impl_real!(f64, libm::log, libm::exp, libm::sqrt, libm::sin, libm::cos, libm::at
 impl_real!(f32, libm::logf, libm::expf, libm::sqrtf, libm::sinf, libm::cosf, libm::atan2f, libm::floorf);
 
 /// Natural logarithm; `ln(0) = -inf`.
+///
+/// # Examples
+/// ```
+/// use tracker_core::real::ln;
+/// assert_eq!(ln(1.0_f64), 0.0);
+/// assert_eq!(ln(0.0_f32), f32::NEG_INFINITY); // the log-weight of an impossible event
+/// ```
 #[inline]
 pub fn ln<T: Real>(x: T) -> T {
     x.libm_ln()
 }
 
 /// Exponential.
+///
+/// # Examples
+/// ```
+/// use tracker_core::real::exp;
+/// assert_eq!(exp(0.0_f64), 1.0);
+/// assert_eq!(exp(f64::NEG_INFINITY), 0.0);
+/// ```
 #[inline]
 pub fn exp<T: Real>(x: T) -> T {
     x.libm_exp()
 }
 
 /// Square root.
+///
+/// # Examples
+/// ```
+/// assert_eq!(tracker_core::real::sqrt(2.25_f32), 1.5);
+/// ```
 #[inline]
 pub fn sqrt<T: Real>(x: T) -> T {
     x.libm_sqrt()
 }
 
 /// Sine.
+///
+/// # Examples
+/// ```
+/// assert_eq!(tracker_core::real::sin(0.0_f64), 0.0);
+/// assert!((tracker_core::real::sin(core::f64::consts::FRAC_PI_2) - 1.0).abs() < 1e-15);
+/// ```
 #[inline]
 pub fn sin<T: Real>(x: T) -> T {
     x.libm_sin()
 }
 
 /// Cosine.
+///
+/// # Examples
+/// ```
+/// assert_eq!(tracker_core::real::cos(0.0_f64), 1.0);
+/// assert!((tracker_core::real::cos(core::f64::consts::PI) + 1.0).abs() < 1e-15);
+/// ```
 #[inline]
 pub fn cos<T: Real>(x: T) -> T {
     x.libm_cos()
 }
 
 /// Four-quadrant arctangent of `y / x`.
+///
+/// # Examples
+/// ```
+/// use tracker_core::real::atan2;
+/// assert!((atan2(1.0_f64, -1.0) - 3.0 * core::f64::consts::FRAC_PI_4).abs() < 1e-15); // second quadrant
+/// ```
 #[inline]
 pub fn atan2<T: Real>(y: T, x: T) -> T {
     y.libm_atan2(x)
 }
 
 /// Largest integer not greater than `x`.
+///
+/// # Examples
+/// ```
+/// assert_eq!(tracker_core::real::floor(-1.5_f64), -2.0);
+/// ```
 #[inline]
 pub fn floor<T: Real>(x: T) -> T {
     x.libm_floor()
 }
 
 /// The constant `value` in the scalar type `T`.
+///
+/// # Examples
+/// ```
+/// use tracker_core::real::c;
+/// let half: f32 = c(0.5);
+/// assert_eq!(half, 0.5);
+/// let tenth: f32 = c(0.1);
+/// assert_eq!(tenth, 0.1_f32); // rounded to nearest
+/// ```
 #[inline]
 pub fn c<T: Real>(value: f64) -> T {
     T::of_f64(value)
 }
 
 /// `ln(exp(a) + exp(b))` without overflow; exact when either side is `-inf`.
+///
+/// # Examples
+/// ```
+/// use tracker_core::real::log_add;
+/// assert!((log_add(2f64.ln(), 3f64.ln()) - 5f64.ln()).abs() < 1e-15);
+/// assert_eq!(log_add(f64::NEG_INFINITY, 1.5), 1.5);
+/// // e^1000 overflows f64; its log-sum does not.
+/// assert!((log_add(1000.0_f64, 1000.0) - (1000.0 + 2f64.ln())).abs() < 1e-12);
+/// ```
 #[inline]
 pub fn log_add<T: Real>(a: T, b: T) -> T {
     if a == T::NEG_INFINITY {
@@ -159,11 +219,25 @@ pub fn log_add<T: Real>(a: T, b: T) -> T {
 }
 
 /// The `R × C` zero matrix, in a `const` context.
+///
+/// # Examples
+/// ```
+/// use nalgebra::SMatrix;
+/// const Z: SMatrix<f32, 2, 3> = tracker_core::real::zeros();
+/// assert_eq!(Z, SMatrix::<f32, 2, 3>::zeros());
+/// ```
 pub const fn zeros<T: Real, const R: usize, const C: usize>() -> nalgebra::SMatrix<T, R, C> {
     nalgebra::SMatrix::from_array_storage(nalgebra::ArrayStorage([[T::ZERO; R]; C]))
 }
 
 /// The `D × D` identity matrix, in a `const` context.
+///
+/// # Examples
+/// ```
+/// use nalgebra::SMatrix;
+/// const I: SMatrix<f64, 3, 3> = tracker_core::real::identity();
+/// assert_eq!(I, SMatrix::<f64, 3, 3>::identity());
+/// ```
 pub const fn identity<T: Real, const D: usize>() -> nalgebra::SMatrix<T, D, D> {
     let mut columns = [[T::ZERO; D]; D];
     let mut i = 0;
@@ -176,6 +250,20 @@ pub const fn identity<T: Real, const D: usize>() -> nalgebra::SMatrix<T, D, D> {
 
 /// A running log-sum-exp: the log of the sum of `exp` of every value added, kept as a maximum and a sum
 /// scaled by it, so that one `exp` is evaluated per value and nothing overflows.
+///
+/// # Examples
+/// Normalising log-weights far below `ln f64::MIN_POSITIVE`:
+/// ```
+/// use tracker_core::real::LogSumExp;
+/// let log_weights = [-2000.0_f64, -2001.0, -2003.0];
+/// let mut total = LogSumExp::new();
+/// for &w in &log_weights {
+///     total.add(w);
+/// }
+/// assert!(total.value().is_finite()); // Σ e^w itself underflows to 0
+/// let sum: f64 = log_weights.iter().map(|&w| total.normalise(w).exp()).sum();
+/// assert!((sum - 1.0).abs() < 1e-15);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LogSumExp<T> {
     max: T,
@@ -190,11 +278,28 @@ impl<T: Real> Default for LogSumExp<T> {
 
 impl<T: Real> LogSumExp<T> {
     /// The empty sum (`ln 0 = -inf`).
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::real::LogSumExp;
+    /// let empty = LogSumExp::<f64>::new();
+    /// assert_eq!(empty.value(), f64::NEG_INFINITY); // ln 0
+    /// ```
     pub const fn new() -> Self {
         Self { max: T::NEG_INFINITY, scaled_sum: T::ZERO }
     }
 
     /// Adds `exp(value)` to the sum. `-inf` adds nothing.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::real::LogSumExp;
+    /// let mut total = LogSumExp::new();
+    /// total.add(1f64.ln());
+    /// total.add(f64::NEG_INFINITY); // adds nothing
+    /// total.add(3f64.ln());
+    /// assert!((total.value() - 4f64.ln()).abs() < 1e-15);
+    /// ```
     #[inline]
     pub fn add(&mut self, value: T) {
         if value == T::NEG_INFINITY {
@@ -210,6 +315,16 @@ impl<T: Real> LogSumExp<T> {
     }
 
     /// The log of the sum so far; `-inf` when nothing finite was added.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::real::LogSumExp;
+    /// let mut total = LogSumExp::new();
+    /// for w in [0.5_f64, 0.25, 0.25] {
+    ///     total.add(w.ln());
+    /// }
+    /// assert!(total.value().abs() < 1e-15); // ln 1
+    /// ```
     pub fn value(&self) -> T {
         if self.max == T::NEG_INFINITY { T::NEG_INFINITY } else { self.max + ln(self.scaled_sum) }
     }
@@ -217,11 +332,35 @@ impl<T: Real> LogSumExp<T> {
     /// `value − ln(sum)`: `value` normalised by this sum. The largest term is subtracted first (exactly,
     /// for values near it), so the result stays accurate even when the values are so large that
     /// `ln(sum)` is below their rounding step.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::real::LogSumExp;
+    /// let mut total = LogSumExp::new();
+    /// total.add(1e18_f64);
+    /// total.add(1e18_f64);
+    /// // ln 2 is below the rounding step of 1e18: `value − total.value()` would give 0, not −ln 2.
+    /// assert!((total.normalise(1e18) - (-2f64.ln())).abs() < 1e-15);
+    /// ```
     pub fn normalise(&self, value: T) -> T {
         (value - self.max) - ln(self.scaled_sum)
     }
 
     /// ln(this sum / `other` sum), accurate in the same way as [`LogSumExp::normalise`].
+    ///
+    /// # Examples
+    /// The fraction of a total held by some of its terms (the tracker's captured mass):
+    /// ```
+    /// use tracker_core::real::LogSumExp;
+    /// let (mut kept, mut all) = (LogSumExp::new(), LogSumExp::new());
+    /// for (w, keep) in [(3.0_f64, true), (1.0, false), (4.0, true)] {
+    ///     all.add(w.ln());
+    ///     if keep {
+    ///         kept.add(w.ln());
+    ///     }
+    /// }
+    /// assert!((kept.log_ratio(&all).exp() - 7.0 / 8.0).abs() < 1e-15);
+    /// ```
     pub fn log_ratio(&self, other: &LogSumExp<T>) -> T {
         if self.max == T::NEG_INFINITY {
             return T::NEG_INFINITY;

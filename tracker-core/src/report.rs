@@ -1,6 +1,38 @@
 //! What one scan did, in a small `Copy` value returned by [`crate::Tracker::step`].
 
 /// Summary of one processed scan.
+///
+/// # Examples
+/// One object, one measurement and exhaustive children: two children (the object took it, or it is
+/// clutter), both kept.
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+/// let report = tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+/// assert_eq!((report.scan, report.measurements, report.children, report.hypotheses), (1, 1, 2, 2));
+/// assert_eq!(report.captured_mass, 1.0); // nothing pruned
+/// assert_eq!((report.merged_children, report.children_dropped_for_store, report.sampler_steps), (0, 0, 0));
+/// assert_eq!(report.expected_cardinality, 1.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

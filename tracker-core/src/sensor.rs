@@ -45,6 +45,14 @@ pub enum Region<T> {
 
 impl<T: Real> Region<T> {
     /// The measurement-space volume V (an area for planar regions).
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::Region;
+    /// assert_eq!(Region::Rectangle { min: [-1.0, 0.0], max: [3.0, 5.0] }.volume(), 20.0);
+    /// let sector = Region::Sector { origin: [0.0, 0.0], look_direction: 0.0, half_angle: 0.5, max_range: 10.0 };
+    /// assert_eq!(sector.volume(), 50.0); // θ R²
+    /// ```
     pub fn volume(&self) -> T {
         match *self {
             Region::Everywhere { volume } => volume,
@@ -55,6 +63,26 @@ impl<T: Real> Region<T> {
     }
 
     /// Whether the measurement-space point `z` lies in the region (boundary included).
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::SVector;
+    /// use tracker_core::Region;
+    /// let rectangle = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 5.0] };
+    /// assert!(rectangle.contains(&SVector::from([10.0, 5.0]))); // the boundary is inside
+    /// assert!(!rectangle.contains(&SVector::from([10.5, 1.0])));
+    ///
+    /// // Looking along +y, 30° either side, out to 100.
+    /// let sector = Region::Sector {
+    ///     origin: [0.0, 0.0],
+    ///     look_direction: core::f64::consts::FRAC_PI_2,
+    ///     half_angle: 30f64.to_radians(),
+    ///     max_range: 100.0,
+    /// };
+    /// assert!(sector.contains(&SVector::from([10.0, 50.0])));
+    /// assert!(!sector.contains(&SVector::from([50.0, 10.0]))); // 79° off the boresight
+    /// assert!(!sector.contains(&SVector::from([0.0, 101.0]))); // out of range
+    /// ```
     pub fn contains<const D: usize>(&self, z: &SVector<T, D>) -> bool {
         match *self {
             Region::Everywhere { .. } => true,
@@ -116,6 +144,45 @@ impl<T: Real> Region<T> {
 }
 
 /// Detection and clutter model of the single sensor.
+///
+/// # Examples
+/// The sensor is checked when a tracker is built; an invalid one is [`ConfigError::Sensor`] with the
+/// reason:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::ConfigError;
+/// let blind = Config { sensor: Sensor { detection_probability: 0.0, ..config.sensor }, ..config.clone() };
+/// match LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(blind, &[object], 0.0) {
+///     Err(ConfigError::Sensor(why)) => assert!(why.contains("detection probability")),
+///     other => panic!("unexpected {other:?}"),
+/// }
+/// let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [0.0, 1.0] }; // zero width
+/// let flat = Config { sensor: Sensor { field_of_view, ..config.sensor }, ..config };
+/// assert!(matches!(
+///     LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(flat, &[object], 0.0),
+///     Err(ConfigError::Sensor(_))
+/// ));
+/// ```
+///
+/// [`ConfigError::Sensor`]: crate::ConfigError::Sensor
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -154,6 +221,14 @@ impl<T: Real> Sensor<T> {
     }
 
     /// Clutter intensity λ_C = Λ_C / V per unit measurement volume.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::{Region, Sensor};
+    /// let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [100.0, 50.0] };
+    /// let sensor = Sensor { detection_probability: 0.9, clutter_rate: 2.0, field_of_view };
+    /// assert_eq!(sensor.clutter_intensity(), 2.0 / 5000.0);
+    /// ```
     pub fn clutter_intensity(&self) -> T {
         self.clutter_rate / self.field_of_view.volume()
     }

@@ -10,6 +10,13 @@ use crate::real::Real;
 
 /// The identity of an object: the same across scans and across hypotheses. Prior objects carry the
 /// labels the caller gives them; every birth gets a fresh label.
+///
+/// # Examples
+/// ```
+/// use tracker_core::TrackLabel;
+/// assert_eq!(TrackLabel(3).to_string(), "#3");
+/// assert!(TrackLabel(2) < TrackLabel(10));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

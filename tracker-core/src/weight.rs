@@ -40,6 +40,28 @@ pub enum Event {
 }
 
 /// Everything of the configuration that enters a child's weight, with the logarithms taken once.
+///
+/// # Examples
+/// The child of a parent with one object that assigns the scan's one measurement to it weighs
+/// w P(e) p_D ĝ (docs/maths.md §4.1): the baseline and the entry add up to it.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::ekf::Innovation;
+/// use tracker_core::weight::{Event, WeightModel};
+/// use tracker_core::{BirthDetection, Region, Sensor};
+///
+/// let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+/// let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+/// let model = WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.1);
+/// let innovation = Innovation::new(SVector::from([5.0, 5.0]), SMatrix::identity())?;
+/// let z = SVector::from([5.5, 5.0]);
+/// let (_, log_g) = innovation.score(&z);
+///
+/// let (parent, event) = (0.5_f64.ln(), model.event_log_probability(Event::None, 1));
+/// let child = model.baseline(parent, event, 1, 1) + model.entry(&innovation, &z);
+/// assert!((child - (0.5 * 0.9 * 0.9 * log_g.exp()).ln()).abs() < 1e-12); // P(no event) = 1 − β = 0.9
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WeightModel<T> {
     log_detect: T,
@@ -66,6 +88,34 @@ impl<T: Real> WeightModel<T> {
     };
 
     /// The weight model of a configuration.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::<f64, 4, 1>::none(),
+    /// #     death_probability: 0.1,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// use tracker_core::BirthDetection;
+    /// use tracker_core::weight::WeightModel;
+    /// let model = WeightModel::from_config(&config);
+    /// assert_eq!(model, WeightModel::new(&config.sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.1));
+    /// assert!(model.deaths_possible() && !model.births_possible());
+    /// ```
     pub fn from_config<M, G, const S: usize, const B: usize>(config: &Config<T, M, G, S, B>) -> Self {
         Self::new(
             &config.sensor,
@@ -78,6 +128,18 @@ impl<T: Real> WeightModel<T> {
     }
 
     /// A weight model from its parts.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::{BirthDetection, Region, Sensor};
+    /// use tracker_core::weight::{Event, WeightModel};
+    /// // p_D = 0.9, λ_C = 1 / 100.
+    /// let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// let model = WeightModel::new(&sensor, Some(9.0), 0.05, 2, BirthDetection::AllowUndetected, 0.1);
+    /// assert_eq!(model.birth_cells(), 2);
+    /// assert!(!model.birth_required() && !model.detection_required());
+    /// ```
     pub fn new(
         sensor: &Sensor<T>,
         gate: Option<T>,
@@ -102,6 +164,26 @@ impl<T: Real> WeightModel<T> {
     /// δ_{z,o} = ln(p_D ĝ / ((1 − p_D) λ_C)) for a track (or birth cell) with `innovation` and measurement
     /// `z`; `-inf` when the squared Mahalanobis distance exceeds the gate. Without the (1 − p_D) when
     /// p_D = 1.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// # use nalgebra::{SMatrix, SVector};
+    /// use tracker_core::ekf::Innovation;
+    /// let model = WeightModel::new(&sensor, Some(4.0), 0.0, 0, BirthDetection::AllDetected, 0.0);
+    /// let innovation = Innovation::new(SVector::from([5.0, 5.0]), SMatrix::identity())?;
+    /// // At ẑ: ln(p_D N(0; 0, I) / ((1 − p_D) λ_C)).
+    /// let at_mean = model.entry(&innovation, &SVector::from([5.0, 5.0]));
+    /// let expected = (0.9 / (2.0 * core::f64::consts::PI) / (0.1 * 0.01_f64)).ln();
+    /// assert!((at_mean - expected).abs() < 1e-12);
+    /// // Three standard deviations away is beyond the gate of d² = 4.
+    /// assert_eq!(model.entry(&innovation, &SVector::from([8.0, 5.0])), f64::NEG_INFINITY);
+    /// # Ok::<(), tracker_core::NumericalError>(())
+    /// ```
     pub fn entry<const D: usize>(&self, innovation: &Innovation<T, D>, z: &SVector<T, D>) -> T {
         let (distance_squared, log_likelihood) = innovation.score(z);
         if self.gate.is_some_and(|gate| distance_squared > gate) {
@@ -111,36 +193,119 @@ impl<T: Real> WeightModel<T> {
     }
 
     /// ln(1 − p_D) when finite, else 0.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// let model = WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.0);
+    /// assert!((model.finite_miss() - 0.1f64.ln()).abs() < 1e-15); // ln(1 − p_D)
+    /// let certain = Sensor { detection_probability: 1.0, ..sensor };
+    /// assert_eq!(WeightModel::new(&certain, None, 0.0, 0, BirthDetection::AllDetected, 0.0).finite_miss(), 0.0);
+    /// ```
     pub fn finite_miss(&self) -> T {
         if self.log_miss.is_finite_value() { self.log_miss } else { T::zero() }
     }
 
     /// Whether every object in the field of view must be detected (p_D = 1).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// let certain = Sensor { detection_probability: 1.0, ..sensor };
+    /// assert!(WeightModel::new(&certain, None, 0.0, 0, BirthDetection::AllDetected, 0.0).detection_required());
+    /// assert!(!WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.0).detection_required());
+    /// ```
     pub fn detection_required(&self) -> bool {
         !self.log_miss.is_finite_value()
     }
 
     /// Whether a born object must take a measurement (p_D = 1 or "all births detected").
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// assert!(WeightModel::new(&sensor, None, 0.01, 1, BirthDetection::AllDetected, 0.0).birth_required());
+    /// assert!(!WeightModel::new(&sensor, None, 0.01, 1, BirthDetection::AllowUndetected, 0.0).birth_required());
+    /// ```
     pub fn birth_required(&self) -> bool {
         self.detection_required() || self.birth_detection == BirthDetection::AllDetected
     }
 
     /// Number of birth cells M_b.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::WeightModel;
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 100.0 } };
+    /// let model = WeightModel::new(&sensor, None, 0.01, 3, BirthDetection::AllDetected, 0.0);
+    /// assert_eq!(model.birth_cells(), 3);
+    /// ```
     pub fn birth_cells(&self) -> usize {
         self.birth_cells
     }
 
     /// Whether births can happen (α > 0 and at least one cell).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// let model = |alpha, cells| WeightModel::new(&sensor, None, alpha, cells, BirthDetection::AllDetected, 0.0);
+    /// assert!(model(0.01, 1).births_possible());
+    /// assert!(!model(0.01, 0).births_possible()); // no cell
+    /// assert!(!model(0.0, 1).births_possible()); // α = 0
+    /// ```
     pub fn births_possible(&self) -> bool {
         self.birth_probability > T::zero() && self.birth_cells > 0
     }
 
     /// Whether deaths can happen (β > 0).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// assert!(WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.01).deaths_possible());
+    /// assert!(!WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.0).deaths_possible());
+    /// ```
     pub fn deaths_possible(&self) -> bool {
         self.death_probability > T::zero()
     }
 
     /// ln P(e) for a parent with `parent_in_view` objects in the field of view (M_d).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// // α = 0.05 in each of 2 cells, β = 0.1, and 3 objects in view: P(no event) = 1 − 2 α − 3 β.
+    /// let model = WeightModel::new(&sensor, None, 0.05, 2, BirthDetection::AllDetected, 0.1);
+    /// assert!((model.event_log_probability(Event::None, 3) - 0.6f64.ln()).abs() < 1e-15);
+    /// assert_eq!(model.event_log_probability(Event::Birth { cell: 1 }, 3), 0.05f64.ln());
+    /// assert_eq!(model.event_log_probability(Event::Death { object: 0 }, 3), 0.1f64.ln());
+    /// ```
     pub fn event_log_probability(&self, event: Event, parent_in_view: usize) -> T {
         match event {
             Event::None => {
@@ -156,6 +321,19 @@ impl<T: Real> WeightModel<T> {
     /// The association matrix's baseline: ln w_i + ln P(e) + N'_F ln(1 − p_D) + m ln λ_C, the log-weight
     /// of the child that misses all `child_in_view` objects in the field of view and calls all
     /// `measurements` clutter.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # // p_D = 0.9, λ_C = 1 / 100.
+    /// # let field_of_view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view };
+    /// let model = WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.0);
+    /// // Parent weight 1/2, P(e) = 1, two objects missed (1 − p_D)², three clutter returns λ_C³.
+    /// let baseline = model.baseline(0.5f64.ln(), 0.0, 2, 3);
+    /// assert!((baseline - (0.5 * 0.1 * 0.1 * 1e-6_f64).ln()).abs() < 1e-12);
+    /// ```
     pub fn baseline(
         &self,
         parent_log_weight: T,

@@ -56,39 +56,122 @@ impl<const N: usize> Default for ParentColumns<N> {
 
 impl<const N: usize> ParentColumns<N> {
     /// No column (usable in a `const` context).
+    ///
+    /// # Examples
+    /// ```
+    /// const EMPTY: tracker_core::association::ParentColumns<8> = tracker_core::association::ParentColumns::new();
+    /// assert!(EMPTY.is_empty());
+    /// ```
     pub const fn new() -> Self {
         Self { positions: heapless::Vec::new() }
     }
 
     /// Removes every column.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// columns.clear();
+    /// assert_eq!(columns.len(), 0);
+    /// ```
     pub fn clear(&mut self) {
         self.positions.clear();
     }
 
     /// Appends the column of the parent's object at `position`; returns its column index, or hands the
     /// position back when `N` columns are taken.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert_eq!(columns.push(5), Ok(3));
+    /// assert_eq!(columns.push(6), Err(6)); // N = 4 columns taken
+    /// ```
     pub fn push(&mut self, position: u16) -> Result<usize, u16> {
         let column = self.positions.len();
         self.positions.push(position).map(|()| column)
     }
 
     /// Number of columns (objects in the field of view).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert_eq!(columns.len(), 3);
+    /// ```
     pub fn len(&self) -> usize {
         self.positions.len()
     }
 
     /// Whether the parent has no object in the field of view.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert!(!columns.is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.positions.is_empty()
     }
 
     /// The object positions, one per column.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert_eq!(columns.positions(), [0, 2, 3]);
+    /// ```
     pub fn positions(&self) -> &[u16] {
         &self.positions
     }
 
     /// The layout of the matrix of `event`. `birth_column` is the cell whose column a birth appends
     /// (`None` for an undetectable birth, and for the other events).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// let none = columns.layout(Event::None, None);
+    /// assert_eq!((none.columns(), none.dead()), (3, None));
+    /// // A birth in a cell the sensor cannot see adds no column.
+    /// assert_eq!(columns.layout(Event::Birth { cell: 1 }, None).columns(), 3);
+    /// ```
     pub fn layout(&self, event: Event, birth_column: Option<u16>) -> ColumnLayout<'_> {
         let dead = match event {
             Event::Death { object } => self.positions.iter().position(|&position| position == object),
@@ -110,17 +193,58 @@ pub struct ColumnLayout<'a> {
 
 impl ColumnLayout<'_> {
     /// Number of columns.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert_eq!(columns.layout(Event::Birth { cell: 0 }, Some(0)).columns(), 4);
+    /// assert_eq!(columns.layout(Event::Death { object: 2 }, None).columns(), 3); // the dead column stays
+    /// ```
     pub fn columns(&self) -> usize {
         self.objects.len() + usize::from(self.birth.is_some())
     }
 
     /// The column of the object that dies, if the event is a death.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// assert_eq!(columns.layout(Event::Death { object: 3 }, None).dead(), Some(2)); // object 3 is column 2
+    /// assert_eq!(columns.layout(Event::None, None).dead(), None);
+    /// ```
     pub fn dead(&self) -> Option<usize> {
         self.dead
     }
 
     /// What column `column` stands for: `None` for the dead object's column and beyond the last column
     /// (so for clutter).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{Column, ParentColumns};
+    /// # use tracker_core::weight::Event;
+    /// # // Objects 0, 2 and 3 of the parent are in view.
+    /// # let mut columns = ParentColumns::<4>::new();
+    /// # for position in [0, 2, 3] {
+    /// #     columns.push(position).unwrap();
+    /// # }
+    /// let layout = columns.layout(Event::None, None);
+    /// assert_eq!(layout.column(1), Some(Column::Object { position: 2 }));
+    /// assert_eq!(layout.column(3), None);
+    /// assert_eq!(layout.column(usize::from(tracker_core::association::CLUTTER)), None);
+    /// ```
     #[inline]
     pub fn column(&self, column: usize) -> Option<Column> {
         if self.dead == Some(column) {

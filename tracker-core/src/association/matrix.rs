@@ -25,6 +25,19 @@ use crate::real::Real;
 pub const CLUTTER: u16 = u16::MAX;
 
 /// The data association matrix of one (parent, event) pair: at most `Z` rows and `N` columns.
+///
+/// # Examples
+/// ```
+/// use tracker_core::association::{AssociationMatrix, CLUTTER};
+/// // Two measurements, two objects; object 1 must be detected (p_D = 1).
+/// let mut matrix = AssociationMatrix::<f64, 4, 4>::new(2, 2, -3.0);
+/// matrix.set_column(0, &[1.0, f64::NEG_INFINITY], false); // z₂ is outside object 0's gate
+/// matrix.set_column(1, &[0.5, 2.0], true);
+/// assert_eq!(matrix.score(&[0, 1]), -3.0 + 1.0 + 2.0);
+/// assert_eq!(matrix.score(&[CLUTTER, 1]), -3.0 + 2.0);
+/// assert_eq!(matrix.score(&[1, 0]), f64::NEG_INFINITY); // impossible entry
+/// assert_eq!(matrix.score(&[0, CLUTTER]), f64::NEG_INFINITY); // required column 1 left out
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct AssociationMatrix<T, const N: usize, const Z: usize> {
     rows: usize,
@@ -44,6 +57,15 @@ impl<T: Real, const N: usize, const Z: usize> Default for AssociationMatrix<T, N
 impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     /// An empty `rows × columns` matrix: every entry impossible, no column required. `rows` and `columns`
     /// are clamped to the capacity (`Z` rows, `N` columns).
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// let matrix = AssociationMatrix::<f64, 2, 3>::new(5, 2, -1.0);
+    /// assert_eq!((matrix.rows(), matrix.columns()), (3, 2)); // rows clamped to Z = 3
+    /// assert_eq!(matrix.entry(0, 0), f64::NEG_INFINITY);
+    /// assert_eq!(matrix.score(&[CLUTTER; 3]), -1.0); // only the all-clutter child is possible
+    /// ```
     pub const fn new(rows: usize, columns: usize, baseline: T) -> Self {
         Self {
             rows: if rows < Z { rows } else { Z },
@@ -61,6 +83,16 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     ///
     /// # Panics
     /// If the table is larger than the capacity or ragged, or `clutter` is shorter than the table.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// let table: [&[f64]; 2] = [&[0.6, 0.1], &[0.2, 0.5]];
+    /// let matrix = AssociationMatrix::<f64, 2, 2>::from_likelihoods(&table, &[0.3, 0.3]);
+    /// assert!((matrix.score(&[0, 1]).exp() - 0.6 * 0.5).abs() < 1e-15);
+    /// assert!((matrix.score(&[CLUTTER, 0]).exp() - 0.3 * 0.2).abs() < 1e-15);
+    /// assert!((matrix.baseline().exp() - 0.3 * 0.3).abs() < 1e-15);
+    /// ```
     pub fn from_likelihoods(table: &[&[T]], clutter: &[T]) -> Self {
         let columns = table.first().map_or(0, |row| row.len());
         assert!(table.len() <= Z && columns <= N, "likelihood table larger than the matrix capacity");
@@ -77,6 +109,12 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// Number of rows (measurements), at most `Z`.
+    ///
+    /// # Examples
+    /// ```
+    /// let matrix = tracker_core::association::AssociationMatrix::<f64, 4, 8>::new(3, 2, 0.0);
+    /// assert_eq!(matrix.rows(), 3);
+    /// ```
     #[inline]
     pub fn rows(&self) -> usize {
         // `rows ≤ Z` always holds; the `min` lets the optimiser see it (and drop callers' bounds checks).
@@ -84,6 +122,12 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// Number of columns (detectable objects), at most `N`.
+    ///
+    /// # Examples
+    /// ```
+    /// let matrix = tracker_core::association::AssociationMatrix::<f64, 4, 8>::new(3, 6, 0.0);
+    /// assert_eq!(matrix.columns(), 4); // clamped to N = 4
+    /// ```
     #[inline]
     pub fn columns(&self) -> usize {
         self.columns.min(N)
@@ -97,16 +141,49 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// The log-weight of the child in which every row is clutter and every column missed.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// let matrix = AssociationMatrix::<f64, 2, 2>::new(2, 2, -7.5);
+    /// assert_eq!(matrix.baseline(), matrix.score(&[CLUTTER, CLUTTER]));
+    /// ```
     pub fn baseline(&self) -> T {
         self.baseline
     }
 
     /// Sets the baseline.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// let before = matrix.score(&[0, 1, 2]);
+    /// matrix.set_baseline(-4.0); // one nat more for every child
+    /// assert_eq!(matrix.score(&[0, 1, 2]), before + 1.0);
+    /// ```
     pub fn set_baseline(&mut self, baseline: T) {
         self.baseline = baseline;
     }
 
     /// The entry δ of row `row`, column `column` (`-inf` when impossible, and outside the capacity).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// assert_eq!(matrix.entry(1, 1), 3.0);
+    /// assert_eq!(matrix.entry(2, 1), f64::NEG_INFINITY);
+    /// assert_eq!(matrix.entry(7, 0), f64::NEG_INFINITY); // outside the capacity
+    /// ```
     #[inline(always)]
     pub fn entry(&self, row: usize, column: usize) -> T {
         match self.entries.get(row).and_then(|line| line.get(column)) {
@@ -124,17 +201,54 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
 
     /// Whether `column` must be assigned in every child with non-zero weight (`false` outside the
     /// capacity, so for [`CLUTTER`]).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// matrix.set_required(2, true);
+    /// assert!(matrix.is_required(2) && !matrix.is_required(0));
+    /// assert!(!matrix.is_required(usize::from(CLUTTER)));
+    /// ```
     #[inline(always)]
     pub fn is_required(&self, column: usize) -> bool {
         self.required.get(column).copied().unwrap_or(false)
     }
 
     /// Number of required columns.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// matrix.set_required(0, true);
+    /// matrix.set_required(0, true); // already required: counted once
+    /// matrix.set_required(2, true);
+    /// assert_eq!(matrix.required_count(), 2);
+    /// ```
     pub fn required_count(&self) -> usize {
         self.required_count
     }
 
     /// Writes column `column` (`< N`) from `entries` (one per row) and its required flag.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// let mut matrix = AssociationMatrix::<f64, 2, 2>::new(2, 1, 0.0);
+    /// matrix.set_column(0, &[1.0, 2.0], true);
+    /// assert_eq!((matrix.entry(0, 0), matrix.entry(1, 0)), (1.0, 2.0));
+    /// assert_eq!(matrix.score(&[CLUTTER, 0]), 2.0);
+    /// assert_eq!(matrix.score(&[CLUTTER, CLUTTER]), f64::NEG_INFINITY); // column 0 is required
+    /// ```
     pub fn set_column(&mut self, column: usize, entries: &[T], required: bool) {
         let rows = self.rows();
         for (line, &value) in self.entries.iter_mut().zip(entries).take(rows) {
@@ -144,6 +258,20 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// Marks `column` (`< N`) required or not.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// assert!(matrix.score(&[CLUTTER, 1, CLUTTER]).is_finite());
+    /// matrix.set_required(2, true);
+    /// assert_eq!(matrix.score(&[CLUTTER, 1, CLUTTER]), f64::NEG_INFINITY);
+    /// assert!(matrix.score(&[CLUTTER, 1, 2]).is_finite());
+    /// ```
     pub fn set_required(&mut self, column: usize, required: bool) {
         let flag = self.required.at_mut(column);
         if *flag != required {
@@ -157,6 +285,15 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// Appends a column (for a born object) and returns its index, or `None` when the matrix is full.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::AssociationMatrix;
+    /// let mut matrix = AssociationMatrix::<f64, 2, 1>::new(1, 1, 0.0);
+    /// assert_eq!(matrix.push_column(&[4.0], true), Some(1)); // a born object that must be detected
+    /// assert_eq!(matrix.score(&[1]), 4.0);
+    /// assert_eq!(matrix.push_column(&[1.0], false), None); // N = 2 columns already
+    /// ```
     pub fn push_column(&mut self, entries: &[T], required: bool) -> Option<usize> {
         if self.columns >= N {
             return None;
@@ -170,6 +307,26 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     /// Makes this matrix a copy of `base` in which column `dead` (if any) can take no measurement and is
     /// not required: the matrix of an event built from its parent's no-event matrix, with the same column
     /// numbering.
+    ///
+    /// # Examples
+    /// The matrix of the death of object 1, from the no-event matrix:
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// matrix.set_required(1, true);
+    /// let mut death = AssociationMatrix::new(0, 0, 0.0);
+    /// death.copy_from(&matrix, Some(1));
+    /// assert_eq!(death.entry(1, 1), f64::NEG_INFINITY); // the dead object takes no measurement
+    /// assert!(!death.is_required(1));
+    /// assert_eq!(death.entry(0, 0), matrix.entry(0, 0));
+    /// // A child without object 1 is impossible in the parent's matrix, not in the death's.
+    /// assert_eq!(matrix.score(&[0, 2, CLUTTER]), f64::NEG_INFINITY);
+    /// assert_eq!(death.score(&[0, 2, CLUTTER]), -5.0 + 2.0 + 1.0);
+    /// ```
     pub fn copy_from(&mut self, base: &Self, dead: Option<usize>) {
         let (rows, columns) = (base.rows(), base.columns());
         self.rows = rows;
@@ -189,6 +346,19 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
     }
 
     /// Copies column `column` (`< N`) into `out` (one entry per row).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// let mut out = [0.0; 3];
+    /// matrix.column(1, &mut out);
+    /// assert_eq!(out, [1.5, 3.0, f64::NEG_INFINITY]);
+    /// ```
     pub fn column(&self, column: usize, out: &mut [T; Z]) {
         for (slot, line) in out.iter_mut().zip(&self.entries).take(self.rows()) {
             *slot = *line.at(column);
@@ -197,6 +367,20 @@ impl<T: Real, const N: usize, const Z: usize> AssociationMatrix<T, N, Z> {
 
     /// The log-weight of `assignment` (one column or [`CLUTTER`] per row), `-inf` when it is impossible,
     /// assigns a column twice, or leaves a required column unassigned.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// assert!((matrix.score(&[0, 1, 2]) - 0.2).abs() < 1e-12);
+    /// assert_eq!(matrix.score(&[CLUTTER, CLUTTER, CLUTTER]), -5.0);
+    /// assert_eq!(matrix.score(&[1, 1, CLUTTER]), f64::NEG_INFINITY); // column 1 twice
+    /// assert_eq!(matrix.score(&[0, 1]), f64::NEG_INFINITY); // a row without an assignment
+    /// ```
     pub fn score(&self, assignment: &[u16]) -> T {
         let (rows, columns) = (self.rows(), self.columns());
         let mut used = [false; N];

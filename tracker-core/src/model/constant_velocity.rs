@@ -15,6 +15,17 @@ use nalgebra::{SMatrix, SVector};
 /// let p = model.propagate(&SVector::from([0.0, 0.0, 1.0, 2.0]), 2.0).unwrap();
 /// assert_eq!(p.state, SVector::from([2.0, 4.0, 1.0, 2.0]));
 /// ```
+///
+/// Its process noise is white acceleration noise, Q = q [[dt³/3 I, dt²/2 I], [dt²/2 I, dt I]]:
+/// ```
+/// use tracker_core::model::{ConstantVelocity, MotionModel};
+/// use nalgebra::SVector;
+/// let model = ConstantVelocity { acceleration_noise: 0.3_f64 };
+/// let q = model.process_noise(&SVector::zeros(), 2.0);
+/// assert!((q[(0, 0)] - 0.3 * 8.0 / 3.0).abs() < 1e-15);
+/// assert!((q[(0, 2)] - 0.3 * 2.0).abs() < 1e-15 && (q[(2, 2)] - 0.3 * 2.0).abs() < 1e-15);
+/// assert_eq!(q[(0, 1)], 0.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

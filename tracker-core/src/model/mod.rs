@@ -57,6 +57,36 @@ pub struct Propagation<T: Real, const S: usize> {
 }
 
 /// How one object's state evolves between scans.
+///
+/// # Examples
+/// A model of its own: a 1-D random walk, with the EKF.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::model::{ModelError, MotionModel, Propagation};
+/// use tracker_core::{Gaussian, ekf};
+///
+/// struct RandomWalk {
+///     q: f64,
+/// }
+///
+/// impl MotionModel<f64, 1> for RandomWalk {
+///     fn propagate(&self, state: &SVector<f64, 1>, _dt: f64) -> Result<Propagation<f64, 1>, ModelError> {
+///         Ok(Propagation { state: *state, transition: SMatrix::identity() })
+///     }
+///     fn process_noise(&self, _state: &SVector<f64, 1>, dt: f64) -> SMatrix<f64, 1, 1> {
+///         SMatrix::from([[self.q * dt]])
+///     }
+///     fn validate(&self) -> Result<(), &'static str> {
+///         if self.q > 0.0 { Ok(()) } else { Err("random walk: q must be > 0") }
+///     }
+/// }
+///
+/// let prior = Gaussian { mean: SVector::from([5.0]), covariance: SMatrix::from([[1.0]]) };
+/// let predicted = ekf::predict(&RandomWalk { q: 0.5 }, &prior, 4.0)?;
+/// assert_eq!((predicted.mean[0], predicted.covariance[(0, 0)]), (5.0, 3.0));
+/// assert!(RandomWalk { q: 0.0 }.validate().is_err());
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 pub trait MotionModel<T: Real, const S: usize> {
     /// Propagates `state` forward by `dt` seconds (`dt > 0`) and returns the new state with the
     /// transition matrix Φ.
@@ -76,6 +106,34 @@ pub trait MotionModel<T: Real, const S: usize> {
 }
 
 /// How the sensor measures one object.
+///
+/// # Examples
+/// A model of its own: the x coordinate alone of a planar state.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::model::MeasurementModel;
+/// use tracker_core::{Gaussian, ekf};
+///
+/// struct XOnly;
+///
+/// impl MeasurementModel<f64, 4, 1> for XOnly {
+///     fn measure(&self, state: &SVector<f64, 4>) -> SVector<f64, 1> {
+///         SVector::from([state[0]])
+///     }
+///     fn jacobian(&self, _state: &SVector<f64, 4>) -> SMatrix<f64, 1, 4> {
+///         SMatrix::from([[1.0], [0.0], [0.0], [0.0]])
+///     }
+///     fn noise_covariance(&self) -> SMatrix<f64, 1, 1> {
+///         SMatrix::from([[1.0]])
+///     }
+/// }
+///
+/// let track = Gaussian { mean: SVector::from([2.0, 7.0, 0.0, 0.0]), covariance: SMatrix::identity() };
+/// let innovation = ekf::innovation(&XOnly, &track)?;
+/// let updated = ekf::update(&XOnly, &track, &innovation, &SVector::from([4.0]))?;
+/// assert_eq!(updated.mean, SVector::from([3.0, 7.0, 0.0, 0.0])); // gain 1/2 on x, y untouched
+/// # Ok::<(), tracker_core::NumericalError>(())
+/// ```
 pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
     /// The noise-free measurement h(x).
     fn measure(&self, state: &SVector<T, S>) -> SVector<T, D>;

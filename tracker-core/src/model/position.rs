@@ -23,6 +23,14 @@ pub struct PositionMeasurement<T: Real> {
 
 impl<T: Real> PositionMeasurement<T> {
     /// Independent noise of standard deviation `sigma` on each axis.
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::SMatrix;
+    /// use tracker_core::PositionMeasurement;
+    /// let sensor = PositionMeasurement::isotropic(0.1_f32);
+    /// assert_eq!(sensor.noise, SMatrix::<f32, 2, 2>::new(0.1 * 0.1, 0.0, 0.0, 0.1 * 0.1));
+    /// ```
     pub fn isotropic(sigma: T) -> Self {
         Self { noise: SMatrix::<T, 2, 2>::identity() * (sigma * sigma) }
     }

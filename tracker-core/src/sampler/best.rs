@@ -14,6 +14,15 @@ pub(crate) fn cell_hash(row: usize, column: u16) -> u64 {
 }
 
 /// The hash of a whole association: XOR of its cells' hashes (so one move updates it in O(1)).
+///
+/// # Examples
+/// ```
+/// use tracker_core::association::CLUTTER;
+/// use tracker_core::sampler::association_hash;
+/// assert_ne!(association_hash(&[0, 1]), association_hash(&[1, 0])); // the row matters
+/// assert_ne!(association_hash(&[0, CLUTTER]), association_hash(&[0]));
+/// assert_eq!(association_hash(&[]), 0);
+/// ```
 pub fn association_hash(assignment: &[u16]) -> u64 {
     assignment.iter().enumerate().fold(0, |h, (row, &column)| h ^ cell_hash(row, column))
 }
@@ -33,6 +42,21 @@ fn ranks_below<T: Real, const C: usize>(scores: &[T; C], arrival: &[u32; C], a: 
 ///
 /// A child evicted for a better one can never come back: the worst kept score only rises, and a child is
 /// admitted only when it beats it. So every distinct child leaves the set at most once.
+///
+/// # Examples
+/// ```
+/// use tracker_core::association::CLUTTER;
+/// use tracker_core::sampler::{BestChildren, association_hash};
+/// let mut best = BestChildren::<f64, 2, 2>::new();
+/// best.clear(2); // two rows
+/// let (a, b, c) = ([0, CLUTTER], [CLUTTER, 0], [0, 1]);
+/// assert!(best.insert(-1.0, association_hash(&a), &a));
+/// assert!(!best.insert(-1.0, association_hash(&a), &a)); // already kept
+/// assert!(best.insert(-3.0, association_hash(&b), &b));
+/// assert!(best.insert(-2.0, association_hash(&c), &c)); // evicts b
+/// assert!(!best.contains(association_hash(&b), &b));
+/// assert!(!best.insert(-3.0, association_hash(&b), &b)); // below the worst kept
+/// ```
 #[derive(Debug, Clone)]
 pub struct BestChildren<T, const C: usize, const Z: usize> {
     scores: [T; C],
@@ -55,6 +79,13 @@ impl<T: Real, const C: usize, const Z: usize> Default for BestChildren<T, C, Z> 
 
 impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     /// An empty set (usable in a `const` context).
+    ///
+    /// # Examples
+    /// ```
+    /// let best = tracker_core::sampler::BestChildren::<f32, 4, 3>::new();
+    /// assert!(best.is_empty());
+    /// assert_eq!(best.threshold(), f32::NEG_INFINITY);
+    /// ```
     pub const fn new() -> Self {
         Self {
             scores: [T::NEG_INFINITY; C],
@@ -71,6 +102,21 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
 
 impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     /// Empties the set for a chain over `rows` measurements.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// best.clear(1); // now one row
+    /// assert!(best.is_empty());
+    /// assert!(best.insert(0.0, association_hash(&[CLUTTER]), &[CLUTTER]));
+    /// assert_eq!(best.get(0), Some((0.0, &[CLUTTER][..])));
+    /// ```
     pub fn clear(&mut self, rows: usize) {
         self.heap.clear();
         self.rows = rows;
@@ -81,16 +127,52 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     }
 
     /// Number of children kept (at most `C`).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert_eq!(best.len(), 2); // C = 2 of the three offered
+    /// ```
     pub fn len(&self) -> usize {
         self.heap.len()
     }
 
     /// Whether the set is empty.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert!(!best.is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.heap.len() == 0
     }
 
     /// The lowest score a new child must beat to enter, `-inf` while there is room.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert_eq!(best.threshold(), -2.0);
+    /// ```
     #[inline]
     pub fn threshold(&self) -> T {
         match self.heap.root() {
@@ -106,6 +188,20 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     }
 
     /// The kept children as (score, assignment), in no particular order.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// let mut kept: Vec<(f64, Vec<u16>)> = best.iter().map(|(score, a)| (score, a.to_vec())).collect();
+    /// kept.sort_by(|x, y| y.0.total_cmp(&x.0));
+    /// assert_eq!(kept, [(-1.0, vec![0, CLUTTER]), (-2.0, vec![0, 1])]);
+    /// ```
     pub fn iter(&self) -> impl Iterator<Item = (T, &[u16])> + '_ {
         self.scores
             .iter()
@@ -115,6 +211,19 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     }
 
     /// Kept child `index` as (score, assignment).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert!(best.get(0).is_some() && best.get(1).is_some());
+    /// assert_eq!(best.get(2), None);
+    /// ```
     pub fn get(&self, index: usize) -> Option<(T, &[u16])> {
         if index >= self.len() {
             return None;
@@ -151,6 +260,19 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
     }
 
     /// Whether the child is already kept.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert!(best.contains(association_hash(&[0, 1]), &[0, 1]));
+    /// assert!(!best.contains(association_hash(&[CLUTTER, 0]), &[CLUTTER, 0])); // evicted
+    /// ```
     pub fn contains(&self, hash: u64, assignment: &[u16]) -> bool {
         self.find(hash, assignment).1
     }
@@ -180,6 +302,20 @@ impl<T: Real, const C: usize, const Z: usize> BestChildren<T, C, Z> {
 
     /// Offers a feasible child with exact `score`; keeps it if it is new and beats the worst kept one.
     /// Returns whether it was kept.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::CLUTTER;
+    /// # use tracker_core::sampler::{BestChildren, association_hash};
+    /// # let mut best = BestChildren::<f64, 2, 2>::new();
+    /// # best.clear(2);
+    /// # for (score, child) in [(-1.0, [0, CLUTTER]), (-3.0, [CLUTTER, 0]), (-2.0, [0, 1])] {
+    /// #     best.insert(score, association_hash(&child), &child);
+    /// # }
+    /// assert!(best.insert(-1.5, association_hash(&[1, 0]), &[1, 0])); // beats −2, which leaves
+    /// assert!(!best.contains(association_hash(&[0, 1]), &[0, 1]));
+    /// assert_eq!(best.threshold(), -1.5);
+    /// ```
     pub fn insert(&mut self, score: T, hash: u64, assignment: &[u16]) -> bool {
         if self.contains(hash, assignment) {
             return false;

@@ -30,6 +30,33 @@ struct Chain<T, const N: usize, const Z: usize> {
 }
 
 /// A Metropolis chain per association matrix, keeping the best `C` distinct children.
+///
+/// # Examples
+/// Its best child is the matrix's best child, with its exact weight:
+/// ```
+/// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+/// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+/// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+/// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+/// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+/// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+/// use tracker_core::children::{ChildGenerator, ExhaustiveChildren};
+/// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+/// use tracker_core::selection::TopChildren;
+/// let mut sampled = TopChildren::<f64, 4, 3>::new();
+/// MetropolisSampler::<f64, 3, 3, 4>::new(SamplerConfig::DEFAULT, 42).generate(&matrix, &mut sampled)?;
+/// let mut exact = TopChildren::<f64, 4, 3>::new();
+/// ExhaustiveChildren::new(1_000).generate(&matrix, &mut exact)?;
+/// let best = |top: &TopChildren<f64, 4, 3>| {
+///     let mut order = [0; 4];
+///     top.best_first(&mut order);
+///     top.kept()[usize::from(order[0])]
+/// };
+/// assert_eq!(best(&sampled).assignment, [0, 1, 2]);
+/// assert_eq!(best(&sampled).log_weight, best(&exact).log_weight);
+/// assert_eq!(best(&sampled).log_weight, matrix.score(&[0, 1, 2]));
+/// # Ok::<(), tracker_core::children::GenerateError>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> {
     config: SamplerConfig,
@@ -60,6 +87,23 @@ pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> 
 
 impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<T, N, Z, C> {
     /// A sampler with `config`, its random stream seeded by `seed`.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let run = |seed| {
+    ///     let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::new(SamplerConfig::DEFAULT, seed);
+    ///     sampler.run(&matrix);
+    ///     (sampler.accepted(), sampler.best().iter().map(|(w, a)| (w, a.to_vec())).collect::<Vec<_>>())
+    /// };
+    /// assert_eq!(run(1), run(1)); // the same seed, the same chain
+    /// ```
     pub fn new(config: SamplerConfig, seed: u64) -> Self {
         let mut sampler = Self::empty(config);
         sampler.reseed(seed);
@@ -68,6 +112,21 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
 
     /// A sampler without a random stream yet (usable in a `const` context, so that a tracker can live in
     /// a `static`); [`MetropolisSampler::reseed`] gives it one.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::empty(SamplerConfig::DEFAULT);
+    /// sampler.reseed(9);
+    /// sampler.run(&matrix);
+    /// assert!(sampler.accepted() > 0);
+    /// ```
     pub const fn empty(config: SamplerConfig) -> Self {
         Self {
             config,
@@ -97,6 +156,25 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     }
 
     /// Reseeds the random stream (the tracker derives one seed per scan, parent and event).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut a = MetropolisSampler::<f64, 3, 3, 8>::new(SamplerConfig::DEFAULT, 1);
+    /// a.run(&matrix); // a's stream moves on
+    /// a.reseed(5);
+    /// let before = a.accepted();
+    /// a.run(&matrix);
+    /// let mut b = MetropolisSampler::<f64, 3, 3, 8>::new(SamplerConfig::DEFAULT, 5);
+    /// b.run(&matrix);
+    /// assert_eq!(a.accepted() - before, b.accepted()); // the same chain as a fresh sampler's
+    /// ```
     pub fn reseed(&mut self, seed: u64) {
         if self.rng.is_none() {
             self.fill_zobrist();
@@ -115,21 +193,75 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     }
 
     /// The configuration.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let config = SamplerConfig { steps: 50, ..SamplerConfig::DEFAULT };
+    /// assert_eq!(MetropolisSampler::<f64, 2, 2, 4>::new(config, 0).config().steps, 50);
+    /// ```
     pub fn config(&self) -> &SamplerConfig {
         &self.config
     }
 
     /// Steps taken over the sampler's lifetime.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let config = SamplerConfig { burn_in: 10, steps: 100, ..SamplerConfig::DEFAULT };
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::new(config, 3);
+    /// sampler.run(&matrix);
+    /// sampler.run(&matrix);
+    /// assert_eq!(sampler.steps_taken(), 2 * (10 + 100));
+    /// ```
     pub fn steps_taken(&self) -> u64 {
         self.steps_taken
     }
 
     /// Accepted proposals over the sampler's lifetime.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::new(SamplerConfig::DEFAULT, 3);
+    /// sampler.run(&matrix);
+    /// assert!(0 < sampler.accepted() && sampler.accepted() < sampler.steps_taken());
+    /// ```
     pub fn accepted(&self) -> u64 {
         self.accepted
     }
 
     /// The best distinct children of the last chain, as (exact log-weight, assignment).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::new(SamplerConfig::DEFAULT, 3);
+    /// sampler.run(&matrix);
+    /// assert_eq!(sampler.best().len(), 8);
+    /// for (log_weight, assignment) in sampler.best().iter() {
+    ///     assert_eq!(log_weight, matrix.score(assignment)); // exact, never estimated
+    /// }
+    /// ```
     pub fn best(&self) -> &BestChildren<T, C, Z> {
         &self.best
     }
@@ -328,6 +460,23 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     }
 
     /// One Metropolis move (propose, then accept or reject); returns whether the state changed.
+    ///
+    /// # Examples
+    /// Moves on their own (after [`MetropolisSampler::run`] has built the matrix's tables):
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let config = SamplerConfig { burn_in: 0, steps: 0, ..SamplerConfig::DEFAULT };
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 8>::new(config, 3);
+    /// sampler.run(&matrix);
+    /// let moved = (0..100).filter(|_| sampler.metropolis_move(&matrix)).count() as u64;
+    /// assert_eq!((sampler.steps_taken(), sampler.accepted()), (100, moved));
+    /// ```
     #[inline]
     pub fn metropolis_move(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
@@ -580,6 +729,21 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     }
 
     /// Runs one chain on `matrix` and leaves its best distinct children in [`MetropolisSampler::best`].
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::{AssociationMatrix, CLUTTER};
+    /// # // 3 measurements × 3 objects; the best child takes the diagonal: −5 + 2 + 3 + 0.2.
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 4>::new(SamplerConfig::DEFAULT, 3);
+    /// sampler.run(&matrix);
+    /// let best = sampler.best().iter().map(|(w, _)| w).fold(f64::NEG_INFINITY, f64::max);
+    /// assert!((best - 0.2).abs() < 1e-12); // the diagonal
+    /// ```
     pub fn run(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
         self.best.clear(matrix.rows());
         if matrix.rows() == 0 {

@@ -63,6 +63,42 @@ pub enum Proposal {
 }
 
 /// Budget and moves of the sampler.
+///
+/// # Examples
+/// A smaller budget and every cluster sampled, in a `const`; the tracker reports the steps its chains took:
+/// ```
+/// # use nalgebra::{SMatrix, SVector};
+/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+/// # let config = Config {
+/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+/// #     measurement: PositionMeasurement::isotropic(0.5),
+/// #     sensor: Sensor {
+/// #         detection_probability: 0.9,
+/// #         clutter_rate: 1.0,
+/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+/// #     },
+/// #     birth: BirthModel::none(),
+/// #     death_probability: 0.0,
+/// #     gate: None,
+/// #     children: Default::default(),
+/// #     selection: Default::default(),
+/// #     store_overflow: Default::default(),
+/// #     seed: 1,
+/// # };
+/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// use tracker_core::ChildGeneration;
+/// use tracker_core::sampler::SamplerConfig;
+/// const QUICK: SamplerConfig =
+///     SamplerConfig { burn_in: 10, steps: 200, exhaustive_limit: 0, ..SamplerConfig::DEFAULT };
+/// assert_eq!(SamplerConfig::default(), SamplerConfig::DEFAULT);
+///
+/// let config = Config { children: ChildGeneration::Sampled(QUICK), ..config };
+/// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+/// let report = tracker.step(1.0, &[SVector::from([1.0, 0.0]), SVector::from([-3.0, 2.0])])?;
+/// assert_eq!(report.sampler_steps, 10 + 200); // one matrix, one cluster, one chain
+/// assert_eq!(report.hypotheses, 3); // all three children were found
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

@@ -146,31 +146,219 @@ pub struct HypothesisView<'a, T: Real, const S: usize, const N: usize> {
 
 impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// Normalised weight w.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// let weights: Vec<f64> = tracker.hypotheses().map(|h| h.weight()).collect();
+    /// assert!((weights[0] - 0.75).abs() < 1e-12 && (weights[1] - 0.25).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn weight(&self) -> T {
         exp(self.hypothesis.log_weight)
     }
 
     /// Normalised log-weight ln w.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// let map = tracker.map_hypothesis();
+    /// assert!((map.log_weight() - 0.75f64.ln()).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn log_weight(&self) -> T {
         self.hypothesis.log_weight
     }
 
     /// Number of objects.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// let lengths: Vec<usize> = tracker.hypotheses().map(|h| h.len()).collect();
+    /// assert_eq!(lengths, [1, 0]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn len(&self) -> usize {
         self.hypothesis.len()
     }
 
     /// Whether the hypothesis holds no object.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// assert!(!tracker.map_hypothesis().is_empty());
+    /// assert!(tracker.hypotheses().last().is_some_and(|h| h.is_empty()));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.hypothesis.is_empty()
     }
 
     /// Store slots of its tracks (in label order).
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// let slot = tracker.map_hypothesis().slots()[0];
+    /// assert_eq!(tracker.tracks()[usize::from(slot)].label, TrackLabel(7));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn slots(&self) -> &'a [u16] {
         self.hypothesis.slots()
     }
 
     /// Its tracks, in label order.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, PriorObject, TrackLabel};
+    /// # let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// # // Object 7 exists with probability 3/4.
+    /// # let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// # let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &prior, 0.0)?;
+    /// let track = tracker.map_hypothesis().tracks().next().unwrap();
+    /// assert_eq!(track.label, TrackLabel(7));
+    /// assert_eq!(track.state, object);
+    /// assert!((track.existence - 0.75).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn tracks(&self) -> impl Iterator<Item = &'a Track<T, S>> + 'a {
         let tracks = self.tracks;
         // Every slot of a hypothesis is a live track of the store.
@@ -217,6 +405,42 @@ where
     ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry.
+    ///
+    /// # Examples
+    /// A prior of two hypotheses: object 7 exists with probability 3/4.
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// use tracker_core::{ConfigError, PriorHypothesis, PriorObject, TrackLabel};
+    ///
+    /// let objects = [PriorObject { label: TrackLabel(7), state: object }];
+    /// let prior = [PriorHypothesis { weight: 3.0, objects: &objects }, PriorHypothesis { weight: 1.0, objects: &[] }];
+    /// let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config.clone(), &prior, 0.0)?;
+    /// assert!((tracker.label_existence(TrackLabel(7)) - 0.75).abs() < 1e-12);
+    ///
+    /// // Weights must not all be zero.
+    /// let zero = [PriorHypothesis { weight: 0.0, objects: &objects }];
+    /// let error = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &zero, 0.0).unwrap_err();
+    /// assert_eq!(error, ConfigError::PriorWeight { hypothesis: 0 });
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(
         config: Config<T, M, G, S, B>,
         prior: &[PriorHypothesis<'_, T, S>],
@@ -228,14 +452,48 @@ where
     }
 
     /// A tracker holding `config` but no prior yet, built in a `const` context so that it can be the
-    /// initial value of a `static` (no stack is used for its storage):
-    ///
-    /// ```ignore
-    /// static TRACKER: Mutex<RefCell<SsaTracker<f32>>> = Mutex::new(RefCell::new(SsaTracker::empty(CONFIG)));
-    /// ```
+    /// initial value of a `static` (no stack is used for its storage).
     ///
     /// The configuration is checked, and the prior loaded, by [`Tracker::reset`]; until then `step` fails
     /// with [`StepError::NotInitialised`].
+    ///
+    /// # Examples
+    /// A tracker in a `static` behind a mutex (on a bare-metal target, a critical-section mutex such as
+    /// `Mutex<RefCell<SsaTracker<f32>>>` in place of std's); the configuration is a `const`:
+    /// ```
+    /// use std::sync::Mutex;
+    /// use tracker_core::{BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearConfig, LinearTracker};
+    /// use tracker_core::{ConfigError, PositionMeasurement, PriorHypothesis, PriorObject, Region, Sensor, StepError};
+    /// use tracker_core::{TrackLabel, real::identity};
+    /// use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
+    ///
+    /// const CONFIG: LinearConfig<f64, 1> = Config {
+    ///     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    ///     measurement: PositionMeasurement { noise: identity() },
+    ///     sensor: Sensor {
+    ///         detection_probability: 0.9,
+    ///         clutter_rate: 1.0,
+    ///         field_of_view: Region::Everywhere { volume: 1e4 },
+    ///     },
+    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected },
+    ///     death_probability: 0.0,
+    ///     gate: None,
+    ///     children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000 },
+    ///     selection: Selection::TopWeight,
+    ///     store_overflow: StoreOverflow::PruneChildren,
+    ///     seed: 1,
+    /// };
+    /// static TRACKER: Mutex<LinearTracker<f64, 8, 4, 4, 16, 1>> = Mutex::new(LinearTracker::empty(CONFIG));
+    ///
+    /// let mut tracker = TRACKER.lock().unwrap();
+    /// assert_eq!(tracker.step(1.0, &[]), Err(StepError::NotInitialised));
+    /// assert_eq!(tracker.reset(&[], 0.0), Err(ConfigError::PriorEmpty));
+    /// let object = Gaussian { mean: nalgebra::SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: identity() };
+    /// let objects = [PriorObject { label: TrackLabel(0), state: object }];
+    /// tracker.reset(&[PriorHypothesis { weight: 1.0, objects: &objects }], 0.0)?;
+    /// assert_eq!(tracker.step(1.0, &[])?.scan, 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub const fn empty(config: Config<T, M, G, S, B>) -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_CHECK;
@@ -265,6 +523,41 @@ where
     ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry; the tracker is then unchanged.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{PriorHypothesis, ConfigError};
+    /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// // Restart at t = 10 s with no object.
+    /// tracker.reset(&[PriorHypothesis { weight: 1.0, objects: &[] }], 10.0)?;
+    /// assert_eq!((tracker.scans(), tracker.time()), (0, 10.0));
+    /// assert_eq!(tracker.expected_cardinality(), 0.0);
+    /// // A bad prior leaves the tracker as it was.
+    /// let before = tracker.digest();
+    /// assert_eq!(tracker.reset(&[], 20.0), Err(ConfigError::PriorEmpty));
+    /// assert_eq!(tracker.digest(), before);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn reset(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<(), ConfigError> {
         let birth_cells = prior::check_config::<T, M, G, S, D, N, B>(&self.config)?;
         if !time.is_finite() {
@@ -288,6 +581,39 @@ where
     ///
     /// # Errors
     /// As [`Tracker::new`].
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::{ConfigError, TrackLabel};
+    /// let other = Gaussian { mean: SVector::from([10.0, 0.0, 0.0, 1.0]), covariance: SMatrix::identity() };
+    /// let tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config.clone(), &[object, other], 0.0)?;
+    /// let labels: Vec<TrackLabel> = tracker.map_hypothesis().tracks().map(|t| t.label).collect();
+    /// assert_eq!(labels, [TrackLabel(0), TrackLabel(1)]);
+    ///
+    /// // Five objects do not fit N = 4.
+    /// let too_many = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object; 5], 0.0);
+    /// assert_eq!(too_many.unwrap_err(), ConfigError::PriorTooManyObjects { hypothesis: 0 });
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn with_objects(
         config: Config<T, M, G, S, B>,
         objects: &[Gaussian<T, S>],
@@ -306,6 +632,46 @@ where
     ///
     /// # Errors
     /// [`StepError`]; the tracker is then exactly as it was before the call.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::StepError;
+    /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// let report = tracker.step(1.0, &[SVector::from([1.1, 0.05])])?;
+    /// assert_eq!((report.scan, report.measurements), (1, 1));
+    /// // The object's track moved to the measurement.
+    /// let track = tracker.map_hypothesis().tracks().next().unwrap();
+    /// assert!((track.state.mean[0] - 1.1).abs() < 0.1);
+    ///
+    /// // A rejected scan changes nothing.
+    /// let before = tracker.digest();
+    /// match tracker.step(2.0, &[SVector::from([80.0, 0.0])]) {
+    ///     Err(StepError::MeasurementOutsideFieldOfView { index }) => assert_eq!(index, 0),
+    ///     other => panic!("unexpected {other:?}"),
+    /// }
+    /// assert_eq!(tracker.step(0.5, &[]), Err(StepError::TimeNotAfterLastScan));
+    /// assert_eq!(tracker.digest(), before);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
         if !self.initialised {
             return Err(StepError::NotInitialised);
@@ -366,21 +732,136 @@ where
     }
 
     /// The configuration.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// assert_eq!(tracker.config().seed, 1);
+    /// assert_eq!(tracker.config().sensor.detection_probability, 0.9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn config(&self) -> &Config<T, M, G, S, B> {
         &self.config
     }
 
     /// Time of the last scan (or of the prior), in seconds.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// assert_eq!(tracker.time(), 0.0);
+    /// tracker.step(2.5, &[])?;
+    /// assert_eq!(tracker.time(), 2.5);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn time(&self) -> f64 {
         self.time
     }
 
     /// Number of scans processed.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// for k in 1..=3 {
+    ///     tracker.step(f64::from(k), &[])?;
+    /// }
+    /// assert_eq!(tracker.scans(), 3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn scans(&self) -> u64 {
         self.scans
     }
 
     /// The hypotheses, best first, with normalised weights.
+    ///
+    /// # Examples
+    /// One object and one measurement: it came from the object, or it is clutter and the object was missed.
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// let weights: Vec<f64> = tracker.hypotheses().map(|h| h.weight()).collect();
+    /// assert_eq!(weights.len(), 2);
+    /// assert!(weights[0] >= weights[1]);
+    /// assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn hypotheses(&self) -> impl ExactSizeIterator<Item = HypothesisView<'_, T, S, N>> + '_ {
         let tracks = self.stores[self.live()].as_slice();
         self.hypotheses[self.live()].as_slice().iter().map(move |hypothesis| HypothesisView { hypothesis, tracks })
@@ -388,6 +869,35 @@ where
 
     /// The maximum a posteriori hypothesis (the first of [`Tracker::hypotheses`]; ties keep the
     /// deterministic enumeration order).
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// let map = tracker.map_hypothesis();
+    /// assert_eq!(map.weight(), tracker.hypotheses().next().unwrap().weight());
+    /// assert!(map.weight() > 0.9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn map_hypothesis(&self) -> HypothesisView<'_, T, S, N> {
         let tracks = self.stores[self.live()].as_slice();
         // There is always at least one hypothesis: the prior has one and every scan keeps one.
@@ -395,22 +905,146 @@ where
     }
 
     /// Every track of the shared store, with its existence probability.
+    ///
+    /// # Examples
+    /// The two hypotheses after a scan hold different tracks of the same object, whose existences add up:
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::TrackLabel;
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// assert_eq!(tracker.tracks().len(), 2); // updated with z, and missed
+    /// let total: f64 = tracker.tracks().iter().map(|t| t.existence).sum();
+    /// assert!((total - tracker.label_existence(TrackLabel(0))).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn tracks(&self) -> &[Track<T, S>] {
         self.stores[self.live()].as_slice()
     }
 
     /// Existence probability of the object `label`: the total weight of the hypotheses that hold a
     /// track with that label.
+    ///
+    /// # Examples
+    /// With deaths (β = 0.1) and an empty scan, the object survived and was missed (weight (1 − β)(1 − p_D))
+    /// or died (weight β):
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.1,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::TrackLabel;
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[])?;
+    /// let survived = 0.9 * 0.1;
+    /// let expected = survived / (survived + 0.1);
+    /// assert!((tracker.label_existence(TrackLabel(0)) - expected).abs() < 1e-12);
+    /// assert_eq!(tracker.label_existence(TrackLabel(9)), 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn label_existence(&self, label: TrackLabel) -> T {
         self.tracks().iter().filter(|track| track.label == label).fold(T::zero(), |sum, track| sum + track.existence)
     }
 
     /// P(number of objects = `n`).
+    ///
+    /// # Examples
+    /// As for [`Tracker::label_existence`]: after an empty scan with β = 0.1, the object is gone with probability
+    /// β / ((1 − β)(1 − p_D) + β).
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.1,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// tracker.step(1.0, &[])?;
+    /// assert!((tracker.cardinality_probability(0) - 0.1 / 0.19).abs() < 1e-12);
+    /// assert!((tracker.cardinality_probability(0) + tracker.cardinality_probability(1) - 1.0).abs() < 1e-12);
+    /// assert_eq!(tracker.cardinality_probability(2), 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn cardinality_probability(&self, n: usize) -> T {
         self.hypotheses().filter(|h| h.len() == n).fold(T::zero(), |sum, h| sum + h.weight())
     }
 
     /// Expected number of objects Σ_h w_h N_h.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.1,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// assert_eq!(tracker.expected_cardinality(), 1.0);
+    /// let report = tracker.step(1.0, &[])?;
+    /// assert!((tracker.expected_cardinality() - 0.09 / 0.19).abs() < 1e-12);
+    /// assert_eq!(report.expected_cardinality, tracker.expected_cardinality());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn expected_cardinality(&self) -> T {
         self.hypotheses().fold(T::zero(), |sum, h| sum + h.weight() * T::of_f64(h.len() as f64))
     }
@@ -419,6 +1053,39 @@ where
     /// hypothesis in order its log-weight and its tracks' labels, means and covariances, as raw bits.
     /// Two trackers with the same digest agree bit for bit (up to hash collisions); it is how the host and
     /// an embedded target are compared.
+    ///
+    /// # Examples
+    /// The same configuration, prior and scans give the same digest; anything else almost surely not:
+    /// ```
+    /// # use nalgebra::{SMatrix, SVector};
+    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
+    /// # let config = Config {
+    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    /// #     measurement: PositionMeasurement::isotropic(0.5),
+    /// #     sensor: Sensor {
+    /// #         detection_probability: 0.9,
+    /// #         clutter_rate: 1.0,
+    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    /// #     },
+    /// #     birth: BirthModel::none(),
+    /// #     death_probability: 0.0,
+    /// #     gate: None,
+    /// #     children: Default::default(),
+    /// #     selection: Default::default(),
+    /// #     store_overflow: Default::default(),
+    /// #     seed: 1,
+    /// # };
+    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
+    /// let mut twin = tracker.clone();
+    /// tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// twin.step(1.0, &[SVector::from([1.0, 0.0])])?;
+    /// assert_eq!(tracker.digest(), twin.digest());
+    /// tracker.step(2.0, &[SVector::from([2.0, 0.0])])?;
+    /// twin.step(2.0, &[SVector::from([2.0, 0.1])])?;
+    /// assert_ne!(tracker.digest(), twin.digest());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn digest(&self) -> u64 {
         let mut hash = Fnv1a::new();
         hash.write_u64(self.time.to_bits());
