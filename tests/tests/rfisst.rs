@@ -104,7 +104,7 @@ fn sampler_equals_exhaustive() {
     let cases = [
         (SamplerConfig { steps: 100_000, clusters: false, ..SamplerConfig::default() }, 1),
         (SamplerConfig { steps: 100_000, exhaustive_limit: 0, ..SamplerConfig::default() }, 1),
-        (SamplerConfig { exhaustive_limit: u64::MAX, ..SamplerConfig::default() }, 2),
+        (SamplerConfig { exhaustive_limit: SamplerConfig::MAX_EXHAUSTIVE_LIMIT, ..SamplerConfig::default() }, 2),
         (SamplerConfig::default(), 2),
     ];
     for (configuration, scans_checked) in cases {
@@ -249,4 +249,48 @@ fn selection_by_sampling_keeps_children_in_proportion_to_weight() {
     }
     let frequency = kept_detected as f64 / trials as f64;
     assert!((frequency - p_detected).abs() < 0.03, "kept {frequency}, weight {p_detected}");
+}
+
+/// The caller's move budget per scan is never exceeded, whatever its size, with clusters or one chain per
+/// matrix; no budget (`u64::MAX`) is exactly `step`; a budget of 0 still gives every parent's best children
+/// (the exact starts).
+#[test]
+fn a_scan_never_makes_more_moves_than_its_budget() {
+    with_large_stack(budget_never_exceeded);
+}
+
+fn budget_never_exceeded() {
+    for clusters in [true, false] {
+        let sampler = SamplerConfig { clusters, exhaustive_limit: 0, ..SamplerConfig::default() };
+        let start = Box::new(Big::with_objects(config(ChildGeneration::Sampled(sampler)), &objects(), 0.0).unwrap());
+        let mut unlimited = Box::new((*start).clone());
+        let mut same = Box::new((*start).clone());
+        for (k, zs) in scans().iter().enumerate() {
+            let time = k as f64 + 1.0;
+            let full = unlimited.step(time, zs).unwrap();
+            let also_full = same.step_with_budget(time, zs, u64::MAX).unwrap();
+            assert_eq!(full, also_full);
+            assert_eq!(unlimited.digest(), same.digest());
+            assert!(full.sampler_steps >= 4_000, "the unlimited scan makes its chains' moves: {}", full.sampler_steps);
+        }
+        let mut previous_steps = 0;
+        for budget in [0u64, 1, 7, 100, 999, 2_000, 4_000, 1_000_000] {
+            let mut limited = Box::new((*start).clone());
+            let report = limited.step_with_budget(1.0, &scans()[0], budget).unwrap();
+            assert!(
+                report.sampler_steps <= budget,
+                "clusters {clusters}: {} moves > budget {budget}",
+                report.sampler_steps
+            );
+            assert!(report.sampler_steps >= previous_steps, "a larger budget is used at least as much");
+            previous_steps = report.sampler_steps;
+            assert!(report.hypotheses > 0);
+            let total: f64 = limited.hypotheses().map(|h| h.weight()).sum();
+            assert!((total - 1.0).abs() < 1e-12);
+        }
+        // The budget is a large part of what a scan does: most of it is used when it is small.
+        let mut limited = Box::new((*start).clone());
+        let report = limited.step_with_budget(1.0, &scans()[0], 2_000).unwrap();
+        assert!(report.sampler_steps >= 1_000, "clusters {clusters}: only {} of 2000 moves used", report.sampler_steps);
+    }
 }

@@ -89,6 +89,8 @@ struct Combination<T> {
 pub struct ClusteredChildren<T: Real, const N: usize, const Z: usize, const C: usize> {
     config: SamplerConfig,
     seed: u64,
+    /// Metropolis moves allowed for the next matrix ([`ClusteredChildren::limit_moves`]).
+    move_limit: u64,
     sampler: MetropolisSampler<T, N, Z, C>,
     /// Scratch matrix of one cluster.
     cluster: AssociationMatrix<T, N, Z>,
@@ -184,6 +186,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         Self {
             config,
             seed: 0,
+            move_limit: u64::MAX,
             sampler: MetropolisSampler::empty(config),
             cluster: AssociationMatrix::new(0, 0, T::ZERO),
             row_root: [0; Z],
@@ -236,6 +239,13 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
     /// ```
     pub fn reseed(&mut self, seed: u64) {
         self.seed = seed;
+    }
+
+    /// Limits the Metropolis moves of the next matrix's chains to `max_moves` in total (`u64::MAX`: the
+    /// configured chain length for each). The sampled clusters share the limit in turn, each taking an
+    /// equal part of what the ones before it left.
+    pub fn limit_moves(&mut self, max_moves: u64) {
+        self.move_limit = max_moves;
     }
 
     /// The Metropolis chain that samples large clusters (for its statistics: moves taken, accepted).
@@ -365,9 +375,15 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         Some(count)
     }
 
-    /// Solves cluster `index`: fills stage `index`'s scores and the choices table. Returns the log-sum-exp
-    /// of its associations (exact when enumerated, a lower bound when sampled).
-    fn solve(&mut self, matrix: &AssociationMatrix<T, N, Z>, index: usize) -> Result<T, GenerateError> {
+    /// Solves cluster `index` (a chain of at most `max_moves` moves when it is sampled): fills stage
+    /// `index`'s scores and the choices table. Returns the log-sum-exp of its associations (exact when
+    /// enumerated, a lower bound when sampled) and whether it was sampled.
+    fn solve(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        index: usize,
+        max_moves: u64,
+    ) -> Result<(T, bool), GenerateError> {
         let (rows, columns) = (matrix.rows(), matrix.columns());
         let mut cluster_rows = [0u16; Z];
         let mut cluster_columns = [0u16; N];
@@ -404,7 +420,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             sink.total.value()
         } else {
             self.sampler.reseed(cluster_seed(self.seed, index));
-            self.sampler.run(&self.cluster);
+            self.sampler.run_with_moves(&self.cluster, max_moves);
             let mut known = LogSumExp::new();
             for (score, _) in self.sampler.best().iter() {
                 known.add(score);
@@ -438,7 +454,25 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
             }
         }
         *self.stage_len.at_mut(index) = kept as u16;
-        Ok(total)
+        Ok((total, !exhaustive))
+    }
+
+    /// How many of the `clusters` clusters are too large to enumerate (A_n(m) above the exhaustive limit).
+    fn sampled_clusters(&self, matrix: &AssociationMatrix<T, N, Z>, clusters: usize) -> usize {
+        let mut rows = [0u32; Z];
+        let mut columns = [0u32; Z];
+        for row in 0..matrix.rows() {
+            if let Some(count) = rows.get_mut(usize::from(self.row_cluster[row])) {
+                *count += 1;
+            }
+        }
+        for column in 0..matrix.columns() {
+            if let Some(count) = columns.get_mut(usize::from(self.column_cluster[column])) {
+                *count += 1;
+            }
+        }
+        let limit = u128::from(self.config.exhaustive_limit);
+        rows.iter().zip(&columns).take(clusters).filter(|&(&m, &n)| association_count(n, m) > limit).count()
     }
 
     /// Stage `index` = best `C` sums of stage `index − 1` and cluster `index` (k-best merge of two sorted
@@ -510,17 +544,25 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ChildGenerator<T, 
         if !self.config.clusters {
             // Paper 003: one chain on the whole matrix.
             self.sampler.reseed(self.seed);
-            self.sampler.run(matrix);
+            self.sampler.run_with_moves(matrix, self.move_limit);
             for (score, assignment) in self.sampler.best().iter() {
                 sink.offer(score, assignment);
             }
             return Ok(self.sampler.best().len() as u64);
         }
         let Some(clusters) = self.split(matrix) else { return Ok(0) };
+        let mut sampled_left = self.sampled_clusters(matrix, clusters);
+        let mut moves_left = self.move_limit;
         let mut log_total = matrix.baseline();
         // The choices of all clusters share one table: clusters have disjoint rows.
         for index in 0..clusters {
-            let total = self.solve(matrix, index)?;
+            let moves_before = self.sampler.steps_taken();
+            let share = moves_left / sampled_left.max(1) as u64;
+            let (total, sampled) = self.solve(matrix, index, share)?;
+            if sampled {
+                sampled_left = sampled_left.saturating_sub(1);
+                moves_left -= (self.sampler.steps_taken() - moves_before).min(moves_left);
+            }
             log_total += total;
             if *self.stage_len.at(index) == 0 {
                 return Ok(0); // a cluster with no feasible association

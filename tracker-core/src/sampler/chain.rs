@@ -745,6 +745,27 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// assert!((best - 0.2).abs() < 1e-12); // the diagonal
     /// ```
     pub fn run(&mut self, matrix: &AssociationMatrix<T, N, Z>) {
+        self.run_with_moves(matrix, u64::MAX);
+    }
+
+    /// As [`MetropolisSampler::run`], with at most `max_moves` Metropolis moves
+    /// ([`SamplerConfig::moves_within`]); the exact start and its neighbours are recorded whatever the
+    /// limit, so even a chain allowed no move offers its matrix's best child.
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::association::AssociationMatrix;
+    /// # let mut matrix = AssociationMatrix::<f64, 3, 3>::new(3, 3, -5.0);
+    /// # matrix.set_column(0, &[2.0, 0.5, -1.0], false);
+    /// # matrix.set_column(1, &[1.5, 3.0, f64::NEG_INFINITY], false);
+    /// # matrix.set_column(2, &[f64::NEG_INFINITY, 1.0, 0.2], false);
+    /// use tracker_core::sampler::{MetropolisSampler, SamplerConfig};
+    /// let mut sampler = MetropolisSampler::<f64, 3, 3, 4>::new(SamplerConfig::DEFAULT, 3);
+    /// sampler.run_with_moves(&matrix, 50);
+    /// assert_eq!(sampler.steps_taken(), 50);
+    /// assert!(!sampler.best().is_empty());
+    /// ```
+    pub fn run_with_moves(&mut self, matrix: &AssociationMatrix<T, N, Z>, max_moves: u64) {
         self.best.clear(matrix.rows());
         if matrix.rows() == 0 {
             // One child: every object missed.
@@ -763,11 +784,12 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             self.climb(matrix);
             self.record(matrix);
         }
-        for _ in 0..self.config.burn_in {
+        let (burn_in, steps) = self.config.moves_within(max_moves);
+        for _ in 0..burn_in {
             self.metropolis_move(matrix);
         }
         self.record(matrix);
-        for _ in 0..self.config.steps {
+        for _ in 0..steps {
             if self.metropolis_move(matrix) {
                 self.record(matrix);
             }

@@ -133,6 +133,27 @@ impl SamplerConfig {
     /// The largest accepted `exhaustive_limit` (10⁶ associations enumerated per cluster).
     pub const MAX_EXHAUSTIVE_LIMIT: u64 = 1_000_000;
 
+    /// The burn-in and recorded moves of a chain allowed at most `max_moves` moves: the configured ones
+    /// when they fit, else both scaled down in proportion (burn-in rounded down).
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::sampler::SamplerConfig;
+    /// let config = SamplerConfig { burn_in: 100, steps: 2_000, ..SamplerConfig::DEFAULT };
+    /// assert_eq!(config.moves_within(u64::MAX), (100, 2_000));
+    /// assert_eq!(config.moves_within(210), (10, 200));
+    /// assert_eq!(config.moves_within(0), (0, 0));
+    /// ```
+    pub fn moves_within(&self, max_moves: u64) -> (u32, u32) {
+        let total = u64::from(self.burn_in) + u64::from(self.steps);
+        if total <= max_moves {
+            return (self.burn_in, self.steps);
+        }
+        // max_moves < total ≤ 2³³, so the product fits in u64 and both parts fit in u32.
+        let burn_in = u64::from(self.burn_in) * max_moves / total;
+        (burn_in as u32, (max_moves - burn_in) as u32)
+    }
+
     /// Checks the work limits: at least one recorded step, `burn_in + steps` ≤
     /// [`SamplerConfig::MAX_CHAIN_STEPS`], `exhaustive_limit` ≤ [`SamplerConfig::MAX_EXHAUSTIVE_LIMIT`].
     ///

@@ -21,7 +21,7 @@ use crate::error::StepError;
 use crate::hypothesis::Hypothesis;
 use crate::index::{At, below, copy_prefix};
 use crate::random::{chain_seed, selection_seed};
-use crate::real::{Real, ln};
+use crate::real::{Real, exp, ln};
 use crate::sampler::SamplerConfig;
 use crate::selection::TopChildren;
 use crate::weight::{Event, WeightModel};
@@ -88,6 +88,7 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
         parents: &[Hypothesis<T, N>],
         rows: usize,
         scan_seed: u64,
+        max_moves: u64,
     ) -> Result<Generated, StepError> {
         // The scan check bounds the rows by Z; the clamp shows it to the optimiser.
         let rows = rows.min(Z);
@@ -108,22 +109,35 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
             Selection::SampledByWeight => top.clear_sampling(selection_seed(scan_seed)),
         }
         let mut births_skipped = 0u64;
+        let mut scan_moves = MoveBudget::new(max_moves);
         for ((index, hypothesis), parent_columns) in parents.iter().enumerate().zip(columns.iter_mut()) {
             build_no_event_matrix(objects, parent_columns, hypothesis, scores, rows, weight_model);
             let parent =
                 Parent { index: index as u16, log_weight: hypothesis.log_weight, in_view: objects.columns(), rows };
             let seed = |event| chain_seed(scan_seed, parent.index, event_code::<B>(event));
+            let births = if hypothesis.len() >= N {
+                0
+            } else {
+                let cells = birth_cells.in_field_of_view.iter().take(birth_cell_count);
+                cells.filter(|&&detectable| detectable || !weight_model.birth_required()).count()
+            };
+            let deaths = if weight_model.deaths_possible() && !derive_deaths { parent.in_view } else { 0 };
+            let mut moves = scan_moves.parent_share(hypothesis.log_weight, 1 + births + deaths);
 
             // No event, and the deaths derived from its children.
             set_baseline(objects, weight_model, &parent, Event::None, parent.in_view);
-            generator.reseed(seed(Event::None));
+            generator.prepare(seed(Event::None), &mut moves);
             let mut sink = top.for_event(parent.index, Event::None);
             if derive_deaths {
                 no_event_children.clear();
-                generator.generate(objects, &mut Recording { inner: &mut sink, record: no_event_children })?;
+                generator.generate(
+                    objects,
+                    &mut Recording { inner: &mut sink, record: no_event_children },
+                    &mut moves,
+                )?;
                 derive_death_children(top, weight_model, &parent, parent_columns, no_event_children);
             } else {
-                generator.generate(objects, &mut sink)?;
+                generator.generate(objects, &mut sink, &mut moves)?;
             }
 
             // One birth in a cell (α each), if the child can hold one more object.
@@ -142,8 +156,8 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
                     }
                     let birth = Event::Birth { cell: cell as u16 };
                     set_baseline(event, weight_model, &parent, birth, parent.in_view + usize::from(detectable));
-                    generator.reseed(seed(birth));
-                    generator.generate(event, &mut top.for_event(parent.index, birth))?;
+                    generator.prepare(seed(birth), &mut moves);
+                    generator.generate(event, &mut top.for_event(parent.index, birth), &mut moves)?;
                 }
             }
 
@@ -153,10 +167,11 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
                     event.copy_from(objects, Some(column));
                     let death = Event::Death { object: position };
                     set_baseline(event, weight_model, &parent, death, parent.in_view - 1);
-                    generator.reseed(seed(death));
-                    generator.generate(event, &mut top.for_event(parent.index, death))?;
+                    generator.prepare(seed(death), &mut moves);
+                    generator.generate(event, &mut top.for_event(parent.index, death), &mut moves)?;
                 }
             }
+            scan_moves.spend(moves.used());
         }
         let sampler_moves = match &generator {
             Generator::Sampled(clustered) => clustered.chain().steps_taken() - moves_before,
@@ -288,21 +303,30 @@ enum Generator<'a, T: Real, const N: usize, const Z: usize, const H: usize> {
 }
 
 impl<T: Real, const N: usize, const Z: usize, const H: usize> Generator<'_, T, N, Z, H> {
-    /// Seeds the next matrix's chains (the exhaustive generator draws nothing).
-    fn reseed(&mut self, seed: u64) {
+    /// Seeds the next matrix's chains and limits their moves to the next event's share of `moves` (the
+    /// exhaustive generator draws nothing and makes no move).
+    fn prepare(&mut self, seed: u64, moves: &mut ParentMoves) {
         if let Generator::Sampled(sampler) = self {
             sampler.reseed(seed);
+            sampler.limit_moves(moves.next_share());
         }
     }
 
+    /// Offers the children of `matrix` to `sink`, charging the moves made to `moves`.
     fn generate<Sink: ChildSink<T>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
         sink: &mut Sink,
+        moves: &mut ParentMoves,
     ) -> Result<(), StepError> {
         let result = match self {
             Generator::Exhaustive(exhaustive) => exhaustive.generate(matrix, sink),
-            Generator::Sampled(sampled) => sampled.generate(matrix, sink),
+            Generator::Sampled(sampled) => {
+                let before = sampled.chain().steps_taken();
+                let result = sampled.generate(matrix, sink);
+                moves.charge(sampled.chain().steps_taken() - before);
+                result
+            }
         };
         result.map(|_| ()).map_err(|error| match error {
             GenerateError::BudgetExceeded { budget } => StepError::ChildBudgetExceeded { budget },
@@ -366,5 +390,65 @@ impl<Inner: ChildSink<T>, T: Real, const C: usize, const Z: usize> ChildSink<T> 
 
     fn unoffered(&mut self, log_mass: T) {
         self.inner.unoffered(log_mass);
+    }
+}
+
+/// A scan's budget of Metropolis moves, shared among its parents in proportion to their weights
+/// (docs/maths.md §7.9). `u64::MAX` is no budget: every chain makes its configured moves.
+struct MoveBudget {
+    total: u64,
+    left: u64,
+}
+
+impl MoveBudget {
+    fn new(total: u64) -> Self {
+        Self { total, left: total }
+    }
+
+    /// The moves of a parent of log-weight `log_weight` with `events` events: ⌊total · w⌋, and never more
+    /// than the scan has left.
+    fn parent_share<T: Real>(&self, log_weight: T, events: usize) -> ParentMoves {
+        let share = if self.total == u64::MAX {
+            u64::MAX
+        } else {
+            let exact = self.total as f64 * exp(log_weight).as_f64();
+            // `as` saturates (and maps NaN to 0); the `min` keeps the scan within its budget.
+            (exact as u64).min(self.left)
+        };
+        ParentMoves { left: share, events_left: events.max(1) as u64, used: 0 }
+    }
+
+    fn spend(&mut self, moves: u64) {
+        if self.total != u64::MAX {
+            self.left -= moves.min(self.left);
+        }
+    }
+}
+
+/// One parent's moves, shared among its events in turn: each event gets an equal part of what the events
+/// before it left.
+struct ParentMoves {
+    left: u64,
+    events_left: u64,
+    used: u64,
+}
+
+impl ParentMoves {
+    /// The next event's share.
+    fn next_share(&self) -> u64 {
+        if self.left == u64::MAX { u64::MAX } else { self.left / self.events_left.max(1) }
+    }
+
+    /// Records the moves the last event made.
+    fn charge(&mut self, moves: u64) {
+        self.used += moves;
+        if self.left != u64::MAX {
+            self.left -= moves.min(self.left);
+        }
+        self.events_left = self.events_left.saturating_sub(1);
+    }
+
+    fn used(&self) -> u64 {
+        self.used
     }
 }

@@ -673,6 +673,50 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
+        self.step_with_budget(time, measurements, u64::MAX)
+    }
+
+    /// As [`Tracker::step`], making at most `max_moves` Metropolis moves in the scan (sampled children):
+    /// each parent gets ⌊`max_moves` · w⌋ moves for its weight w, shared among its events in turn, and each
+    /// chain runs at most its share ([`SamplerConfig::moves_within`]). The report's `sampler_steps` says
+    /// how many were made, never more than `max_moves`. The rest of a scan's work does not depend on the
+    /// budget: per chain, the tables and the exact start (O(Z N²)), and the enumeration of small clusters
+    /// (at most `exhaustive_limit` leaves each); see `docs/performance.md` for instructions per scan as a
+    /// function of the budget. `u64::MAX` is [`Tracker::step`]; exhaustive generation ignores the budget.
+    ///
+    /// # Errors
+    /// As [`Tracker::step`].
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{SMatrix, SVector};
+    /// use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
+    /// use tracker_core::sampler::SamplerConfig;
+    /// use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, PositionMeasurement, Region, Sensor, Tracker};
+    /// let config = Config {
+    ///     motion: ConstantVelocity { acceleration_noise: 0.01 },
+    ///     measurement: PositionMeasurement::isotropic(0.5),
+    ///     sensor: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 1e4 } },
+    ///     birth: BirthModel::none(),
+    ///     death_probability: 0.01,
+    ///     gate: None,
+    ///     children: ChildGeneration::Sampled(SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT }),
+    ///     selection: Selection::default(),
+    ///     store_overflow: StoreOverflow::default(),
+    ///     seed: 1,
+    /// };
+    /// let objects = [0.0, 3.0].map(|x| Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() });
+    /// let mut tracker: Tracker<f64, _, _, 4, 2, 8, 4, 4, 32, 1> = Tracker::with_objects(config, &objects, 0.0).unwrap();
+    /// let report = tracker.step_with_budget(1.0, &[SVector::from([1.0, 0.0]), SVector::from([4.0, 0.0])], 500).unwrap();
+    /// assert!(report.sampler_steps <= 500);
+    /// assert_eq!(tracker.map_hypothesis().len(), 2);
+    /// ```
+    pub fn step_with_budget(
+        &mut self,
+        time: f64,
+        measurements: &[SVector<T, D>],
+        max_moves: u64,
+    ) -> Result<StepReport<T>, StepError> {
         if !self.initialised {
             return Err(StepError::NotInitialised);
         }
@@ -691,6 +735,7 @@ where
             parents.as_slice(),
             measurements.len(),
             scan_seed(self.config.seed, self.scans + 1),
+            max_moves,
         )?;
         let inputs = Inputs {
             config: &self.config,
