@@ -56,7 +56,8 @@ pub struct StepReport<T> {
     pub children_dropped_for_store: usize,
     /// Birth events not generated because their parent already held `N` objects.
     pub births_beyond_object_capacity: u64,
-    /// Metropolis steps taken in this scan (0 with exhaustive children).
+    /// Metropolis moves made in this scan (0 with exhaustive children); never more than the budget given
+    /// to [`crate::Tracker::step_with_budget`].
     pub sampler_steps: u64,
     /// Expected number of objects after the scan.
     pub expected_cardinality: T,
