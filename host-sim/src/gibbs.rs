@@ -27,11 +27,42 @@ use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde_json::{Value, json};
 use std::collections::HashSet;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Instant;
 use tracker_core::association::{AssociationMatrix, CLUTTER};
 
 /// No row holds the column.
 const FREE: u16 = u16::MAX;
+
+/// A fast multiplicative hasher for the sample set (the set's keys are the chain's own states, not
+/// adversarial input, so SipHash's protection buys nothing and costs about as much as a sweep).
+#[derive(Default, Clone, Copy)]
+struct FastHasher(u64);
+
+impl Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u64(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_usize(&mut self, word: usize) {
+        self.write_u64(word as u64);
+    }
+}
+
+/// The distinct states seen.
+type Seen = HashSet<Vec<u16>, BuildHasherDefault<FastHasher>>;
 
 /// One possible column of a row.
 #[derive(Debug, Clone, Copy)]
@@ -57,8 +88,6 @@ pub struct Gibbs<'a, const N: usize, const Z: usize> {
     owner: Vec<u16>,
     /// Required columns currently assigned.
     required_assigned: usize,
-    /// Scratch: cumulative weights of the row being updated.
-    cumulative: Vec<f64>,
     rng: Xoshiro256PlusPlus,
 }
 
@@ -89,7 +118,6 @@ impl<'a, const N: usize, const Z: usize> Gibbs<'a, N, Z> {
             state: vec![CLUTTER; rows],
             owner: vec![FREE; columns],
             required_assigned: 0,
-            cumulative: Vec::with_capacity(columns + 1),
             rng: Xoshiro256PlusPlus::seed_from_u64(seed),
         }
     }
@@ -124,32 +152,44 @@ impl<'a, const N: usize, const Z: usize> Gibbs<'a, N, Z> {
         }
         let options = &self.options[row];
         let owner = &self.owner;
-        self.cumulative.clear();
-        let mut total = self.clutter[row];
-        self.cumulative.push(total);
+        let free = |option: &Possible| owner[usize::from(option.column)] == FREE;
+        let clutter = self.clutter[row];
+        let mut total = clutter;
         for option in options {
-            if owner[usize::from(option.column)] == FREE {
-                total += option.linear;
-            }
-            self.cumulative.push(total);
+            total += if free(option) { option.linear } else { 0.0 };
         }
-        if !(total > f64::MIN_POSITIVE) {
-            // Every free option underflowed: weights relative to the largest free one.
-            let top = options.iter().filter(|o| owner[usize::from(o.column)] == FREE).map(|o| o.entry).fold(0.0, f64::max);
-            self.cumulative.clear();
-            total = (-top).exp();
-            self.cumulative.push(total);
-            for option in options {
-                if owner[usize::from(option.column)] == FREE {
-                    total += (option.entry - top).exp();
+        let uniform = (self.rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+        let chosen = if total > f64::MIN_POSITIVE {
+            // Walk the free options until the draw is used up; rounding falls back to the last free one.
+            let mut rest = uniform * total - clutter;
+            let mut chosen = CLUTTER;
+            if rest >= 0.0 {
+                for option in options.iter().filter(|o| free(o)) {
+                    chosen = option.column;
+                    rest -= option.linear;
+                    if rest < 0.0 {
+                        break;
+                    }
                 }
-                self.cumulative.push(total);
             }
-        }
-        let u = (self.rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64) * total;
-        // The first cumulative weight above u; a taken column adds nothing, so it is never the first.
-        let index = self.cumulative.partition_point(|&c| c <= u).min(self.cumulative.len() - 1);
-        let chosen = if index == 0 { CLUTTER } else { options[index - 1].column };
+            chosen
+        } else {
+            // Every free option underflowed: weights relative to the largest free one.
+            let top = options.iter().filter(|o| free(o)).map(|o| o.entry).fold(0.0, f64::max);
+            let total = (-top).exp() + options.iter().filter(|o| free(o)).map(|o| (o.entry - top).exp()).sum::<f64>();
+            let mut rest = uniform * total - (-top).exp();
+            let mut chosen = CLUTTER;
+            if rest >= 0.0 {
+                for option in options.iter().filter(|o| free(o)) {
+                    chosen = option.column;
+                    rest -= (option.entry - top).exp();
+                    if rest < 0.0 {
+                        break;
+                    }
+                }
+            }
+            chosen
+        };
         self.state[row] = chosen;
         if chosen != CLUTTER {
             self.owner[usize::from(chosen)] = row as u16;
@@ -168,7 +208,7 @@ pub fn distinct_samples<const N: usize, const Z: usize>(
     sweeps: u64,
 ) -> Vec<Child> {
     let mut chain = Gibbs::new(matrix, seed);
-    let mut seen: HashSet<Vec<u16>> = HashSet::new();
+    let mut seen = Seen::default();
     let mut samples = Vec::new();
     for _ in 0..sweeps {
         chain.sweep();
@@ -203,7 +243,7 @@ pub fn sweeps_to_mass<const N: usize, const Z: usize>(
     max_sweeps: u64,
 ) -> Reach {
     let mut chain = Gibbs::new(matrix, seed);
-    let mut seen: HashSet<Vec<u16>> = HashSet::new();
+    let mut seen = Seen::default();
     let mut mass = 0.0;
     let mut sweeps = 0;
     while sweeps < max_sweeps && mass < target {
@@ -466,6 +506,25 @@ mod tests {
         assert!(reach.reached && reach.mass >= 0.9 * total && reach.distinct <= all.len());
         let capped = sweeps_to_mass(&m, 3, top, 2.0 * total, 1_000);
         assert!(!capped.reached && capped.sweeps == 1_000 && capped.mass <= total * (1.0 + 1e-9));
+    }
+
+    #[test]
+    fn gibbs_draws_rows_whose_free_options_all_underflow() {
+        // Row 0 takes column 0 (clutter weighs e^−1000 beside it); row 1 is then left with clutter and
+        // column 1, both below e^−745 relative to its row maximum: the conditional is e^5 : 1.
+        let mut m = AssociationMatrix::<f64, 2, 2>::new(2, 2, 0.0);
+        m.set_column(0, &[1000.0, 1000.0], false);
+        m.set_column(1, &[f64::NEG_INFINITY, 5.0], false);
+        let mut chain = Gibbs::new(&m, 4);
+        let (mut column_one, sweeps) = (0u32, 5_000);
+        for _ in 0..sweeps {
+            chain.sweep();
+            assert_eq!(chain.state()[0], 0);
+            column_one += u32::from(chain.state()[1] == 1);
+        }
+        let exact = 5f64.exp() / (1.0 + 5f64.exp());
+        let empirical = f64::from(column_one) / f64::from(sweeps);
+        assert!((empirical - exact).abs() < 0.004, "{empirical} vs {exact}");
     }
 
     #[test]
