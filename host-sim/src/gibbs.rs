@@ -267,6 +267,8 @@ struct Case {
     /// The sampler's captured mass, Σ e^{w − reference} over its children.
     target: f64,
     reach: Reach,
+    /// The mass of the best [`Bench::KEPT`] of those samples over the target.
+    kept_share: f64,
     seconds: Vec<f64>,
 }
 
@@ -282,6 +284,8 @@ impl Bench {
     pub const MAX_SWEEPS: u64 = 1_000_000;
     /// The chain's seed.
     pub const SEED: u64 = 5;
+    /// Children a tracker keeps per parent (H∞ of the sampler compared with).
+    pub const KEPT: usize = 32;
 
     /// The comparison on `cases`: (label, seed, matrix, MAP log-weight, the sampler's mass Σ e^{w − MAP}).
     /// Runs each chain once (untimed) to find how many sweeps it needs.
@@ -291,7 +295,14 @@ impl Bench {
                 // The sampler's mass up to rounding (its children sum in another order).
                 let target = target * (1.0 - 1e-12);
                 let reach = sweeps_to_mass(matrix, Self::SEED, reference, target, Self::MAX_SWEEPS);
-                Case { label, seed, matrix: Box::new(matrix.clone()), reference, target, reach, seconds: Vec::new() }
+                // The same samples again (same seed and sweeps): how much of the mass the best KEPT hold.
+                let mut weights: Vec<f64> =
+                    distinct_samples(matrix, Self::SEED, reach.sweeps).iter().map(|c| c.log_weight).collect();
+                weights.sort_by(|a, b| b.total_cmp(a));
+                let kept: f64 = weights.iter().take(Self::KEPT).map(|w| (w - reference).exp()).sum();
+                let kept_share = kept / target;
+                let matrix = Box::new(matrix.clone());
+                Case { label, seed, matrix, reference, target, reach, kept_share, seconds: Vec::new() }
             })
             .collect();
         Self { cases }
@@ -326,6 +337,7 @@ impl Bench {
                     "reached": case.reach.reached,
                     "gibbs_sweeps": case.reach.sweeps,
                     "gibbs_distinct_samples": case.reach.distinct,
+                    "gibbs_best_32_mass_over_target": case.kept_share,
                     "gibbs_us": gibbs * 1e6,
                     "sampler_us": sampler * 1e6,
                     // JSON has no infinity: a matrix not reached has no ratio.
