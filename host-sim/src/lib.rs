@@ -12,6 +12,7 @@
 pub mod digest;
 pub mod evaluate;
 pub mod experiment;
+pub mod gibbs;
 pub mod metrics;
 pub mod murty;
 pub mod perf;

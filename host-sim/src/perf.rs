@@ -23,6 +23,11 @@
 //!   C = 32 = H∞) captures a fraction of the mass of the exact 32 best children (from Murty); Murty's
 //!   algorithm ([`crate::murty`]) needs its k best to capture as much; the ratio of their times, median over
 //!   the matrices.
+//! - `gibbs_over_mcmc_time_at_equal_mass`: on the same matrices, the Gibbs sampler of GLMB trackers
+//!   ([`crate::gibbs`], from the all-clutter association) runs until its distinct samples capture the
+//!   sampler's mass (at most 10⁶ sweeps; a matrix not reached counts as +∞); its time over the sampler's,
+//!   median over the matrices. Its runs on the 32-row matrices take milliseconds, longer than the other
+//!   samples.
 //! - `exhaustive_over_mcmc_at_1e6_children`: a dense 7 × 9 matrix, A₉(7) = 1,047,376 children; time of
 //!   `ExhaustiveChildren` over time of the default `ClusteredChildren`, both into the tracker's
 //!   `TopChildren<_, 32, _>` sink.
@@ -334,6 +339,9 @@ struct MurtyCase {
     seed: u64,
     /// Log-weight of the sampler's best child minus the MAP's.
     sampler_best_minus_map: f64,
+    /// The MAP's log-weight, and the exact best-C mass Σ e^{w − MAP}.
+    map: f64,
+    exact_mass: f64,
     matrix: Box<AssociationMatrix<f64, 64, 32>>,
     /// Murty's children needed to capture the sampler's mass.
     k: usize,
@@ -390,6 +398,8 @@ impl MurtyBench {
                     shape,
                     seed,
                     sampler_best_minus_map: sampler_best - top,
+                    map: top,
+                    exact_mass,
                     matrix,
                     k,
                     sampler_mass,
@@ -489,6 +499,10 @@ pub fn run() -> Result<Value, String> {
     let mut ekf_bench = EkfBench::new()?;
     let mut exhaustive = ExhaustiveBench::new();
     let mut murty = MurtyBench::new();
+    let mut gibbs = crate::gibbs::Bench::new(murty.cases.iter().map(|c| {
+        let label = format!("{} x {}, {} per gate", c.shape.0, c.shape.1, c.shape.2);
+        (label, c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)
+    }));
     let mut fifty = FiftyBench::new();
     // Warm-up (caches, frequency), not recorded.
     chains.sample();
@@ -502,6 +516,7 @@ pub fn run() -> Result<Value, String> {
         }
         exhaustive.sample()?;
         murty.sample();
+        gibbs.sample();
         if round < FIFTY_PASSES {
             fifty.pass()?;
         }
@@ -536,6 +551,8 @@ pub fn run() -> Result<Value, String> {
         })
         .collect();
     let exhaustive_ratio = median(&exhaustive.exhaustive) / median(&exhaustive.sampled);
+    let sampler_seconds: Vec<f64> = murty.cases.iter().map(|case| median(&case.sampler_seconds)).collect();
+    let (gibbs_ratios, gibbs_cases) = gibbs.ratios(&sampler_seconds, median);
 
     Ok(json!({
         "mcmc_ns_per_step": mcmc,
@@ -544,6 +561,7 @@ pub fn run() -> Result<Value, String> {
         "ekf_update_ns": median(&ekf_bench.samples[0]),
         "step_ms_fifty": median(&per_scan_ms),
         "murty_over_mcmc_time_at_equal_mass": median(&ratios),
+        "gibbs_over_mcmc_time_at_equal_mass": median(&gibbs_ratios),
         "exhaustive_over_mcmc_at_1e6_children": exhaustive_ratio,
         "tracker_bytes_default": std::mem::size_of::<SsaTracker<f64>>(),
         "tracker_bytes_f32": std::mem::size_of::<SsaTracker<f32>>(),
@@ -576,6 +594,17 @@ pub fn run() -> Result<Value, String> {
                 "ratio_min": ratios.iter().copied().fold(f64::INFINITY, f64::min),
                 "ratio_max": ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                 "cases": murty_cases,
+            },
+            "gibbs": {
+                "matrices": "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)",
+                "not_reached": gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
+                "ratio_median_by_shape": MurtyBench::SHAPES.iter().map(|&shape| {
+                    let label = format!("{} x {}, {} per gate", shape.0, shape.1, shape.2);
+                    let by_shape: Vec<f64> = gibbs.labels().zip(&gibbs_ratios).filter(|(l, _)| *l == label).map(|(_, r)| *r).collect();
+                    let m = median(&by_shape);
+                    json!({"matrix": label, "ratio": if m.is_finite() { Some(m) } else { None }})
+                }).collect::<Vec<_>>(),
+                "cases": gibbs_cases,
             },
             "exhaustive": {
                 "matrix": "dense 7 x 9",
