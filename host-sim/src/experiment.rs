@@ -16,6 +16,7 @@
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
+use crate::error::Error;
 use crate::evaluate::{self, Options, score, truth_positions, write_json};
 use crate::plots::{self, Scale, Series};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
@@ -24,8 +25,10 @@ use crate::sim;
 use crate::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
+use crate::report::{RunSummary, RunsReport, Spread};
+use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use std::time::Instant;
 use tracker_core::TwoBody;
@@ -37,55 +40,96 @@ use tracker_core::sampler::SamplerConfig;
 use tracker_core::selection::TopChildren;
 use tracker_core::weight::{Event, WeightModel};
 
+/// An experiment of `host-sim experiment`, or `all` of them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Experiment {
+    /// Paper 003 §IV: fifty objects, five births, R-FISST on the embedded configuration.
+    Fifty,
+    /// Paper 003 §V-A: fifteen objects, R-FISST vs HOMHT vs the unbounded reference.
+    Fifteen,
+    /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
+    Scaling,
+    /// A debris cloud crossing the field of view: R-FISST vs HOMHT with the same time per scan.
+    Debris,
+    /// Clusters and the exact chain start, each switched off.
+    Ablation,
+    /// Every experiment above, each in its own directory.
+    All,
+}
+
+impl Experiment {
+    /// The experiments, in the order `all` runs them.
+    pub const EACH: [Experiment; 5] =
+        [Experiment::Fifty, Experiment::Fifteen, Experiment::Scaling, Experiment::Debris, Experiment::Ablation];
+
+    /// The name on the command line and of the directory under `all`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Experiment::Fifty => "fifty",
+            Experiment::Fifteen => "fifteen",
+            Experiment::Scaling => "scaling",
+            Experiment::Debris => "debris",
+            Experiment::Ablation => "ablation",
+            Experiment::All => "all",
+        }
+    }
+}
+
 /// The experiments, in the order `all` runs them.
 pub const EXPERIMENTS: [&str; 5] = ["fifty", "fifteen", "scaling", "debris", "ablation"];
 
-fn err(e: impl std::fmt::Display) -> String {
-    e.to_string()
+fn err(e: impl std::fmt::Display) -> Error {
+    Error::internal(e)
 }
 
-/// Runs experiment `name` (or `all`) into `out`.
+/// The seeds of `runs` runs from `seed`: `seed, seed + 1, ...`.
 ///
 /// # Errors
-/// A one-line message for an unknown experiment or a failed run.
-pub fn run(name: &str, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<(), String> {
-    let names: Vec<&str> = match name {
-        "all" => EXPERIMENTS.to_vec(),
-        n if EXPERIMENTS.contains(&n) => vec![n],
-        _ => return Err(format!("unknown experiment \"{name}\"; one of: {}, all", EXPERIMENTS.join(", "))),
-    };
-    for experiment in names {
-        let dir = if name == "all" { out.join(experiment) } else { out.to_path_buf() };
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+/// [`Error::Input`] when the last seed would pass `u64::MAX` (the runs are not wrapped around).
+pub fn seeds(seed: u64, runs: u64) -> Result<Vec<u64>, Error> {
+    let last = seed.checked_add(runs.max(1) - 1).ok_or_else(|| {
+        Error::input(format!("--seed {seed} --runs {runs}: the last seed would pass {}", u64::MAX))
+    })?;
+    Ok((seed..=last).collect())
+}
+
+/// Runs `experiment` (or all of them) into `out`.
+///
+/// # Errors
+/// [`Error::Input`] for seeds beyond `u64::MAX`, [`Error::Output`] for an output that cannot be written.
+pub fn run(experiment: Experiment, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<(), Error> {
+    let seeds = seeds(seed, runs)?;
+    let each: Vec<Experiment> = if experiment == Experiment::All { Experiment::EACH.to_vec() } else { vec![experiment] };
+    for one in each {
+        let name = one.name();
+        let dir = if experiment == Experiment::All { out.join(name) } else { out.to_path_buf() };
+        std::fs::create_dir_all(&dir).map_err(|e| Error::output(&dir, e))?;
         if runs <= 1 {
-            let figures = run_one(experiment, &dir, seed, quiet)?;
-            eprintln!("{experiment}: {}", serde_json::to_string(&figures).unwrap_or_default());
+            let figures = run_one(one, &dir, seed, quiet)?;
+            eprintln!("{name}: {}", serde_json::to_string(&figures).unwrap_or_default());
         } else {
-            let seeds: Vec<u64> = (seed..seed + runs).collect();
             // Trackers hold up to several MiB inline: large stacks.
             let pool = rayon::ThreadPoolBuilder::new().stack_size(512 << 20).build().map_err(err)?;
-            let results: Vec<Result<Value, String>> = pool.install(|| {
-                seeds.par_iter().map(|&s| run_one(experiment, &dir.join(format!("seed-{s}")), s, true)).collect()
+            let results: Vec<Result<Value, Error>> = pool.install(|| {
+                seeds.par_iter().map(|&s| run_one(one, &dir.join(format!("seed-{s}")), s, true)).collect()
             });
             let figures: Vec<Value> = results.into_iter().collect::<Result<_, _>>()?;
-            let spread = aggregate(&figures);
-            write_json(
-                &dir.join("runs.json"),
-                &json!({"experiment": experiment, "seeds": seeds, "runs": figures, "aggregate": spread}),
-            )
-            .map_err(err)?;
-            eprintln!("{experiment}: {} runs, aggregate {}", runs, serde_json::to_string(&spread).unwrap_or_default());
+            let aggregate = aggregate(&figures);
+            let report = RunsReport { experiment: name.into(), seeds: seeds.clone(), runs: figures, aggregate };
+            write_json(&dir.join("runs.json"), &report)?;
+            let aggregate = serde_json::to_string(&report.aggregate).unwrap_or_default();
+            eprintln!("{name}: {runs} runs, aggregate {aggregate}");
         }
     }
     Ok(())
 }
 
 /// Mean, standard deviation, min and max of every numeric top-level figure over the runs.
-fn aggregate(runs: &[Value]) -> Value {
+fn aggregate(runs: &[Value]) -> BTreeMap<String, Spread> {
     let mut keys: Vec<String> = runs.iter().filter_map(|r| r.as_object()).flat_map(|o| o.keys().cloned()).collect();
     keys.sort();
     keys.dedup();
-    let mut out = serde_json::Map::new();
+    let mut out = BTreeMap::new();
     for key in keys {
         let values: Vec<f64> = runs.iter().filter_map(|r| r.get(&key).and_then(Value::as_f64)).collect();
         if values.len() != runs.len() || values.is_empty() {
@@ -94,24 +138,29 @@ fn aggregate(runs: &[Value]) -> Value {
         let n = values.len() as f64;
         let mean = values.iter().sum::<f64>() / n;
         let std = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-        out.insert(
-            key,
-            json!({"mean": mean, "std": std, "min": values.iter().copied().fold(f64::INFINITY, f64::min), "max": values.iter().copied().fold(f64::NEG_INFINITY, f64::max)}),
-        );
+        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        out.insert(key, Spread { mean, std, min, max });
     }
-    Value::Object(out)
+    out
 }
 
-fn run_one(name: &str, dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    match name {
-        "fifty" => fifty(dir, seed, quiet),
-        "fifteen" => fifteen(dir, seed, quiet),
-        "scaling" => scaling(dir, seed),
-        "debris" => debris(dir, seed, quiet),
-        "ablation" => ablation(dir, seed),
-        _ => Err(format!("unknown experiment {name}")),
-    }
+/// One experiment's figures (its JSON record, for `runs.json`'s aggregate).
+fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::output(dir, e))?;
+    let figures = match experiment {
+        Experiment::Fifty => to_value(fifty(dir, seed, quiet)?),
+        Experiment::Fifteen => fifteen(dir, seed, quiet)?,
+        Experiment::Scaling => scaling(dir, seed)?,
+        Experiment::Debris => debris(dir, seed, quiet)?,
+        Experiment::Ablation => ablation(dir, seed)?,
+        Experiment::All => return Err(err("`all` is not one experiment")),
+    };
+    Ok(figures)
+}
+
+fn to_value(record: impl serde::Serialize) -> Value {
+    serde_json::to_value(record).unwrap_or(Value::Null)
 }
 
 fn options(quiet: bool) -> Options {
@@ -119,10 +168,10 @@ fn options(quiet: bool) -> Options {
 }
 
 /// Paper 003 §IV with R-FISST on the embedded configuration.
-fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<RunSummary, Error> {
     let scenario = sim::fifty_birth_death(seed).run();
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
-    let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
+    let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir)?;
     Ok(summary)
 }
 
@@ -146,12 +195,12 @@ fn map_estimate_difference(a: &Snapshot, b: &Snapshot) -> f64 {
 }
 
 /// Paper 003 §V-A: R-FISST vs HOMHT vs the unbounded reference on the same scans.
-fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
     let mut scenario = sim::fifteen_compare(seed).run();
     // HOMHT enumerates the product of every object's options: with 15 objects in view that is millions of
     // children per scan, so give it room (R-FISST does not use this bound).
     scenario.tracker.max_children_per_scan = 200_000_000;
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Embedded;
     let mut rfisst = build(TrackerKind::Rfisst, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
     let mut homht = build(TrackerKind::Homht, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
@@ -179,7 +228,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
         };
         let (a, accepted) = step(&mut rfisst, 0);
         if !accepted {
-            return Err(format!("rfisst rejected fifteen scan {k}"));
+            return Err(err(format!("rfisst rejected fifteen scan {k}")));
         }
         let (b, accepted) = step(&mut homht, 1);
         homht_rejected += usize::from(!accepted);
@@ -233,7 +282,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     });
     let mut full = figures.clone();
     full["per_scan"] = json!(per_scan);
-    write_json(&dir.join("fifteen.json"), &full).map_err(err)?;
+    write_json(&dir.join("fifteen.json"), &full)?;
     let points = |v: &[f64]| v.iter().enumerate().map(|(k, &y)| (k as f64, y)).collect::<Vec<_>>();
     plots::plot_series(
         &dir.join("fifteen_gospa"),
@@ -290,10 +339,10 @@ fn watched_run<G: ChildGenerator<f64, 64, 64>>(
     generator: &mut G,
     matrix: &AssociationMatrix<f64, 64, 64>,
     truth: &[u16],
-) -> Result<(f64, bool), String> {
+) -> Result<(f64, bool), Error> {
     let mut watch = Watch { top: TopChildren::new(), truth, truth_found: false, best: f64::NEG_INFINITY };
     let start = Instant::now();
-    generator.generate(matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
+    generator.generate(matrix, &mut watch).map_err(|e| err(format!("{e:?}")))?;
     let seconds = start.elapsed().as_secs_f64();
     Ok((seconds, watch.truth_found || watch.best >= matrix.score(truth)))
 }
@@ -305,7 +354,7 @@ fn median_run<G: ChildGenerator<f64, 64, 64>>(
     mut make: impl FnMut(u64) -> G,
     matrix: &AssociationMatrix<f64, 64, 64>,
     truth: &[u16],
-) -> Result<(f64, bool), String> {
+) -> Result<(f64, bool), Error> {
     let mut times = vec![];
     let mut found = true;
     for r in 0..repeats {
@@ -342,11 +391,11 @@ fn debris_rfisst(
     scenario: &crate::scenario::Scenario,
     seed: u64,
     bar: &indicatif::ProgressBar,
-) -> Result<DebrisRun, String> {
+) -> Result<DebrisRun, Error> {
     let config = setup::sampler_config(scenario);
-    let truth = scenario.truth.as_ref().ok_or("debris scenario without truth")?;
+    let truth = scenario.truth.as_ref().ok_or_else(|| err("debris scenario without truth"))?;
     let mut rfisst = build(TrackerKind::Rfisst, Profile::Host, scenario, ReferenceBudget::default()).map_err(err)?;
-    let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
+    let motion = setup::two_body(&scenario.motion).ok_or_else(|| err("debris scenario is two-body"))?;
     let measurement = setup::measurement(&scenario.measurement);
     let tracker_config = setup::config::<TwoBody<f64>, 16>(scenario, motion, setup::sampled(scenario)).map_err(err)?;
     let weights = WeightModel::from_config(&tracker_config);
@@ -371,7 +420,7 @@ fn debris_rfisst(
         let outcome = rfisst.step(scan.time, &zs);
         run.ms.push(start.elapsed().as_secs_f64() * 1e3);
         if let Err(e) = outcome {
-            return Err(format!("rfisst rejected debris scan {k}: {e}"));
+            return Err(err(format!("rfisst rejected debris scan {k}: {e}")));
         }
         let s = rfisst.snapshot();
         run.series.push((score(scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
@@ -390,10 +439,34 @@ fn mean(v: &[f64]) -> f64 {
     if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 }
 }
 
+/// The fifty-object figures of an ablation variant (keys of its `summary.json`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AblationFifty {
+    /// Mean GOSPA.
+    pub mean_gospa: Option<f64>,
+    /// Expected number of objects at the end.
+    pub final_expected_cardinality: f64,
+    /// Births confirmed.
+    pub births_confirmed: usize,
+    /// Red stars in view.
+    pub in_view_red_stars: usize,
+    /// Misses in view after confirmation.
+    pub in_view_misses_after_confirmation: usize,
+    /// Mean captured mass.
+    pub mean_captured_mass: f64,
+    /// Smallest captured mass.
+    pub min_captured_mass: f64,
+    /// Mean time per scan (ms).
+    pub mean_ms_per_scan: f64,
+    /// Largest time per scan (ms).
+    pub max_ms_per_scan: f64,
+}
+
 /// What the two additions beyond paper 003 gain, each switched off: clusters (`tracker.sampler.clusters`)
 /// and the exact start (`tracker.sampler.exact_start`). Per variant: the fifty-object run (embedded), the
 /// debris crossing (host profile) with its truth-association check, and the scaling family's truth check.
-fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
+fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
     let variants = [
         ("default", true, true),
         ("no_clusters", false, true),
@@ -413,25 +486,20 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
         };
         // Fifty objects: the run's summary.
         let sub = dir.join(name).join("fifty");
-        std::fs::create_dir_all(&sub).map_err(|e| format!("{}: {e}", sub.display()))?;
+        std::fs::create_dir_all(&sub).map_err(|e| Error::output(&sub, e))?;
         let (summary, _) =
-            evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub).map_err(err)?;
-        let pick = |keys: &[&str]| -> Value {
-            Value::Object(
-                keys.iter().map(|&k| (k.to_string(), summary.get(k).cloned().unwrap_or(Value::Null))).collect(),
-            )
+            evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub)?;
+        let fifty = AblationFifty {
+            mean_gospa: summary.mean_gospa,
+            final_expected_cardinality: summary.final_expected_cardinality,
+            births_confirmed: summary.births_confirmed,
+            in_view_red_stars: summary.in_view_red_stars,
+            in_view_misses_after_confirmation: summary.in_view_misses_after_confirmation,
+            mean_captured_mass: summary.mean_captured_mass,
+            min_captured_mass: summary.min_captured_mass,
+            mean_ms_per_scan: summary.mean_ms_per_scan,
+            max_ms_per_scan: summary.max_ms_per_scan,
         };
-        let fifty = pick(&[
-            "mean_gospa",
-            "final_expected_cardinality",
-            "births_confirmed",
-            "in_view_red_stars",
-            "in_view_misses_after_confirmation",
-            "mean_captured_mass",
-            "min_captured_mass",
-            "mean_ms_per_scan",
-            "max_ms_per_scan",
-        ]);
         // Debris: the truth-association check on each scan's MAP parent, then the step.
         let run = debris_rfisst(&with(&debris_scenario), seed, &indicatif::ProgressBar::hidden())?;
         let debris = json!({
@@ -458,7 +526,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
         );
     }
     let figures = Value::Object(figures);
-    write_json(&dir.join("ablation.json"), &figures).map_err(err)?;
+    write_json(&dir.join("ablation.json"), &figures)?;
     Ok(figures)
 }
 
@@ -489,7 +557,7 @@ fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (Associatio
 }
 
 /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
-fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
+fn scaling(dir: &Path, seed: u64) -> Result<Value, Error> {
     // Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
     const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
     let mut rows = vec![];
@@ -547,7 +615,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
             "{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"
         ));
     }
-    std::fs::write(dir.join("scaling.csv"), csv).map_err(err)?;
+    std::fs::write(dir.join("scaling.csv"), csv).map_err(|e| Error::output(&dir.join("scaling.csv"), e))?;
     // Crossover: the smallest size from which R-FISST is faster at every larger size measured.
     let mut crossover: Option<u128> = None;
     for (i, row) in rows.iter().enumerate() {
@@ -594,7 +662,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         "sampler": {"burn_in": SamplerConfig::default().burn_in, "steps": SamplerConfig::default().steps, "exhaustive_limit": SamplerConfig::default().exhaustive_limit, "exact_start": SamplerConfig::default().exact_start},
         "sizes": rows.iter().map(|r| json!({"children": r.0 as f64, "objects": r.1, "measurements": r.2, "exhaustive_seconds": r.3, "rfisst_seconds": r.4, "rfisst_found_truth": r.5, "rfisst_100k_seconds": r.6, "rfisst_100k_found_truth": r.7, "pure_sampling_seconds": r.8})).collect::<Vec<_>>(),
     });
-    write_json(&dir.join("scaling.json"), &figures).map_err(err)?;
+    write_json(&dir.join("scaling.json"), &figures)?;
     let series = [
         Series {
             name: "exhaustive (HOMHT)".into(),
@@ -634,9 +702,9 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
 }
 
 /// Debris crossing: R-FISST vs HOMHT with the same time budget per scan, and the truth-association check.
-fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
     let scenario = sim::debris_crossing(seed).run();
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Host;
 
     // R-FISST first, with the truth-association check on its MAP parent before each scan.
@@ -692,7 +760,7 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
             }))
             .collect::<Vec<_>>()
     );
-    write_json(&dir.join("debris.json"), &full).map_err(err)?;
+    write_json(&dir.join("debris.json"), &full)?;
     let over_time = |f: &dyn Fn(usize) -> Option<f64>| {
         (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>()
     };
@@ -753,7 +821,7 @@ fn association_check(
     fov: &tracker_core::Region<f64>,
     seed: u64,
     base: SamplerConfig,
-) -> Result<Value, String> {
+) -> Result<Value, Error> {
     let Some(map) = parent.hypotheses.first() else { return Ok(json!({"possible_children": 0.0})) };
     let mut matrix = AssociationMatrix::<f64, 128, 64>::new(zs.len(), 0, 0.0);
     let mut column_label: HashMap<u32, u16> = HashMap::new();
@@ -797,7 +865,7 @@ fn association_check(
     for steps in [base.steps, 100_000] {
         let mut generator = ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..base }, seed);
         let mut best = Best { truth: &truth, found: false, best: f64::NEG_INFINITY };
-        generator.generate(&matrix, &mut best).map_err(|e| format!("{e:?}"))?;
+        generator.generate(&matrix, &mut best).map_err(|e| err(format!("{e:?}")))?;
         outcomes.push(best);
     }
     Ok(json!({

@@ -170,15 +170,13 @@ impl Default for ReferenceBudget {
     }
 }
 
-fn reference_runner<M>(
-    scenario: &Scenario,
-    motion: M,
-    budget: ReferenceBudget,
-    max_objects: usize,
-) -> Result<Box<dyn Runner>, ScenarioError>
+/// The reference for `scenario`. It has no object capacity N: its event model is checked with the objects
+/// of the prior's largest hypothesis when it is built, and with each parent's objects at every scan.
+fn reference_runner<M>(scenario: &Scenario, motion: M, budget: ReferenceBudget) -> Result<Box<dyn Runner>, ScenarioError>
 where
     M: MotionModel<f64, 4> + Clone + Send + 'static,
 {
+    let max_objects = scenario.prior.hypotheses.iter().map(|h| h.objects.len()).max().unwrap_or(0);
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
@@ -218,17 +216,13 @@ pub fn build(
 ) -> Result<Box<dyn Runner>, ScenarioError> {
     let children = if kind == TrackerKind::Rfisst { setup::sampled(scenario) } else { setup::exhaustive(scenario) };
     match (kind, scenario.motion) {
-        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => reference_runner(
-            scenario,
-            setup::two_body(&scenario.motion).expect("two-body"),
-            reference,
-            profile.caps().1,
-        ),
+        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => {
+            reference_runner(scenario, setup::two_body(&scenario.motion).expect("two-body"), reference)
+        }
         (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
             scenario,
             setup::constant_velocity(&scenario.motion).expect("constant velocity"),
             reference,
-            profile.caps().1,
         ),
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {
             core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)
