@@ -68,7 +68,9 @@ pub fn run(scenario: &Scenario, scans: Option<usize>) -> Result<String, Scenario
 /// As [`run`].
 pub fn tracker<T: Real>(scenario: &Scenario) -> Result<SsaTracker<T>, ScenarioError> {
     let motion = setup::two_body(&scenario.motion).ok_or_else(|| {
-        ScenarioError("motion: the embedded tracker (SsaTracker) is two-body; this scenario is constant-velocity".into())
+        ScenarioError(
+            "motion: the embedded tracker (SsaTracker) is two-body; this scenario is constant-velocity".into(),
+        )
     })?;
     let config: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, { ssa_caps::BIRTH_CELLS }> =
         setup::config(scenario, motion, setup::sampled(scenario))?;

@@ -226,12 +226,7 @@ fn is_ssa(scenario: &Scenario) -> bool {
 ///
 /// # Errors
 /// A one-line message when the tracker cannot be built or a file cannot be written.
-pub fn run(
-    scenario: &Scenario,
-    kind: TrackerKind,
-    options: &Options,
-    out: &Path,
-) -> Result<(RunSummary, bool), Error> {
+pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path) -> Result<(RunSummary, bool), Error> {
     std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
     let mut runner = build(kind, options.profile, scenario, options.reference)?;
     let prior = runner.snapshot();
@@ -269,7 +264,7 @@ pub fn run(
             Ok(info) => (Some(info), None),
             Err(e) => {
                 bar.suspend(|| eprintln!("warning: scan {k} (t = {}) rejected: {e}", scan.time));
-                (None, Some(e))
+                (None, Some(e.0))
             }
         };
         peak_hypotheses = peak_hypotheses.max(snapshot.hypotheses.len());
@@ -361,10 +356,7 @@ pub fn run(
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
         births_total: confirmed.len(),
         births_confirmed: confirmed.values().filter(|c| c.is_some()).count(),
-        birth_confirmation_scans: confirmed
-            .iter()
-            .map(|(&object, &scan)| BirthConfirmation { object, scan })
-            .collect(),
+        birth_confirmation_scans: confirmed.iter().map(|(&object, &scan)| BirthConfirmation { object, scan }).collect(),
         label_switches: switches.total(),
         in_view_misses_after_confirmation: in_view_misses,
         in_view_red_stars,
@@ -451,8 +443,7 @@ fn write_run_plots(
         Scale::Linear,
         Scale::Linear,
         &series,
-    )
-    ?;
+    )?;
     if records.iter().any(|r| r.gospa.is_some()) {
         let gospa_series = [Series {
             name: "GOSPA of the MAP estimates".into(),
@@ -467,8 +458,7 @@ fn write_run_plots(
             Scale::Linear,
             Scale::Linear,
             &gospa_series,
-        )
-        ?;
+        )?;
     }
     Ok(())
 }
@@ -512,7 +502,7 @@ pub fn compare(
             {
                 budget_scans.push(k);
             }
-            errors.push(outcome.err());
+            errors.push(outcome.err().map(|e| e.0));
             let snapshot = tracker.snapshot();
             if let Some(s) = score(scenario, k, &snapshot) {
                 gospas[i].push(s.gospa);

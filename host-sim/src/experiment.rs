@@ -19,15 +19,18 @@
 use crate::error::Error;
 use crate::evaluate::{self, Options, score, truth_positions, write_json};
 use crate::plots::{self, Scale, Series};
+use crate::report::{
+    AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
+    DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
+    RunSummary, RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
+};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::setup;
 use crate::sim;
 use crate::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
-use crate::report::{RunSummary, RunsReport, Spread};
-use serde::{Deserialize, Serialize};
-use serde_json::{Value, json};
+use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use std::time::Instant;
@@ -87,9 +90,9 @@ fn err(e: impl std::fmt::Display) -> Error {
 /// # Errors
 /// [`Error::Input`] when the last seed would pass `u64::MAX` (the runs are not wrapped around).
 pub fn seeds(seed: u64, runs: u64) -> Result<Vec<u64>, Error> {
-    let last = seed.checked_add(runs.max(1) - 1).ok_or_else(|| {
-        Error::input(format!("--seed {seed} --runs {runs}: the last seed would pass {}", u64::MAX))
-    })?;
+    let last = seed
+        .checked_add(runs.max(1) - 1)
+        .ok_or_else(|| Error::input(format!("--seed {seed} --runs {runs}: the last seed would pass {}", u64::MAX)))?;
     Ok((seed..=last).collect())
 }
 
@@ -99,7 +102,8 @@ pub fn seeds(seed: u64, runs: u64) -> Result<Vec<u64>, Error> {
 /// [`Error::Input`] for seeds beyond `u64::MAX`, [`Error::Output`] for an output that cannot be written.
 pub fn run(experiment: Experiment, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<(), Error> {
     let seeds = seeds(seed, runs)?;
-    let each: Vec<Experiment> = if experiment == Experiment::All { Experiment::EACH.to_vec() } else { vec![experiment] };
+    let each: Vec<Experiment> =
+        if experiment == Experiment::All { Experiment::EACH.to_vec() } else { vec![experiment] };
     for one in each {
         let name = one.name();
         let dir = if experiment == Experiment::All { out.join(name) } else { out.to_path_buf() };
@@ -110,9 +114,8 @@ pub fn run(experiment: Experiment, out: &Path, seed: u64, runs: u64, quiet: bool
         } else {
             // Trackers hold up to several MiB inline: large stacks.
             let pool = rayon::ThreadPoolBuilder::new().stack_size(512 << 20).build().map_err(err)?;
-            let results: Vec<Result<Value, Error>> = pool.install(|| {
-                seeds.par_iter().map(|&s| run_one(one, &dir.join(format!("seed-{s}")), s, true)).collect()
-            });
+            let results: Vec<Result<Value, Error>> = pool
+                .install(|| seeds.par_iter().map(|&s| run_one(one, &dir.join(format!("seed-{s}")), s, true)).collect());
             let figures: Vec<Value> = results.into_iter().collect::<Result<_, _>>()?;
             let aggregate = aggregate(&figures);
             let report = RunsReport { experiment: name.into(), seeds: seeds.clone(), runs: figures, aggregate };
@@ -150,10 +153,10 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
     std::fs::create_dir_all(dir).map_err(|e| Error::output(dir, e))?;
     let figures = match experiment {
         Experiment::Fifty => to_value(fifty(dir, seed, quiet)?),
-        Experiment::Fifteen => fifteen(dir, seed, quiet)?,
-        Experiment::Scaling => scaling(dir, seed)?,
-        Experiment::Debris => debris(dir, seed, quiet)?,
-        Experiment::Ablation => ablation(dir, seed)?,
+        Experiment::Fifteen => to_value(fifteen(dir, seed, quiet)?),
+        Experiment::Scaling => to_value(scaling(dir, seed)?),
+        Experiment::Debris => to_value(debris(dir, seed, quiet)?),
+        Experiment::Ablation => to_value(ablation(dir, seed)?),
         Experiment::All => return Err(err("`all` is not one experiment")),
     };
     Ok(figures)
@@ -195,7 +198,7 @@ fn map_estimate_difference(a: &Snapshot, b: &Snapshot) -> f64 {
 }
 
 /// Paper 003 §V-A: R-FISST vs HOMHT vs the unbounded reference on the same scans.
-fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
+fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigures, Error> {
     let mut scenario = sim::fifteen_compare(seed).run();
     // HOMHT enumerates the product of every object's options: with 15 objects in view that is millions of
     // children per scan, so give it room (R-FISST does not use this bound).
@@ -235,7 +238,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
         let agrees = map_agrees(&a, &b);
         agree_homht += usize::from(agrees);
         max_difference = max_difference.max(map_estimate_difference(&a, &b));
-        let mut reference_agrees = Value::Null;
+        let mut reference_agrees = None;
         if let Some(runner) = reference.as_mut() {
             let start = Instant::now();
             let outcome = runner.step(scan.time, &zs);
@@ -246,7 +249,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
                     let r = runner.snapshot();
                     let agrees = map_agrees(&a, &r);
                     agree_reference += usize::from(agrees);
-                    reference_agrees = json!(agrees);
+                    reference_agrees = Some(agrees);
                     reference_scans += 1;
                     if info.budget_reached || seconds > 10.0 {
                         reference_budget_reached |= info.budget_reached;
@@ -261,28 +264,43 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
                 gospas[slot].push(s.gospa);
             }
         }
-        per_scan.push(json!({"scan": k, "map_agreement_homht": agrees, "map_agreement_reference": reference_agrees, "rfisst_hypotheses": a.hypotheses.len(), "homht_hypotheses": b.hypotheses.len()}));
+        per_scan.push(FifteenScan {
+            scan: k,
+            map_agreement_homht: agrees,
+            map_agreement_reference: reference_agrees,
+            rfisst_hypotheses: a.hypotheses.len(),
+            homht_hypotheses: b.hypotheses.len(),
+        });
         bar.inc(1);
     }
     bar.finish_and_clear();
     let n = scenario.scans.len().max(1) as f64;
     let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
-    let figures = json!({
-        "experiment": "fifteen",
-        "seed": seed,
-        "scans": scenario.scans.len(),
-        "map_agreement": agree_homht as f64 / n,
-        "max_map_estimate_difference": max_difference,
-        "reference_scans": reference_scans,
-        "reference_budget_reached": reference_budget_reached,
-        "map_agreement_reference": if reference_scans > 0 { json!(agree_reference as f64 / reference_scans as f64) } else { Value::Null },
-        "rfisst": {"mean_gospa": mean(&gospas[0]), "mean_ms_per_scan": mean(&times[0]), "max_ms_per_scan": times[0].iter().copied().fold(0.0, f64::max)},
-        "homht": {"mean_gospa": mean(&gospas[1]), "mean_ms_per_scan": mean(&times[1]), "max_ms_per_scan": times[1].iter().copied().fold(0.0, f64::max), "rejected_scans": homht_rejected, "max_children_per_scan": scenario.tracker.max_children_per_scan},
-        "reference": {"mean_ms_per_scan": mean(&times[2]), "max_ms_per_scan": times[2].iter().copied().fold(0.0, f64::max)},
-    });
-    let mut full = figures.clone();
-    full["per_scan"] = json!(per_scan);
-    write_json(&dir.join("fifteen.json"), &full)?;
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let figures = FifteenFigures {
+        experiment: "fifteen".into(),
+        seed,
+        scans: scenario.scans.len(),
+        map_agreement: agree_homht as f64 / n,
+        max_map_estimate_difference: max_difference,
+        reference_scans,
+        reference_budget_reached,
+        map_agreement_reference: (reference_scans > 0).then(|| agree_reference as f64 / reference_scans as f64),
+        rfisst: FifteenTracker {
+            mean_gospa: mean(&gospas[0]),
+            mean_ms_per_scan: mean(&times[0]),
+            max_ms_per_scan: max(&times[0]),
+        },
+        homht: FifteenHomht {
+            mean_gospa: mean(&gospas[1]),
+            mean_ms_per_scan: mean(&times[1]),
+            max_ms_per_scan: max(&times[1]),
+            rejected_scans: homht_rejected,
+            max_children_per_scan: scenario.tracker.max_children_per_scan,
+        },
+        reference: Timing { mean_ms_per_scan: mean(&times[2]), max_ms_per_scan: max(&times[2]) },
+    };
+    write_json(&dir.join("fifteen.json"), &FifteenReport { figures: figures.clone(), per_scan })?;
     let points = |v: &[f64]| v.iter().enumerate().map(|(k, &y)| (k as f64, y)).collect::<Vec<_>>();
     plots::plot_series(
         &dir.join("fifteen_gospa"),
@@ -382,7 +400,7 @@ fn scaling_shapes() -> Vec<(usize, usize, u128)> {
 /// whether the same generator finds the truth association of the MAP parent (`association_check`). Per scan: the check, ms, and (GOSPA,
 /// expected cardinality) after the step.
 struct DebrisRun {
-    checks: Vec<Value>,
+    checks: Vec<AssociationCheck>,
     ms: Vec<f64>,
     series: Vec<(Option<f64>, f64)>,
 }
@@ -430,43 +448,19 @@ fn debris_rfisst(
     Ok(run)
 }
 
-/// The fraction of `checks` whose `key` is true.
-fn fraction_true(checks: &[Value], key: &str) -> f64 {
-    checks.iter().filter(|c| c[key] == json!(true)).count() as f64 / checks.len().max(1) as f64
+/// The fraction of `checks` with an outcome for which `found` is true.
+fn fraction_true(checks: &[AssociationCheck], found: fn(&CheckOutcome) -> bool) -> f64 {
+    checks.iter().filter(|c| c.outcome.as_ref().is_some_and(found)).count() as f64 / checks.len().max(1) as f64
 }
 
 fn mean(v: &[f64]) -> f64 {
     if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 }
 }
 
-/// The fifty-object figures of an ablation variant (keys of its `summary.json`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AblationFifty {
-    /// Mean GOSPA.
-    pub mean_gospa: Option<f64>,
-    /// Expected number of objects at the end.
-    pub final_expected_cardinality: f64,
-    /// Births confirmed.
-    pub births_confirmed: usize,
-    /// Red stars in view.
-    pub in_view_red_stars: usize,
-    /// Misses in view after confirmation.
-    pub in_view_misses_after_confirmation: usize,
-    /// Mean captured mass.
-    pub mean_captured_mass: f64,
-    /// Smallest captured mass.
-    pub min_captured_mass: f64,
-    /// Mean time per scan (ms).
-    pub mean_ms_per_scan: f64,
-    /// Largest time per scan (ms).
-    pub max_ms_per_scan: f64,
-}
-
 /// What the two additions beyond paper 003 gain, each switched off: clusters (`tracker.sampler.clusters`)
 /// and the exact start (`tracker.sampler.exact_start`). Per variant: the fifty-object run (embedded), the
 /// debris crossing (host profile) with its truth-association check, and the scaling family's truth check.
-fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
+fn ablation(dir: &Path, seed: u64) -> Result<BTreeMap<String, AblationVariant>, Error> {
     let variants = [
         ("default", true, true),
         ("no_clusters", false, true),
@@ -475,7 +469,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
     ];
     let fifty_scenario = sim::fifty_birth_death(seed).run();
     let debris_scenario = sim::debris_crossing(seed).run();
-    let mut figures = serde_json::Map::new();
+    let mut figures = BTreeMap::new();
     for (name, clusters, exact_start) in variants {
         let config = SamplerConfig { clusters, exact_start, ..SamplerConfig::default() };
         let with = |scenario: &crate::scenario::Scenario| {
@@ -487,8 +481,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
         // Fifty objects: the run's summary.
         let sub = dir.join(name).join("fifty");
         std::fs::create_dir_all(&sub).map_err(|e| Error::output(&sub, e))?;
-        let (summary, _) =
-            evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub)?;
+        let (summary, _) = evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub)?;
         let fifty = AblationFifty {
             mean_gospa: summary.mean_gospa,
             final_expected_cardinality: summary.final_expected_cardinality,
@@ -502,13 +495,13 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
         };
         // Debris: the truth-association check on each scan's MAP parent, then the step.
         let run = debris_rfisst(&with(&debris_scenario), seed, &indicatif::ProgressBar::hidden())?;
-        let debris = json!({
-            "truth_association_found_fraction": fraction_true(&run.checks, "truth_found_or_beaten"),
-            "mean_gospa": mean(&run.series.iter().filter_map(|s| s.0).collect::<Vec<_>>()),
-            "final_expected_cardinality": run.series.last().map_or(0.0, |s| s.1),
-            "mean_ms_per_scan": mean(&run.ms),
-            "max_ms_per_scan": run.ms.iter().copied().fold(0.0, f64::max),
-        });
+        let debris = AblationDebris {
+            truth_association_found_fraction: fraction_true(&run.checks, |o| o.truth_found_or_beaten),
+            mean_gospa: mean(&run.series.iter().filter_map(|s| s.0).collect::<Vec<_>>()),
+            final_expected_cardinality: run.series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean(&run.ms),
+            max_ms_per_scan: run.ms.iter().copied().fold(0.0, f64::max),
+        };
         // The scaling family: sizes whose truth association the generator found or beat.
         let (mut sizes, mut missed) = (0usize, vec![]);
         for (objects, measurements, children) in scaling_shapes() {
@@ -520,12 +513,16 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, Error> {
                 missed.push(children as f64);
             }
         }
-        figures.insert(
-            name.to_string(),
-            json!({"clusters": clusters, "exact_start": exact_start, "fifty": fifty, "debris": debris, "scaling_sizes": sizes, "scaling_truth_missed_at": missed}),
-        );
+        let variant = AblationVariant {
+            clusters,
+            exact_start,
+            fifty,
+            debris,
+            scaling_sizes: sizes,
+            scaling_truth_missed_at: missed,
+        };
+        figures.insert(name.to_string(), variant);
     }
-    let figures = Value::Object(figures);
     write_json(&dir.join("ablation.json"), &figures)?;
     Ok(figures)
 }
@@ -557,7 +554,7 @@ fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (Associatio
 }
 
 /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
-fn scaling(dir: &Path, seed: u64) -> Result<Value, Error> {
+fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
     // Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
     const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
     let mut rows = vec![];
@@ -645,24 +642,43 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, Error> {
     };
     let largest = rows.iter().map(|r| r.0).max().unwrap_or(0);
     let found_all = rows.iter().all(|r| r.5);
-    let figures = json!({
-        "experiment": "scaling",
-        "seed": seed,
-        "crossover_children": crossover.map(|c| c as f64),
-        "pure_sampling_crossover_children": pure_crossover.map(|c| c as f64),
-        "speedup_at_1e8": ratio_at(1e8),
-        "largest_children": largest as f64,
-        "exhaustive_budget_seconds": EXHAUSTIVE_BUDGET_SECONDS,
-        "exhaustive_broken_beyond": rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
-        "rfisst_found_truth_at_every_size": found_all,
-        "rfisst_sizes_truth_missed": rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect::<Vec<_>>(),
-        "rfisst_100k_found_truth_at_every_size": rows.iter().all(|r| r.7),
-        "rfisst_100k_max_seconds": rows.iter().map(|r| r.6).fold(0.0, f64::max),
-        "rfisst_max_seconds": rows.iter().map(|r| r.4).fold(0.0, f64::max),
-        "sampler": {"burn_in": SamplerConfig::default().burn_in, "steps": SamplerConfig::default().steps, "exhaustive_limit": SamplerConfig::default().exhaustive_limit, "exact_start": SamplerConfig::default().exact_start},
-        "sizes": rows.iter().map(|r| json!({"children": r.0 as f64, "objects": r.1, "measurements": r.2, "exhaustive_seconds": r.3, "rfisst_seconds": r.4, "rfisst_found_truth": r.5, "rfisst_100k_seconds": r.6, "rfisst_100k_found_truth": r.7, "pure_sampling_seconds": r.8})).collect::<Vec<_>>(),
-    });
-    write_json(&dir.join("scaling.json"), &figures)?;
+    let sampler = SamplerConfig::default();
+    let figures = ScalingFigures {
+        experiment: "scaling".into(),
+        seed,
+        crossover_children: crossover.map(|c| c as f64),
+        pure_sampling_crossover_children: pure_crossover.map(|c| c as f64),
+        speedup_at_1e8: ratio_at(1e8),
+        largest_children: largest as f64,
+        exhaustive_budget_seconds: EXHAUSTIVE_BUDGET_SECONDS,
+        exhaustive_broken_beyond: rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
+        rfisst_found_truth_at_every_size: found_all,
+        rfisst_sizes_truth_missed: rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect(),
+        rfisst_100k_found_truth_at_every_size: rows.iter().all(|r| r.7),
+        rfisst_100k_max_seconds: rows.iter().map(|r| r.6).fold(0.0, f64::max),
+        rfisst_max_seconds: rows.iter().map(|r| r.4).fold(0.0, f64::max),
+        sampler: ScalingSampler {
+            burn_in: sampler.burn_in,
+            steps: sampler.steps,
+            exhaustive_limit: sampler.exhaustive_limit,
+            exact_start: sampler.exact_start,
+        },
+    };
+    let sizes = rows
+        .iter()
+        .map(|r| ScalingSize {
+            children: r.0 as f64,
+            objects: r.1,
+            measurements: r.2,
+            exhaustive_seconds: r.3,
+            rfisst_seconds: r.4,
+            rfisst_found_truth: r.5,
+            rfisst_100k_seconds: r.6,
+            rfisst_100k_found_truth: r.7,
+            pure_sampling_seconds: r.8,
+        })
+        .collect();
+    write_json(&dir.join("scaling.json"), &ScalingReport { figures: figures.clone(), sizes })?;
     let series = [
         Series {
             name: "exhaustive (HOMHT)".into(),
@@ -694,15 +710,11 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, Error> {
         Scale::Log10,
         &series,
     )?;
-    let mut brief = figures.clone();
-    if let Some(o) = brief.as_object_mut() {
-        o.remove("sizes");
-    }
-    Ok(brief)
+    Ok(figures)
 }
 
 /// Debris crossing: R-FISST vs HOMHT with the same time budget per scan, and the truth-association check.
-fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
+fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures, Error> {
     let scenario = sim::debris_crossing(seed).run();
     scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Host;
@@ -736,31 +748,42 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
     let true_count: Vec<f64> =
         (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
     let gospa = |series: &[(Option<f64>, f64)]| mean(&series.iter().filter_map(|s| s.0).collect::<Vec<_>>());
-    let min_children = checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(f64::INFINITY, f64::min);
-    let figures = json!({
-        "experiment": "debris",
-        "seed": seed,
-        "scans": scenario.scans.len(),
-        "min_possible_children_per_map_parent": min_children,
-        "max_possible_children_per_map_parent": checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(0.0, f64::max),
-        "truth_association_found_fraction": fraction_true(&checks, "truth_found_or_beaten"),
-        "truth_association_found_fraction_100k_steps": fraction_true(&checks, "truth_found_or_beaten_100k_steps"),
-        "rfisst": {"mean_gospa": gospa(&rfisst_series), "final_expected_cardinality": rfisst_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean_rfisst_ms, "max_ms_per_scan": rfisst_ms.iter().copied().fold(0.0, f64::max)},
-        "homht": {"mean_gospa": gospa(&homht_series), "final_expected_cardinality": homht_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean(&homht_ms), "children_budget_per_scan": budget, "rejected_scans": homht_rejected},
-        "true_final_cardinality": true_count.last().copied().unwrap_or(0.0),
-    });
-    let mut full = figures.clone();
-    full["per_scan"] = json!(
-        (0..scenario.scans.len())
-            .map(|k| json!({
-                "scan": k,
-                "rfisst_gospa": rfisst_series[k].0, "rfisst_expected_cardinality": rfisst_series[k].1,
-                "homht_gospa": homht_series[k].0, "homht_expected_cardinality": homht_series[k].1,
-                "true_cardinality": true_count[k], "check": checks[k],
-            }))
-            .collect::<Vec<_>>()
-    );
-    write_json(&dir.join("debris.json"), &full)?;
+    let children: Vec<f64> = checks.iter().map(|c| c.possible_children).filter(|c| c.is_finite()).collect();
+    let figures = DebrisFigures {
+        experiment: "debris".into(),
+        seed,
+        scans: scenario.scans.len(),
+        min_possible_children_per_map_parent: children.iter().copied().fold(f64::INFINITY, f64::min),
+        max_possible_children_per_map_parent: children.iter().copied().fold(0.0, f64::max),
+        truth_association_found_fraction: fraction_true(&checks, |o| o.truth_found_or_beaten),
+        truth_association_found_fraction_100k_steps: fraction_true(&checks, |o| o.truth_found_or_beaten_100k_steps),
+        rfisst: DebrisRfisst {
+            mean_gospa: gospa(&rfisst_series),
+            final_expected_cardinality: rfisst_series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean_rfisst_ms,
+            max_ms_per_scan: rfisst_ms.iter().copied().fold(0.0, f64::max),
+        },
+        homht: DebrisHomht {
+            mean_gospa: gospa(&homht_series),
+            final_expected_cardinality: homht_series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean(&homht_ms),
+            children_budget_per_scan: budget,
+            rejected_scans: homht_rejected,
+        },
+        true_final_cardinality: true_count.last().copied().unwrap_or(0.0),
+    };
+    let per_scan = (0..scenario.scans.len())
+        .map(|k| DebrisScan {
+            scan: k,
+            rfisst_gospa: rfisst_series[k].0,
+            rfisst_expected_cardinality: rfisst_series[k].1,
+            homht_gospa: homht_series[k].0,
+            homht_expected_cardinality: homht_series[k].1,
+            true_cardinality: true_count[k],
+            check: checks[k],
+        })
+        .collect();
+    write_json(&dir.join("debris.json"), &DebrisReport { figures: figures.clone(), per_scan })?;
     let over_time = |f: &dyn Fn(usize) -> Option<f64>| {
         (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>()
     };
@@ -821,8 +844,10 @@ fn association_check(
     fov: &tracker_core::Region<f64>,
     seed: u64,
     base: SamplerConfig,
-) -> Result<Value, Error> {
-    let Some(map) = parent.hypotheses.first() else { return Ok(json!({"possible_children": 0.0})) };
+) -> Result<AssociationCheck, Error> {
+    let Some(map) = parent.hypotheses.first() else {
+        return Ok(AssociationCheck { possible_children: 0.0, outcome: None });
+    };
     let mut matrix = AssociationMatrix::<f64, 128, 64>::new(zs.len(), 0, 0.0);
     let mut column_label: HashMap<u32, u16> = HashMap::new();
     for &t in &map.tracks {
@@ -868,14 +893,16 @@ fn association_check(
         generator.generate(&matrix, &mut best).map_err(|e| err(format!("{e:?}")))?;
         outcomes.push(best);
     }
-    Ok(json!({
-        "possible_children": association_count(in_view as u32, zs.len() as u32) as f64,
-        "objects_in_view": in_view,
-        "measurements": zs.len(),
-        "truth_offered": outcomes[0].found,
-        "truth_found_or_beaten": outcomes[0].found || outcomes[0].best >= truth_score,
-        "best_over_truth_log": outcomes[0].best - truth_score,
-        "truth_found_or_beaten_100k_steps": outcomes[1].found || outcomes[1].best >= truth_score,
-        "best_over_truth_log_100k_steps": outcomes[1].best - truth_score,
-    }))
+    Ok(AssociationCheck {
+        possible_children: association_count(in_view as u32, zs.len() as u32) as f64,
+        outcome: Some(CheckOutcome {
+            objects_in_view: in_view,
+            measurements: zs.len(),
+            truth_offered: outcomes[0].found,
+            truth_found_or_beaten: outcomes[0].found || outcomes[0].best >= truth_score,
+            best_over_truth_log: outcomes[0].best - truth_score,
+            truth_found_or_beaten_100k_steps: outcomes[1].found || outcomes[1].best >= truth_score,
+            best_over_truth_log_100k_steps: outcomes[1].best - truth_score,
+        }),
+    })
 }

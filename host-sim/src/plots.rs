@@ -664,7 +664,10 @@ fn axis_caption(axis: &str, unit: &str) -> String {
     if unit.is_empty() { axis.to_string() } else { format!("{axis} [{unit}]") }
 }
 
-fn draw_snapshot_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &SnapshotPanel) -> Result<(), PlotError> {
+fn draw_snapshot_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &SnapshotPanel,
+) -> Result<(), PlotError> {
     let (title_area, chart_area) = area.split_vertically(PANEL_TITLE_HEIGHT);
     draw_panel_title(&title_area, &panel.title)?;
 

@@ -11,12 +11,12 @@
 //! - weight L1: Σ |w_sampler − w_exact| over all hypotheses;
 //! - top-1 found: the sampler kept the exact MAP hypothesis (or one tied with it).
 
+use crate::error::Error;
 use crate::reference::ReferenceTracker;
+use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use crate::rng::{Random, Stream};
 use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
-use crate::error::Error;
-use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
@@ -134,8 +134,7 @@ impl Scores {
         SamplerScores {
             mean_captured_mass: self.captured.iter().sum::<f64>() / n,
             min_captured_mass: self.captured.iter().copied().fold(1.0, f64::min),
-            min_captured_case: (0..self.captured.len())
-                .min_by(|&a, &b| self.captured[a].total_cmp(&self.captured[b])),
+            min_captured_case: (0..self.captured.len()).min_by(|&a, &b| self.captured[a].total_cmp(&self.captured[b])),
             mean_weight_l1: self.l1.iter().sum::<f64>() / n,
             top1_found_fraction: self.top1.iter().filter(|&&t| t).count() as f64 / n,
             mean_sampler_steps_per_case: self.steps.iter().sum::<u64>() as f64 / n,
@@ -143,13 +142,14 @@ impl Scores {
     }
 }
 
-fn run_sampler(case: &Case, sampler: SamplerConfig) -> Result<(Snapshot, u64), String> {
+fn run_sampler(index: u64, case: &Case, sampler: SamplerConfig) -> Result<(Snapshot, u64), Error> {
+    let failed = |e: &dyn std::fmt::Display| Error::internal(format!("case {index}: {e}"));
     let mut config = case.config.clone();
     config.children = ChildGeneration::Sampled(sampler);
     let prior: Vec<PriorHypothesis<'_, f64, 4>> =
         case.prior.iter().map(|(w, o)| PriorHypothesis { weight: *w, objects: o }).collect();
-    let mut tracker = Box::new(CheckTracker::new(config, &prior, 0.0).map_err(|e| e.to_string())?);
-    let report = tracker.step(1.0, &case.measurements).map_err(|e| e.to_string())?;
+    let mut tracker = Box::new(CheckTracker::new(config, &prior, 0.0).map_err(|e| failed(&e))?);
+    let report = tracker.step(1.0, &case.measurements).map_err(|e| failed(&e))?;
     Ok((Snapshot::of(&*tracker), report.sampler_steps))
 }
 
@@ -181,8 +181,7 @@ pub fn run(cases: usize, seed: u64) -> Result<SamplerCheckReport, Error> {
         children.push(report.children as f64);
         let exact = reference.snapshot();
         for (config, scores) in [(default, &mut default_scores), (pure, &mut pure_scores)] {
-            let (sampled, steps) =
-                run_sampler(&case, config).map_err(|e| Error::internal(format!("case {index}: {e}")))?;
+            let (sampled, steps) = run_sampler(index, &case, config)?;
             score(&exact, &sampled, scores);
             scores.steps.push(steps);
         }

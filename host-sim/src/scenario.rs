@@ -720,7 +720,10 @@ impl EvaluationSpec {
         }
         // The error bound is a GOSPA cut-off of order 1.
         if !(low..=high).contains(&self.error_bound) {
-            return Err(error("evaluation.error_bound", format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound)));
+            return Err(error(
+                "evaluation.error_bound",
+                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
+            ));
         }
         if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {
             return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));

@@ -137,7 +137,12 @@ struct Health {
 
 impl Health {
     /// Scan `k`'s step result and the tracker's state after it.
-    fn record(&mut self, k: u64, result: Result<tracker_core::StepReport<f64>, tracker_core::StepError>, tracker: &SsaTracker<f64>) {
+    fn record(
+        &mut self,
+        k: u64,
+        result: Result<tracker_core::StepReport<f64>, tracker_core::StepError>,
+        tracker: &SsaTracker<f64>,
+    ) {
         match result {
             Ok(report) => {
                 self.max_hypotheses = self.max_hypotheses.max(report.hypotheses);
@@ -200,7 +205,8 @@ const TRACKER_DEATH_PROBABILITY: f64 = 1e-4;
 /// The soak's tracker (the embedded capacities) and the number of its birth cells.
 fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize), Error> {
     let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
-    let two_body = setup::two_body(&sim::ssa_motion()).ok_or_else(|| Error::internal("soak: the motion is two-body"))?;
+    let two_body =
+        setup::two_body(&sim::ssa_motion()).ok_or_else(|| Error::internal("soak: the motion is two-body"))?;
     let cells = sim::ssa_birth_cells(&sensor, 6_600.0, 30_000.0, 8, 0.3);
     let mut birth = BirthModel::none();
     birth.probability = TRACKER_BIRTH_PROBABILITY;
@@ -236,8 +242,8 @@ fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize),
         })
         .collect();
     let hypothesis = [tracker_core::PriorHypothesis { weight: 1.0, objects: &prior }];
-    let tracker = SsaTracker::<f64>::new(config, &hypothesis, 0.0)
-        .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
+    let tracker =
+        SsaTracker::<f64>::new(config, &hypothesis, 0.0).map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
     Ok((Box::new(tracker), cells.len()))
 }
 

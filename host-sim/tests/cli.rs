@@ -610,29 +610,40 @@ fn malformed_cases() -> Vec<Case> {
     ];
     // Metric parameters that would make GOSPA overflow (written as null before).
     cases.push(mutated("GOSPA order 400", "evaluation.gospa_order: 400 is not in [1, 100]", |v| {
-        v["evaluation"] = json!({"error_bound": 10.0, "gospa_cutoff": 50.0, "gospa_order": 400.0, "confirmation_existence": 0.9});
+        v["evaluation"] =
+            json!({"error_bound": 10.0, "gospa_cutoff": 50.0, "gospa_order": 400.0, "confirmation_existence": 0.9});
     }));
     cases.push(mutated("GOSPA cut-off to the order overflows", "evaluation.gospa_cutoff: 1e200^2", |v| {
-        v["evaluation"] = json!({"error_bound": 10.0, "gospa_cutoff": 1e200, "gospa_order": 2.0, "confirmation_existence": 0.9});
+        v["evaluation"] =
+            json!({"error_bound": 10.0, "gospa_cutoff": 1e200, "gospa_order": 2.0, "confirmation_existence": 0.9});
     }));
     cases.push(mutated("error bound 1e308", "evaluation.error_bound: 1e308 is not in", |v| {
-        v["evaluation"] = json!({"error_bound": 1e308, "gospa_cutoff": 50.0, "gospa_order": 2.0, "confirmation_existence": 0.9});
+        v["evaluation"] =
+            json!({"error_bound": 1e308, "gospa_cutoff": 50.0, "gospa_order": 2.0, "confirmation_existence": 0.9});
     }));
-    cases.push(mutated("prior weights whose sum overflows", "prior.hypotheses: the sum of the weights overflows", |v| {
-        let first = v["prior"]["hypotheses"][0].clone();
-        v["prior"]["hypotheses"] = json!([first.clone(), first]);
-        v["prior"]["hypotheses"][0]["weight"] = json!(1e308);
-        v["prior"]["hypotheses"][1]["weight"] = json!(1e308);
-    }));
+    cases.push(mutated(
+        "prior weights whose sum overflows",
+        "prior.hypotheses: the sum of the weights overflows",
+        |v| {
+            let first = v["prior"]["hypotheses"][0].clone();
+            v["prior"]["hypotheses"] = json!([first.clone(), first]);
+            v["prior"]["hypotheses"][0]["weight"] = json!(1e308);
+            v["prior"]["hypotheses"][1]["weight"] = json!(1e308);
+        },
+    ));
     cases.push(mutated("R = 1e308", "measurement.noise_covariance: entry 1e308 is beyond ±1e150", |v| {
         v["measurement"]["noise_covariance"] = json!([[1e308, 0.0], [0.0, 1e308]]);
     }));
     cases.push(mutated("prior covariance 1e200", "prior.hypotheses[0].objects[0].covariance: entry", |v| {
         v["prior"]["hypotheses"][0]["objects"][0]["covariance"][0][0] = json!(1e200);
     }));
-    cases.push(mutated("prior label u32::MAX", "prior.hypotheses[0].objects[1].label: 4294967295 is above 2147483647", |v| {
-        v["prior"]["hypotheses"][0]["objects"][1]["label"] = json!(4294967295u32);
-    }));
+    cases.push(mutated(
+        "prior label u32::MAX",
+        "prior.hypotheses[0].objects[1].label: 4294967295 is above 2147483647",
+        |v| {
+            v["prior"]["hypotheses"][0]["objects"][1]["label"] = json!(4294967295u32);
+        },
+    ));
     // 0.01 + 64 × 0.008 < 1 but 0.01 + 128 × 0.008 ≥ 1: only the host profile's N = 128 rejects it.
     let mut host = mutated("M_b alpha + N beta >= 1 (host)", "M_b alpha + N beta must be < 1", |v| {
         v["death_probability"] = json!(0.008);
@@ -836,7 +847,8 @@ fn soak_scan_count_is_bounded() {
     let dir = TempDir::new("soak-scans");
     let out = dir.join("soak.json");
     for scans in ["0", "10000001", "1000000000000", "18446744073709551615"] {
-        let output = host_sim(&["soak".as_ref(), "--scans".as_ref(), scans.as_ref(), "--out".as_ref(), out.as_os_str()]);
+        let output =
+            host_sim(&["soak".as_ref(), "--scans".as_ref(), scans.as_ref(), "--out".as_ref(), out.as_os_str()]);
         if let Err(why) = check_malformed(&output, &format!("--scans {scans}: must be in [1, 10000000]")) {
             panic!("{scans}: {why}\n{}", describe(&output));
         }
@@ -968,11 +980,32 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
     let text = std::fs::read_to_string(out.join("summary.json")).expect("summary");
     let summary: Value = serde_json::from_str(&text).expect("json");
     let expected_summary = [
-        "birth_confirmation_scans", "births_confirmed", "births_total", "error_bound", "final_expected_cardinality",
-        "final_map_cardinality", "gospa_cutoff", "gospa_order", "in_view_misses_after_confirmation",
-        "in_view_red_stars", "label_switches", "max_ms_per_scan", "mean_captured_mass", "mean_gospa",
-        "mean_ms_per_scan", "mean_ospa", "min_captured_mass", "out_of_view_red_stars", "peak_hypotheses", "profile",
-        "reference_budget_reached_scans", "rejected_scans", "scans", "scenario", "tracker", "true_final_cardinality",
+        "birth_confirmation_scans",
+        "births_confirmed",
+        "births_total",
+        "error_bound",
+        "final_expected_cardinality",
+        "final_map_cardinality",
+        "gospa_cutoff",
+        "gospa_order",
+        "in_view_misses_after_confirmation",
+        "in_view_red_stars",
+        "label_switches",
+        "max_ms_per_scan",
+        "mean_captured_mass",
+        "mean_gospa",
+        "mean_ms_per_scan",
+        "mean_ospa",
+        "min_captured_mass",
+        "out_of_view_red_stars",
+        "peak_hypotheses",
+        "profile",
+        "reference_budget_reached_scans",
+        "rejected_scans",
+        "scans",
+        "scenario",
+        "tracker",
+        "true_final_cardinality",
     ];
     let mut top: Vec<&str> = summary.as_object().expect("object").keys().map(String::as_str).collect();
     top.sort_unstable();
@@ -985,9 +1018,21 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
     assert_eq!(
         keys_of(&first),
         [
-            ".existence", ".existence[].existence", ".existence[].label", ".expected_cardinality", ".hypotheses",
-            ".hypotheses[].tracks", ".hypotheses[].weight", ".hypotheses_total", ".scan", ".time", ".tracks",
-            ".tracks[].covariance", ".tracks[].existence", ".tracks[].label", ".tracks[].mean",
+            ".existence",
+            ".existence[].existence",
+            ".existence[].label",
+            ".expected_cardinality",
+            ".hypotheses",
+            ".hypotheses[].tracks",
+            ".hypotheses[].weight",
+            ".hypotheses_total",
+            ".scan",
+            ".time",
+            ".tracks",
+            ".tracks[].covariance",
+            ".tracks[].existence",
+            ".tracks[].label",
+            ".tracks[].mean",
         ]
     );
     for line in lines.lines() {
@@ -1004,21 +1049,45 @@ fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
     let dir = TempDir::new("compare-keys");
     let file = linear_small(&dir, Some(3));
     let out = dir.join("out");
-    let output = host_sim(&["compare".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    let output =
+        host_sim(&["compare".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
     assert_success(&output);
     let text = std::fs::read_to_string(out.join("compare.json")).expect("compare");
     let value: Value = serde_json::from_str(&text).expect("json");
     assert_eq!(
         keys_of(&value),
         [
-            ".bounded", ".bounded.max_ms_per_scan", ".bounded.mean_gospa", ".bounded.mean_ms_per_scan",
-            ".bounded.tracker", ".bounded_tracker", ".map_agreement", ".mean_captured_mass", ".mean_weight_l1",
-            ".min_captured_mass", ".per_scan", ".per_scan[].bounded_error", ".per_scan[].bounded_hypotheses",
-            ".per_scan[].bounded_ms", ".per_scan[].captured_mass", ".per_scan[].map_agreement",
-            ".per_scan[].reference_error", ".per_scan[].reference_hypotheses", ".per_scan[].reference_ms",
-            ".per_scan[].scan", ".per_scan[].time", ".per_scan[].weight_l1", ".profile", ".reference",
-            ".reference.budget_reached_scans", ".reference.max_ms_per_scan", ".reference.mean_gospa",
-            ".reference.mean_ms_per_scan", ".reference.tracker", ".scans", ".scenario",
+            ".bounded",
+            ".bounded.max_ms_per_scan",
+            ".bounded.mean_gospa",
+            ".bounded.mean_ms_per_scan",
+            ".bounded.tracker",
+            ".bounded_tracker",
+            ".map_agreement",
+            ".mean_captured_mass",
+            ".mean_weight_l1",
+            ".min_captured_mass",
+            ".per_scan",
+            ".per_scan[].bounded_error",
+            ".per_scan[].bounded_hypotheses",
+            ".per_scan[].bounded_ms",
+            ".per_scan[].captured_mass",
+            ".per_scan[].map_agreement",
+            ".per_scan[].reference_error",
+            ".per_scan[].reference_hypotheses",
+            ".per_scan[].reference_ms",
+            ".per_scan[].scan",
+            ".per_scan[].time",
+            ".per_scan[].weight_l1",
+            ".profile",
+            ".reference",
+            ".reference.budget_reached_scans",
+            ".reference.max_ms_per_scan",
+            ".reference.mean_gospa",
+            ".reference.mean_ms_per_scan",
+            ".reference.tracker",
+            ".scans",
+            ".scenario",
         ]
     );
     let typed: CompareReport = serde_json::from_str(&text).expect("a CompareReport");
@@ -1042,8 +1111,12 @@ fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
     let text = std::fs::read_to_string(&file).expect("report");
     let value: Value = serde_json::from_str(&text).expect("json");
     let scores = [
-        "mean_captured_mass", "mean_sampler_steps_per_case", "mean_weight_l1", "min_captured_case",
-        "min_captured_mass", "top1_found_fraction",
+        "mean_captured_mass",
+        "mean_sampler_steps_per_case",
+        "mean_weight_l1",
+        "min_captured_case",
+        "min_captured_mass",
+        "top1_found_fraction",
     ];
     let mut expected: Vec<String> = scores.iter().map(|k| format!(".{k}")).collect();
     expected.extend(scores.iter().map(|k| format!(".pure_sampling.{k}")));
@@ -1052,7 +1125,8 @@ fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
             .map(|k| format!(".{k}")),
     );
     expected.extend(
-        ["burn_in", "clusters", "exact_start", "exhaustive_limit", "proposal", "steps"].map(|k| format!(".sampler.{k}")),
+        ["burn_in", "clusters", "exact_start", "exhaustive_limit", "proposal", "steps"]
+            .map(|k| format!(".sampler.{k}")),
     );
     expected.sort();
     assert_eq!(keys_of(&value), expected);
@@ -1072,20 +1146,47 @@ fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
     let text = std::fs::read_to_string(&file).expect("report");
     let value: Value = serde_json::from_str(&text).expect("json");
     let mut expected: Vec<String> = [
-        "births_beyond_object_capacity", "children_dropped_for_store", "errors_by_kind",
-        "final_expected_cardinality", "first_error", "first_non_finite_scan", "hypothesis_capacity",
-        "max_abs_cardinality_error", "max_hypotheses", "max_measurements_per_scan", "max_ms_per_scan",
-        "mean_abs_cardinality_error", "mean_ms_per_scan", "measurement_capacity", "measurements", "nan_count",
-        "non_finite_scans", "p50_ms_per_scan", "p99_ms_per_scan", "scans", "seed", "setup", "track_store_capacity",
-        "track_store_high_water", "truth", "wall_seconds",
+        "births_beyond_object_capacity",
+        "children_dropped_for_store",
+        "errors_by_kind",
+        "final_expected_cardinality",
+        "first_error",
+        "first_non_finite_scan",
+        "hypothesis_capacity",
+        "max_abs_cardinality_error",
+        "max_hypotheses",
+        "max_measurements_per_scan",
+        "max_ms_per_scan",
+        "mean_abs_cardinality_error",
+        "mean_ms_per_scan",
+        "measurement_capacity",
+        "measurements",
+        "nan_count",
+        "non_finite_scans",
+        "p50_ms_per_scan",
+        "p99_ms_per_scan",
+        "scans",
+        "seed",
+        "setup",
+        "track_store_capacity",
+        "track_store_high_water",
+        "truth",
+        "wall_seconds",
     ]
     .iter()
     .map(|k| format!(".{k}"))
     .collect();
     expected.extend(
         [
-            "birth_rate_per_scan", "death_rate_per_object_per_scan", "motion", "scan_interval_s", "sensor", "tracker",
-            "tracker_birth_cells", "tracker_birth_probability_per_cell", "tracker_death_probability",
+            "birth_rate_per_scan",
+            "death_rate_per_object_per_scan",
+            "motion",
+            "scan_interval_s",
+            "sensor",
+            "tracker",
+            "tracker_birth_cells",
+            "tracker_birth_probability_per_cell",
+            "tracker_death_probability",
         ]
         .map(|k| format!(".setup.{k}")),
     );
