@@ -432,7 +432,7 @@ impl Default for EvaluationSpec {
 }
 
 impl Scenario {
-    /// Reads and checks a scenario file.
+    /// Reads and checks a scenario file of at most [`MAX_FILE_BYTES`].
     ///
     /// # Errors
     /// A one-line [`ScenarioError`] naming the file's problem.
@@ -440,7 +440,7 @@ impl Scenario {
         Self::from_json(&read_limited(path)?)
     }
 
-    /// Parses and checks a scenario from JSON text.
+    /// Parses and checks a scenario from JSON text (a leading byte-order mark is skipped).
     ///
     /// # Errors
     /// A one-line [`ScenarioError`] naming the field.
