@@ -17,7 +17,7 @@
 //! `digest` is [`tracker_core::Tracker::digest`] after the scan (after a rejected scan the tracker is
 //! unchanged); the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, ScenarioError};
 use crate::setup;
 use nalgebra::SVector;
 use std::fmt::Write as _;
@@ -34,10 +34,10 @@ use tracker_core::{
 /// A one-line message when `scans` exceeds the scenario's scans, the scenario is not two-body (the embedded
 /// tracker's motion model), it has more birth cells than the embedded capacity, or the tracker rejects its
 /// configuration.
-pub fn run(scenario: &Scenario, scans: Option<usize>) -> Result<String, String> {
+pub fn run(scenario: &Scenario, scans: Option<usize>) -> Result<String, ScenarioError> {
     let count = scans.unwrap_or(scenario.scans.len());
     if count > scenario.scans.len() {
-        return Err(format!("--scans {count}: the scenario has only {} scans", scenario.scans.len()));
+        return Err(ScenarioError(format!("--scans {count}: the scenario has only {} scans", scenario.scans.len())));
     }
     let mut tracker = Box::new(tracker::<f32>(scenario)?);
     let mut text = String::new();
@@ -67,12 +67,14 @@ pub fn run(scenario: &Scenario, scans: Option<usize>) -> Result<String, String> 
 ///
 /// # Errors
 /// As [`run`].
-pub fn tracker<T: Real>(scenario: &Scenario) -> Result<SsaTracker<T>, String> {
+pub fn tracker<T: Real>(scenario: &Scenario) -> Result<SsaTracker<T>, ScenarioError> {
     let motion = setup::two_body(&scenario.motion).ok_or_else(|| {
-        "motion: the embedded tracker (SsaTracker) is two-body; this scenario is constant-velocity".to_string()
+        ScenarioError(
+            "motion: the embedded tracker (SsaTracker) is two-body; this scenario is constant-velocity".into(),
+        )
     })?;
     let config: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, { ssa_caps::BIRTH_CELLS }> =
-        setup::config(scenario, motion, setup::sampled(scenario)).map_err(|e| e.0)?;
+        setup::config(scenario, motion, setup::sampled(scenario))?;
     let prior: Vec<(T, Vec<PriorObject<T, 4>>)> = setup::prior(scenario)
         .iter()
         .map(|(weight, objects)| {
@@ -83,7 +85,7 @@ pub fn tracker<T: Real>(scenario: &Scenario) -> Result<SsaTracker<T>, String> {
     let hypotheses: Vec<PriorHypothesis<'_, T, 4>> =
         prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     SsaTracker::<T>::new(ssa_config(&config), &hypotheses, scenario.prior.time)
-        .map_err(|e| format!("tracker configuration: {e}"))
+        .map_err(|e| ScenarioError(format!("tracker configuration: {e}")))
 }
 
 /// An `f64` configuration of the embedded tracker in scalar `T`, every value rounded with [`Real::of_f64`].
@@ -166,7 +168,7 @@ mod tests {
     #[test]
     fn too_many_scans_is_an_error() {
         let error = run(&scenario(2), Some(3)).expect_err("only 2 scans");
-        assert!(error.contains("only 2 scans"), "{error}");
+        assert!(error.0.contains("only 2 scans"), "{error}");
     }
 
     #[test]
@@ -174,6 +176,6 @@ mod tests {
         let mut simulation = crate::sim::preset("linear-small", 1).expect("preset");
         simulation.scans = 2;
         let error = run(&simulation.run(), None).expect_err("not two-body");
-        assert!(error.contains("two-body"), "{error}");
+        assert!(error.0.contains("two-body"), "{error}");
     }
 }

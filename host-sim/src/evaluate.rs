@@ -7,15 +7,19 @@
 //! a true object. A born object is *confirmed* once a track within the error bound of it belongs to a
 //! label whose existence probability reaches `confirmation_existence`.
 
+use crate::error::Error;
 use crate::metrics::{LabelSwitches, gospa, ospa};
 use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
+use crate::report::{
+    BirthConfirmation, CompareReport, CompareScan, CompareSide, CompareSummary, LabelExistence, RejectedScan,
+    RunSummary, ScanHypothesis, ScanLine,
+};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
-use crate::scenario::{FieldOfViewSpec, Scenario, ScenarioError};
+use crate::scenario::{FieldOfViewSpec, Scenario};
 use crate::setup;
 use crate::snapshot::{Snapshot, match_posteriors};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
-use serde_json::json;
 use std::collections::{BTreeMap, HashMap};
 use std::io::{IsTerminal, Write};
 use std::path::Path;
@@ -32,6 +36,11 @@ pub struct Options {
     pub max_hypotheses_out: usize,
     /// No progress bar.
     pub quiet: bool,
+}
+
+/// The mean of `values`, 0 when there is none.
+fn mean(values: &[f64]) -> f64 {
+    if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 }
 }
 
 /// The fractions of the run at which snapshots are plotted (paper 003 Figs. 6, 8-10).
@@ -149,21 +158,25 @@ pub(crate) fn progress(scans: usize, quiet: bool, message: &'static str) -> Prog
     bar
 }
 
-fn io_error(path: &Path, e: impl std::fmt::Display) -> ScenarioError {
-    ScenarioError(format!("{}: {e}", path.display()))
+fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::output(path, e)
 }
 
-pub(crate) fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), ScenarioError> {
+/// Writes `value` as pretty JSON and a line break to `path`.
+///
+/// # Errors
+/// [`Error::Output`] when the file cannot be written.
+pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Error> {
     let text = serde_json::to_string_pretty(value).map_err(|e| io_error(path, e))?;
     std::fs::write(path, text + "\n").map_err(|e| io_error(path, e))
 }
 
 /// One scan's line of `scans.jsonl`: at most `max` hypotheses and the tracks they hold.
-fn scan_line(k: usize, time: f64, snapshot: &Snapshot, max: usize) -> serde_json::Value {
+fn scan_line(k: usize, time: f64, snapshot: &Snapshot, max: usize) -> ScanLine {
     let written = &snapshot.hypotheses[..snapshot.hypotheses.len().min(max)];
     let mut index: HashMap<usize, usize> = HashMap::new();
     let mut tracks = vec![];
-    let hypotheses: Vec<serde_json::Value> = written
+    let hypotheses = written
         .iter()
         .map(|h| {
             let ids: Vec<usize> = h
@@ -171,25 +184,25 @@ fn scan_line(k: usize, time: f64, snapshot: &Snapshot, max: usize) -> serde_json
                 .iter()
                 .map(|&t| {
                     *index.entry(t).or_insert_with(|| {
-                        tracks.push(&snapshot.tracks[t]);
+                        tracks.push(snapshot.tracks[t].clone());
                         tracks.len() - 1
                     })
                 })
                 .collect();
-            json!({"weight": h.weight, "tracks": ids})
+            ScanHypothesis { weight: h.weight, tracks: ids }
         })
         .collect();
-    let existence: Vec<serde_json::Value> =
-        snapshot.label_existence().iter().map(|(l, e)| json!({"label": l, "existence": e})).collect();
-    json!({
-        "scan": k,
-        "time": time,
-        "expected_cardinality": snapshot.expected_cardinality(),
-        "hypotheses_total": snapshot.hypotheses.len(),
-        "hypotheses": hypotheses,
-        "tracks": tracks,
-        "existence": existence,
-    })
+    let existence =
+        snapshot.label_existence().iter().map(|&(label, existence)| LabelExistence { label, existence }).collect();
+    ScanLine {
+        scan: k,
+        time,
+        expected_cardinality: snapshot.expected_cardinality(),
+        hypotheses_total: snapshot.hypotheses.len(),
+        hypotheses,
+        tracks,
+        existence,
+    }
 }
 
 fn fov_lines(scenario: &Scenario) -> Option<FovLines> {
@@ -213,14 +226,11 @@ fn is_ssa(scenario: &Scenario) -> bool {
 ///
 /// # Errors
 /// A one-line message when the tracker cannot be built or a file cannot be written.
-pub fn run(
-    scenario: &Scenario,
-    kind: TrackerKind,
-    options: &Options,
-    out: &Path,
-) -> Result<(serde_json::Value, bool), ScenarioError> {
+pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path) -> Result<(RunSummary, bool), Error> {
     std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
     let mut runner = build(kind, options.profile, scenario, options.reference)?;
+    let prior = runner.snapshot();
+    let prior_cardinality = (prior.expected_cardinality(), prior.map_tracks().len());
     let scans_path = out.join("scans.jsonl");
     let mut scans_file =
         std::io::BufWriter::new(std::fs::File::create(&scans_path).map_err(|e| io_error(&scans_path, e))?);
@@ -254,7 +264,7 @@ pub fn run(
             Ok(info) => (Some(info), None),
             Err(e) => {
                 bar.suspend(|| eprintln!("warning: scan {k} (t = {}) rejected: {e}", scan.time));
-                (None, Some(e))
+                (None, Some(e.0))
             }
         };
         peak_hypotheses = peak_hypotheses.max(snapshot.hypotheses.len());
@@ -321,47 +331,52 @@ pub fn run(
     csv.flush().map_err(|e| io_error(&csv_path, e))?;
 
     let accepted: Vec<&ScanRecord> = records.iter().filter(|r| r.error.is_none()).collect();
-    let mean = |values: &[f64]| if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 };
     let ms: Vec<f64> = accepted.iter().map(|r| r.ms).collect();
     let gospas: Vec<f64> = records.iter().filter_map(|r| r.gospa).collect();
     let ospas: Vec<f64> = records.iter().filter_map(|r| r.ospa).collect();
-    let births_total = confirmed.len();
-    let births_confirmed = confirmed.values().filter(|c| c.is_some()).count();
-    let rejected: Vec<serde_json::Value> =
-        records.iter().filter_map(|r| r.error.as_ref().map(|e| json!({"scan": r.scan, "error": e}))).collect();
+    let rejected: Vec<RejectedScan> = records
+        .iter()
+        .filter_map(|r| r.error.as_ref().map(|e| RejectedScan { scan: r.scan, error: e.clone() }))
+        .collect();
     let last = records.last();
-    let summary = json!({
-        "scenario": scenario.name,
-        "tracker": kind.name(),
-        "profile": if kind == TrackerKind::Reference { "unbounded" } else { options.profile.name() },
-        "scans": n,
+    let summary = RunSummary {
+        scenario: scenario.name.clone(),
+        tracker: kind.name().into(),
+        profile: if kind == TrackerKind::Reference { "unbounded" } else { options.profile.name() }.into(),
+        scans: n,
         // Without truth there is nothing to score: null, not 0.
-        "mean_gospa": (!gospas.is_empty()).then(|| mean(&gospas)),
-        "mean_ospa": (!ospas.is_empty()).then(|| mean(&ospas)),
-        "gospa_cutoff": scenario.evaluation.gospa_cutoff,
-        "gospa_order": scenario.evaluation.gospa_order,
-        "error_bound": scenario.evaluation.error_bound,
-        "final_expected_cardinality": last.map_or(0.0, |r| r.expected_cardinality),
-        "final_map_cardinality": last.map_or(0, |r| r.map_cardinality),
-        "true_final_cardinality": last.and_then(|r| r.true_cardinality),
-        "births_total": births_total,
-        "births_confirmed": births_confirmed,
-        "birth_confirmation_scans": confirmed.iter().map(|(id, k)| json!({"object": id, "scan": k})).collect::<Vec<_>>(),
-        "label_switches": switches.total(),
-        "in_view_misses_after_confirmation": in_view_misses,
-        "in_view_red_stars": in_view_red_stars,
-        "out_of_view_red_stars": out_of_view_red_stars,
-        "mean_ms_per_scan": mean(&ms),
-        "max_ms_per_scan": ms.iter().copied().fold(0.0, f64::max),
-        "peak_hypotheses": peak_hypotheses,
-        "mean_captured_mass": mean(&accepted.iter().map(|r| r.captured_mass).collect::<Vec<_>>()),
-        "min_captured_mass": accepted.iter().map(|r| r.captured_mass).fold(1.0, f64::min),
-        "rejected_scans": rejected,
-        "reference_budget_reached_scans": records.iter().filter(|r| r.captured_mass < 1.0 && kind == TrackerKind::Reference).map(|r| r.scan).collect::<Vec<_>>(),
-    });
+        mean_gospa: (!gospas.is_empty()).then(|| mean(&gospas)),
+        mean_ospa: (!ospas.is_empty()).then(|| mean(&ospas)),
+        gospa_cutoff: scenario.evaluation.gospa_cutoff,
+        gospa_order: scenario.evaluation.gospa_order,
+        error_bound: scenario.evaluation.error_bound,
+        // Without scans, the prior's figures.
+        final_expected_cardinality: last.map_or(prior_cardinality.0, |r| r.expected_cardinality),
+        final_map_cardinality: last.map_or(prior_cardinality.1, |r| r.map_cardinality),
+        true_final_cardinality: last.and_then(|r| r.true_cardinality),
+        births_total: confirmed.len(),
+        births_confirmed: confirmed.values().filter(|c| c.is_some()).count(),
+        birth_confirmation_scans: confirmed.iter().map(|(&object, &scan)| BirthConfirmation { object, scan }).collect(),
+        label_switches: switches.total(),
+        in_view_misses_after_confirmation: in_view_misses,
+        in_view_red_stars,
+        out_of_view_red_stars,
+        mean_ms_per_scan: mean(&ms),
+        max_ms_per_scan: ms.iter().copied().fold(0.0, f64::max),
+        peak_hypotheses,
+        mean_captured_mass: mean(&accepted.iter().map(|r| r.captured_mass).collect::<Vec<_>>()),
+        min_captured_mass: accepted.iter().map(|r| r.captured_mass).fold(1.0, f64::min),
+        rejected_scans: rejected,
+        reference_budget_reached_scans: records
+            .iter()
+            .filter(|r| r.captured_mass < 1.0 && kind == TrackerKind::Reference)
+            .map(|r| r.scan)
+            .collect(),
+    };
     write_json(&out.join("summary.json"), &summary)?;
     write_run_plots(scenario, &records, &snapshots, out)?;
-    Ok((summary, rejected.is_empty()))
+    let clean = summary.rejected_scans.is_empty();
+    Ok((summary, clean))
 }
 
 fn write_run_plots(
@@ -369,7 +384,7 @@ fn write_run_plots(
     records: &[ScanRecord],
     snapshots: &[(usize, Snapshot, Vec<bool>)],
     out: &Path,
-) -> Result<(), ScenarioError> {
+) -> Result<(), Error> {
     let n = records.len().max(1);
     let unit = if is_ssa(scenario) { "km" } else { "" };
     let panels: Vec<SnapshotPanel> = snapshots
@@ -396,8 +411,7 @@ fn write_run_plots(
             }
         })
         .collect();
-    let plot_error = |e: String| ScenarioError(format!("plot: {e}"));
-    plots::plot_snapshots(&out.join("truth_vs_map"), &panels).map_err(plot_error)?;
+    plots::plot_snapshots(&out.join("truth_vs_map"), &panels)?;
     let weights: Vec<(String, Vec<f64>)> = snapshots
         .iter()
         .map(|(k, s, _)| {
@@ -407,7 +421,7 @@ fn write_run_plots(
             )
         })
         .collect();
-    plots::plot_hypothesis_weights(&out.join("hypothesis_weights"), &weights).map_err(plot_error)?;
+    plots::plot_hypothesis_weights(&out.join("hypothesis_weights"), &weights)?;
     let percent = |r: &ScanRecord| 100.0 * (r.scan + 1) as f64 / n as f64;
     let mut series = vec![Series {
         name: "expected number of objects".into(),
@@ -429,8 +443,7 @@ fn write_run_plots(
         Scale::Linear,
         Scale::Linear,
         &series,
-    )
-    .map_err(plot_error)?;
+    )?;
     if records.iter().any(|r| r.gospa.is_some()) {
         let gospa_series = [Series {
             name: "GOSPA of the MAP estimates".into(),
@@ -445,8 +458,7 @@ fn write_run_plots(
             Scale::Linear,
             Scale::Linear,
             &gospa_series,
-        )
-        .map_err(plot_error)?;
+        )?;
     }
     Ok(())
 }
@@ -466,7 +478,7 @@ pub fn compare(
     bounded: TrackerKind,
     options: &Options,
     out: &Path,
-) -> Result<serde_json::Value, ScenarioError> {
+) -> Result<CompareReport, Error> {
     std::fs::create_dir_all(out).map_err(|e| io_error(out, e))?;
     let mut trackers: [Box<dyn Runner>; 2] = [
         build(bounded, options.profile, scenario, options.reference)?,
@@ -490,7 +502,7 @@ pub fn compare(
             {
                 budget_scans.push(k);
             }
-            errors.push(outcome.err());
+            errors.push(outcome.err().map(|e| e.0));
             let snapshot = tracker.snapshot();
             if let Some(s) = score(scenario, k, &snapshot) {
                 gospas[i].push(s.gospa);
@@ -504,39 +516,46 @@ pub fn compare(
         let reference_max = r.hypotheses.first().map_or(0.0, |h| h.weight);
         let map_weight_in_reference = matched.exact_weight_of_map;
         let agree = reference_max > 0.0 && (map_weight_in_reference - reference_max).abs() <= 1e-9 * reference_max;
-        per_scan.push(json!({
-            "scan": k,
-            "time": scan.time,
-            "captured_mass": captured,
-            "weight_l1": l1,
-            "map_agreement": agree,
-            "bounded_hypotheses": b.hypotheses.len(),
-            "reference_hypotheses": r.hypotheses.len(),
-            "bounded_ms": ms_totals[0][k],
-            "reference_ms": ms_totals[1][k],
-            "bounded_error": errors[0],
-            "reference_error": errors[1],
-        }));
+        let [bounded_error, reference_error] = [errors[0].take(), errors[1].take()];
+        per_scan.push(CompareScan {
+            scan: k,
+            time: scan.time,
+            captured_mass: captured,
+            weight_l1: l1,
+            map_agreement: agree,
+            bounded_hypotheses: b.hypotheses.len(),
+            reference_hypotheses: r.hypotheses.len(),
+            bounded_ms: ms_totals[0][k],
+            reference_ms: ms_totals[1][k],
+            bounded_error,
+            reference_error,
+        });
     }
     bar.finish_and_clear();
-    let mean = |values: &[f64]| if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 };
-    let column = |key: &str| per_scan.iter().filter_map(|s| s[key].as_f64()).collect::<Vec<f64>>();
-    let captured = column("captured_mass");
-    let agreement =
-        per_scan.iter().filter(|s| s["map_agreement"] == json!(true)).count() as f64 / per_scan.len().max(1) as f64;
-    let result = json!({
-        "scenario": scenario.name,
-        "bounded_tracker": bounded.name(),
-        "profile": options.profile.name(),
-        "scans": scenario.scans.len(),
-        "mean_captured_mass": mean(&captured),
-        "min_captured_mass": captured.iter().copied().fold(1.0, f64::min),
-        "mean_weight_l1": mean(&column("weight_l1")),
-        "map_agreement": agreement,
-        "bounded": {"tracker": bounded.name(), "mean_gospa": (!gospas[0].is_empty()).then(|| mean(&gospas[0])), "mean_ms_per_scan": mean(&ms_totals[0]), "max_ms_per_scan": ms_totals[0].iter().copied().fold(0.0, f64::max)},
-        "reference": {"tracker": "reference", "mean_gospa": (!gospas[1].is_empty()).then(|| mean(&gospas[1])), "mean_ms_per_scan": mean(&ms_totals[1]), "max_ms_per_scan": ms_totals[1].iter().copied().fold(0.0, f64::max), "budget_reached_scans": budget_scans},
-        "per_scan": per_scan,
-    });
+    // Non-finite figures are written as null and left out of the means, as they always were.
+    let column = |f: fn(&CompareScan) -> f64| per_scan.iter().map(f).filter(|v| v.is_finite()).collect::<Vec<f64>>();
+    let captured = column(|s| s.captured_mass);
+    let agreement = per_scan.iter().filter(|s| s.map_agreement).count() as f64 / per_scan.len().max(1) as f64;
+    let side = |tracker: &str, slot: usize| CompareSide {
+        tracker: tracker.into(),
+        mean_gospa: (!gospas[slot].is_empty()).then(|| mean(&gospas[slot])),
+        mean_ms_per_scan: mean(&ms_totals[slot]),
+        max_ms_per_scan: ms_totals[slot].iter().copied().fold(0.0, f64::max),
+        budget_reached_scans: None,
+    };
+    let summary = CompareSummary {
+        scenario: scenario.name.clone(),
+        bounded_tracker: bounded.name().into(),
+        profile: options.profile.name().into(),
+        scans: scenario.scans.len(),
+        mean_captured_mass: mean(&captured),
+        min_captured_mass: captured.iter().copied().fold(1.0, f64::min),
+        mean_weight_l1: mean(&column(|s| s.weight_l1)),
+        map_agreement: agreement,
+        bounded: side(bounded.name(), 0),
+        reference: CompareSide { budget_reached_scans: Some(budget_scans), ..side("reference", 1) },
+    };
+    let result = CompareReport { summary, per_scan };
     write_json(&out.join("compare.json"), &result)?;
     Ok(result)
 }

@@ -16,16 +16,22 @@
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
+use crate::error::Error;
 use crate::evaluate::{self, Options, score, truth_positions, write_json};
 use crate::plots::{self, Scale, Series};
+use crate::report::{
+    AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
+    DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
+    RunSummary, RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
+};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::setup;
 use crate::sim;
 use crate::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
-use serde_json::{Value, json};
-use std::collections::HashMap;
+use serde_json::Value;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use std::time::Instant;
 use tracker_core::TwoBody;
@@ -37,55 +43,96 @@ use tracker_core::sampler::SamplerConfig;
 use tracker_core::selection::TopChildren;
 use tracker_core::weight::{Event, WeightModel};
 
+/// An experiment of `host-sim experiment`, or `all` of them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Experiment {
+    /// Paper 003 §IV: fifty objects, five births, R-FISST on the embedded configuration.
+    Fifty,
+    /// Paper 003 §V-A: fifteen objects, R-FISST vs HOMHT vs the unbounded reference.
+    Fifteen,
+    /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
+    Scaling,
+    /// A debris cloud crossing the field of view: R-FISST vs HOMHT with the same time per scan.
+    Debris,
+    /// Clusters and the exact chain start, each switched off.
+    Ablation,
+    /// Every experiment above, each in its own directory.
+    All,
+}
+
+impl Experiment {
+    /// The experiments, in the order `all` runs them.
+    pub const EACH: [Experiment; 5] =
+        [Experiment::Fifty, Experiment::Fifteen, Experiment::Scaling, Experiment::Debris, Experiment::Ablation];
+
+    /// The name on the command line and of the directory under `all`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Experiment::Fifty => "fifty",
+            Experiment::Fifteen => "fifteen",
+            Experiment::Scaling => "scaling",
+            Experiment::Debris => "debris",
+            Experiment::Ablation => "ablation",
+            Experiment::All => "all",
+        }
+    }
+}
+
 /// The experiments, in the order `all` runs them.
 pub const EXPERIMENTS: [&str; 5] = ["fifty", "fifteen", "scaling", "debris", "ablation"];
 
-fn err(e: impl std::fmt::Display) -> String {
-    e.to_string()
+fn err(e: impl std::fmt::Display) -> Error {
+    Error::internal(e)
 }
 
-/// Runs experiment `name` (or `all`) into `out`.
+/// The seeds of `runs` runs from `seed`: `seed, seed + 1, ...`.
 ///
 /// # Errors
-/// A one-line message for an unknown experiment or a failed run.
-pub fn run(name: &str, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<(), String> {
-    let names: Vec<&str> = match name {
-        "all" => EXPERIMENTS.to_vec(),
-        n if EXPERIMENTS.contains(&n) => vec![n],
-        _ => return Err(format!("unknown experiment \"{name}\"; one of: {}, all", EXPERIMENTS.join(", "))),
-    };
-    for experiment in names {
-        let dir = if name == "all" { out.join(experiment) } else { out.to_path_buf() };
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+/// [`Error::Input`] when the last seed would pass `u64::MAX` (the runs are not wrapped around).
+pub fn seeds(seed: u64, runs: u64) -> Result<Vec<u64>, Error> {
+    let last = seed
+        .checked_add(runs.max(1) - 1)
+        .ok_or_else(|| Error::input(format!("--seed {seed} --runs {runs}: the last seed would pass {}", u64::MAX)))?;
+    Ok((seed..=last).collect())
+}
+
+/// Runs `experiment` (or all of them) into `out`.
+///
+/// # Errors
+/// [`Error::Input`] for seeds beyond `u64::MAX`, [`Error::Output`] for an output that cannot be written.
+pub fn run(experiment: Experiment, out: &Path, seed: u64, runs: u64, quiet: bool) -> Result<(), Error> {
+    let seeds = seeds(seed, runs)?;
+    let each: Vec<Experiment> =
+        if experiment == Experiment::All { Experiment::EACH.to_vec() } else { vec![experiment] };
+    for one in each {
+        let name = one.name();
+        let dir = if experiment == Experiment::All { out.join(name) } else { out.to_path_buf() };
+        std::fs::create_dir_all(&dir).map_err(|e| Error::output(&dir, e))?;
         if runs <= 1 {
-            let figures = run_one(experiment, &dir, seed, quiet)?;
-            eprintln!("{experiment}: {}", serde_json::to_string(&figures).unwrap_or_default());
+            let figures = run_one(one, &dir, seed, quiet)?;
+            eprintln!("{name}: {}", serde_json::to_string(&figures).unwrap_or_default());
         } else {
-            let seeds: Vec<u64> = (seed..seed + runs).collect();
             // Trackers hold up to several MiB inline: large stacks.
             let pool = rayon::ThreadPoolBuilder::new().stack_size(512 << 20).build().map_err(err)?;
-            let results: Vec<Result<Value, String>> = pool.install(|| {
-                seeds.par_iter().map(|&s| run_one(experiment, &dir.join(format!("seed-{s}")), s, true)).collect()
-            });
+            let results: Vec<Result<Value, Error>> = pool
+                .install(|| seeds.par_iter().map(|&s| run_one(one, &dir.join(format!("seed-{s}")), s, true)).collect());
             let figures: Vec<Value> = results.into_iter().collect::<Result<_, _>>()?;
-            let spread = aggregate(&figures);
-            write_json(
-                &dir.join("runs.json"),
-                &json!({"experiment": experiment, "seeds": seeds, "runs": figures, "aggregate": spread}),
-            )
-            .map_err(err)?;
-            eprintln!("{experiment}: {} runs, aggregate {}", runs, serde_json::to_string(&spread).unwrap_or_default());
+            let aggregate = aggregate(&figures);
+            let report = RunsReport { experiment: name.into(), seeds: seeds.clone(), runs: figures, aggregate };
+            write_json(&dir.join("runs.json"), &report)?;
+            let aggregate = serde_json::to_string(&report.aggregate).unwrap_or_default();
+            eprintln!("{name}: {runs} runs, aggregate {aggregate}");
         }
     }
     Ok(())
 }
 
 /// Mean, standard deviation, min and max of every numeric top-level figure over the runs.
-fn aggregate(runs: &[Value]) -> Value {
+fn aggregate(runs: &[Value]) -> BTreeMap<String, Spread> {
     let mut keys: Vec<String> = runs.iter().filter_map(|r| r.as_object()).flat_map(|o| o.keys().cloned()).collect();
     keys.sort();
     keys.dedup();
-    let mut out = serde_json::Map::new();
+    let mut out = BTreeMap::new();
     for key in keys {
         let values: Vec<f64> = runs.iter().filter_map(|r| r.get(&key).and_then(Value::as_f64)).collect();
         if values.len() != runs.len() || values.is_empty() {
@@ -94,24 +141,29 @@ fn aggregate(runs: &[Value]) -> Value {
         let n = values.len() as f64;
         let mean = values.iter().sum::<f64>() / n;
         let std = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-        out.insert(
-            key,
-            json!({"mean": mean, "std": std, "min": values.iter().copied().fold(f64::INFINITY, f64::min), "max": values.iter().copied().fold(f64::NEG_INFINITY, f64::max)}),
-        );
+        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        out.insert(key, Spread { mean, std, min, max });
     }
-    Value::Object(out)
+    out
 }
 
-fn run_one(name: &str, dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    match name {
-        "fifty" => fifty(dir, seed, quiet),
-        "fifteen" => fifteen(dir, seed, quiet),
-        "scaling" => scaling(dir, seed),
-        "debris" => debris(dir, seed, quiet),
-        "ablation" => ablation(dir, seed),
-        _ => Err(format!("unknown experiment {name}")),
-    }
+/// One experiment's figures (its JSON record, for `runs.json`'s aggregate).
+fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result<Value, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::output(dir, e))?;
+    let figures = match experiment {
+        Experiment::Fifty => to_value(fifty(dir, seed, quiet)?),
+        Experiment::Fifteen => to_value(fifteen(dir, seed, quiet)?),
+        Experiment::Scaling => to_value(scaling(dir, seed)?),
+        Experiment::Debris => to_value(debris(dir, seed, quiet)?),
+        Experiment::Ablation => to_value(ablation(dir, seed)?),
+        Experiment::All => return Err(err("`all` is not one experiment")),
+    };
+    Ok(figures)
+}
+
+fn to_value(record: impl serde::Serialize) -> Value {
+    serde_json::to_value(record).unwrap_or(Value::Null)
 }
 
 fn options(quiet: bool) -> Options {
@@ -119,10 +171,10 @@ fn options(quiet: bool) -> Options {
 }
 
 /// Paper 003 §IV with R-FISST on the embedded configuration.
-fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<RunSummary, Error> {
     let scenario = sim::fifty_birth_death(seed).run();
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
-    let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
+    let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir)?;
     Ok(summary)
 }
 
@@ -146,12 +198,12 @@ fn map_estimate_difference(a: &Snapshot, b: &Snapshot) -> f64 {
 }
 
 /// Paper 003 §V-A: R-FISST vs HOMHT vs the unbounded reference on the same scans.
-fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigures, Error> {
     let mut scenario = sim::fifteen_compare(seed).run();
     // HOMHT enumerates the product of every object's options: with 15 objects in view that is millions of
     // children per scan, so give it room (R-FISST does not use this bound).
     scenario.tracker.max_children_per_scan = 200_000_000;
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Embedded;
     let mut rfisst = build(TrackerKind::Rfisst, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
     let mut homht = build(TrackerKind::Homht, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
@@ -179,14 +231,14 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
         };
         let (a, accepted) = step(&mut rfisst, 0);
         if !accepted {
-            return Err(format!("rfisst rejected fifteen scan {k}"));
+            return Err(err(format!("rfisst rejected fifteen scan {k}")));
         }
         let (b, accepted) = step(&mut homht, 1);
         homht_rejected += usize::from(!accepted);
         let agrees = map_agrees(&a, &b);
         agree_homht += usize::from(agrees);
         max_difference = max_difference.max(map_estimate_difference(&a, &b));
-        let mut reference_agrees = Value::Null;
+        let mut reference_agrees = None;
         if let Some(runner) = reference.as_mut() {
             let start = Instant::now();
             let outcome = runner.step(scan.time, &zs);
@@ -197,7 +249,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
                     let r = runner.snapshot();
                     let agrees = map_agrees(&a, &r);
                     agree_reference += usize::from(agrees);
-                    reference_agrees = json!(agrees);
+                    reference_agrees = Some(agrees);
                     reference_scans += 1;
                     if info.budget_reached || seconds > 10.0 {
                         reference_budget_reached |= info.budget_reached;
@@ -212,28 +264,43 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
                 gospas[slot].push(s.gospa);
             }
         }
-        per_scan.push(json!({"scan": k, "map_agreement_homht": agrees, "map_agreement_reference": reference_agrees, "rfisst_hypotheses": a.hypotheses.len(), "homht_hypotheses": b.hypotheses.len()}));
+        per_scan.push(FifteenScan {
+            scan: k,
+            map_agreement_homht: agrees,
+            map_agreement_reference: reference_agrees,
+            rfisst_hypotheses: a.hypotheses.len(),
+            homht_hypotheses: b.hypotheses.len(),
+        });
         bar.inc(1);
     }
     bar.finish_and_clear();
     let n = scenario.scans.len().max(1) as f64;
     let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
-    let figures = json!({
-        "experiment": "fifteen",
-        "seed": seed,
-        "scans": scenario.scans.len(),
-        "map_agreement": agree_homht as f64 / n,
-        "max_map_estimate_difference": max_difference,
-        "reference_scans": reference_scans,
-        "reference_budget_reached": reference_budget_reached,
-        "map_agreement_reference": if reference_scans > 0 { json!(agree_reference as f64 / reference_scans as f64) } else { Value::Null },
-        "rfisst": {"mean_gospa": mean(&gospas[0]), "mean_ms_per_scan": mean(&times[0]), "max_ms_per_scan": times[0].iter().copied().fold(0.0, f64::max)},
-        "homht": {"mean_gospa": mean(&gospas[1]), "mean_ms_per_scan": mean(&times[1]), "max_ms_per_scan": times[1].iter().copied().fold(0.0, f64::max), "rejected_scans": homht_rejected, "max_children_per_scan": scenario.tracker.max_children_per_scan},
-        "reference": {"mean_ms_per_scan": mean(&times[2]), "max_ms_per_scan": times[2].iter().copied().fold(0.0, f64::max)},
-    });
-    let mut full = figures.clone();
-    full["per_scan"] = json!(per_scan);
-    write_json(&dir.join("fifteen.json"), &full).map_err(err)?;
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let figures = FifteenFigures {
+        experiment: "fifteen".into(),
+        seed,
+        scans: scenario.scans.len(),
+        map_agreement: agree_homht as f64 / n,
+        max_map_estimate_difference: max_difference,
+        reference_scans,
+        reference_budget_reached,
+        map_agreement_reference: (reference_scans > 0).then(|| agree_reference as f64 / reference_scans as f64),
+        rfisst: FifteenTracker {
+            mean_gospa: mean(&gospas[0]),
+            mean_ms_per_scan: mean(&times[0]),
+            max_ms_per_scan: max(&times[0]),
+        },
+        homht: FifteenHomht {
+            mean_gospa: mean(&gospas[1]),
+            mean_ms_per_scan: mean(&times[1]),
+            max_ms_per_scan: max(&times[1]),
+            rejected_scans: homht_rejected,
+            max_children_per_scan: scenario.tracker.max_children_per_scan,
+        },
+        reference: Timing { mean_ms_per_scan: mean(&times[2]), max_ms_per_scan: max(&times[2]) },
+    };
+    write_json(&dir.join("fifteen.json"), &FifteenReport { figures: figures.clone(), per_scan })?;
     let points = |v: &[f64]| v.iter().enumerate().map(|(k, &y)| (k as f64, y)).collect::<Vec<_>>();
     plots::plot_series(
         &dir.join("fifteen_gospa"),
@@ -290,10 +357,10 @@ fn watched_run<G: ChildGenerator<f64, 64, 64>>(
     generator: &mut G,
     matrix: &AssociationMatrix<f64, 64, 64>,
     truth: &[u16],
-) -> Result<(f64, bool), String> {
+) -> Result<(f64, bool), Error> {
     let mut watch = Watch { top: TopChildren::new(), truth, truth_found: false, best: f64::NEG_INFINITY };
     let start = Instant::now();
-    generator.generate(matrix, &mut watch).map_err(|e| format!("{e:?}"))?;
+    generator.generate(matrix, &mut watch).map_err(|e| err(format!("{e:?}")))?;
     let seconds = start.elapsed().as_secs_f64();
     Ok((seconds, watch.truth_found || watch.best >= matrix.score(truth)))
 }
@@ -305,7 +372,7 @@ fn median_run<G: ChildGenerator<f64, 64, 64>>(
     mut make: impl FnMut(u64) -> G,
     matrix: &AssociationMatrix<f64, 64, 64>,
     truth: &[u16],
-) -> Result<(f64, bool), String> {
+) -> Result<(f64, bool), Error> {
     let mut times = vec![];
     let mut found = true;
     for r in 0..repeats {
@@ -333,7 +400,7 @@ fn scaling_shapes() -> Vec<(usize, usize, u128)> {
 /// whether the same generator finds the truth association of the MAP parent (`association_check`). Per scan: the check, ms, and (GOSPA,
 /// expected cardinality) after the step.
 struct DebrisRun {
-    checks: Vec<Value>,
+    checks: Vec<AssociationCheck>,
     ms: Vec<f64>,
     series: Vec<(Option<f64>, f64)>,
 }
@@ -342,11 +409,11 @@ fn debris_rfisst(
     scenario: &crate::scenario::Scenario,
     seed: u64,
     bar: &indicatif::ProgressBar,
-) -> Result<DebrisRun, String> {
+) -> Result<DebrisRun, Error> {
     let config = setup::sampler_config(scenario);
-    let truth = scenario.truth.as_ref().ok_or("debris scenario without truth")?;
+    let truth = scenario.truth.as_ref().ok_or_else(|| err("debris scenario without truth"))?;
     let mut rfisst = build(TrackerKind::Rfisst, Profile::Host, scenario, ReferenceBudget::default()).map_err(err)?;
-    let motion = setup::two_body(&scenario.motion).ok_or("debris scenario is two-body")?;
+    let motion = setup::two_body(&scenario.motion).ok_or_else(|| err("debris scenario is two-body"))?;
     let measurement = setup::measurement(&scenario.measurement);
     let tracker_config = setup::config::<TwoBody<f64>, 16>(scenario, motion, setup::sampled(scenario)).map_err(err)?;
     let weights = WeightModel::from_config(&tracker_config);
@@ -371,7 +438,7 @@ fn debris_rfisst(
         let outcome = rfisst.step(scan.time, &zs);
         run.ms.push(start.elapsed().as_secs_f64() * 1e3);
         if let Err(e) = outcome {
-            return Err(format!("rfisst rejected debris scan {k}: {e}"));
+            return Err(err(format!("rfisst rejected debris scan {k}: {e}")));
         }
         let s = rfisst.snapshot();
         run.series.push((score(scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
@@ -381,9 +448,9 @@ fn debris_rfisst(
     Ok(run)
 }
 
-/// The fraction of `checks` whose `key` is true.
-fn fraction_true(checks: &[Value], key: &str) -> f64 {
-    checks.iter().filter(|c| c[key] == json!(true)).count() as f64 / checks.len().max(1) as f64
+/// The fraction of `checks` with an outcome for which `found` is true.
+fn fraction_true(checks: &[AssociationCheck], found: fn(&CheckOutcome) -> bool) -> f64 {
+    checks.iter().filter(|c| c.outcome.as_ref().is_some_and(found)).count() as f64 / checks.len().max(1) as f64
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -393,7 +460,7 @@ fn mean(v: &[f64]) -> f64 {
 /// What the two additions beyond paper 003 gain, each switched off: clusters (`tracker.sampler.clusters`)
 /// and the exact start (`tracker.sampler.exact_start`). Per variant: the fifty-object run (embedded), the
 /// debris crossing (host profile) with its truth-association check, and the scaling family's truth check.
-fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
+fn ablation(dir: &Path, seed: u64) -> Result<BTreeMap<String, AblationVariant>, Error> {
     let variants = [
         ("default", true, true),
         ("no_clusters", false, true),
@@ -402,7 +469,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
     ];
     let fifty_scenario = sim::fifty_birth_death(seed).run();
     let debris_scenario = sim::debris_crossing(seed).run();
-    let mut figures = serde_json::Map::new();
+    let mut figures = BTreeMap::new();
     for (name, clusters, exact_start) in variants {
         let config = SamplerConfig { clusters, exact_start, ..SamplerConfig::default() };
         let with = |scenario: &crate::scenario::Scenario| {
@@ -413,34 +480,28 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
         };
         // Fifty objects: the run's summary.
         let sub = dir.join(name).join("fifty");
-        std::fs::create_dir_all(&sub).map_err(|e| format!("{}: {e}", sub.display()))?;
-        let (summary, _) =
-            evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub).map_err(err)?;
-        let pick = |keys: &[&str]| -> Value {
-            Value::Object(
-                keys.iter().map(|&k| (k.to_string(), summary.get(k).cloned().unwrap_or(Value::Null))).collect(),
-            )
+        std::fs::create_dir_all(&sub).map_err(|e| Error::output(&sub, e))?;
+        let (summary, _) = evaluate::run(&with(&fifty_scenario), TrackerKind::Rfisst, &options(true), &sub)?;
+        let fifty = AblationFifty {
+            mean_gospa: summary.mean_gospa,
+            final_expected_cardinality: summary.final_expected_cardinality,
+            births_confirmed: summary.births_confirmed,
+            in_view_red_stars: summary.in_view_red_stars,
+            in_view_misses_after_confirmation: summary.in_view_misses_after_confirmation,
+            mean_captured_mass: summary.mean_captured_mass,
+            min_captured_mass: summary.min_captured_mass,
+            mean_ms_per_scan: summary.mean_ms_per_scan,
+            max_ms_per_scan: summary.max_ms_per_scan,
         };
-        let fifty = pick(&[
-            "mean_gospa",
-            "final_expected_cardinality",
-            "births_confirmed",
-            "in_view_red_stars",
-            "in_view_misses_after_confirmation",
-            "mean_captured_mass",
-            "min_captured_mass",
-            "mean_ms_per_scan",
-            "max_ms_per_scan",
-        ]);
         // Debris: the truth-association check on each scan's MAP parent, then the step.
         let run = debris_rfisst(&with(&debris_scenario), seed, &indicatif::ProgressBar::hidden())?;
-        let debris = json!({
-            "truth_association_found_fraction": fraction_true(&run.checks, "truth_found_or_beaten"),
-            "mean_gospa": mean(&run.series.iter().filter_map(|s| s.0).collect::<Vec<_>>()),
-            "final_expected_cardinality": run.series.last().map_or(0.0, |s| s.1),
-            "mean_ms_per_scan": mean(&run.ms),
-            "max_ms_per_scan": run.ms.iter().copied().fold(0.0, f64::max),
-        });
+        let debris = AblationDebris {
+            truth_association_found_fraction: fraction_true(&run.checks, |o| o.truth_found_or_beaten),
+            mean_gospa: mean(&run.series.iter().filter_map(|s| s.0).collect::<Vec<_>>()),
+            final_expected_cardinality: run.series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean(&run.ms),
+            max_ms_per_scan: run.ms.iter().copied().fold(0.0, f64::max),
+        };
         // The scaling family: sizes whose truth association the generator found or beat.
         let (mut sizes, mut missed) = (0usize, vec![]);
         for (objects, measurements, children) in scaling_shapes() {
@@ -452,13 +513,17 @@ fn ablation(dir: &Path, seed: u64) -> Result<Value, String> {
                 missed.push(children as f64);
             }
         }
-        figures.insert(
-            name.to_string(),
-            json!({"clusters": clusters, "exact_start": exact_start, "fifty": fifty, "debris": debris, "scaling_sizes": sizes, "scaling_truth_missed_at": missed}),
-        );
+        let variant = AblationVariant {
+            clusters,
+            exact_start,
+            fifty,
+            debris,
+            scaling_sizes: sizes,
+            scaling_truth_missed_at: missed,
+        };
+        figures.insert(name.to_string(), variant);
     }
-    let figures = Value::Object(figures);
-    write_json(&dir.join("ablation.json"), &figures).map_err(err)?;
+    write_json(&dir.join("ablation.json"), &figures)?;
     Ok(figures)
 }
 
@@ -489,7 +554,7 @@ fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (Associatio
 }
 
 /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
-fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
+fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
     // Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
     const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
     let mut rows = vec![];
@@ -547,7 +612,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
             "{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"
         ));
     }
-    std::fs::write(dir.join("scaling.csv"), csv).map_err(err)?;
+    std::fs::write(dir.join("scaling.csv"), csv).map_err(|e| Error::output(&dir.join("scaling.csv"), e))?;
     // Crossover: the smallest size from which R-FISST is faster at every larger size measured.
     let mut crossover: Option<u128> = None;
     for (i, row) in rows.iter().enumerate() {
@@ -577,24 +642,43 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
     };
     let largest = rows.iter().map(|r| r.0).max().unwrap_or(0);
     let found_all = rows.iter().all(|r| r.5);
-    let figures = json!({
-        "experiment": "scaling",
-        "seed": seed,
-        "crossover_children": crossover.map(|c| c as f64),
-        "pure_sampling_crossover_children": pure_crossover.map(|c| c as f64),
-        "speedup_at_1e8": ratio_at(1e8),
-        "largest_children": largest as f64,
-        "exhaustive_budget_seconds": EXHAUSTIVE_BUDGET_SECONDS,
-        "exhaustive_broken_beyond": rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
-        "rfisst_found_truth_at_every_size": found_all,
-        "rfisst_sizes_truth_missed": rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect::<Vec<_>>(),
-        "rfisst_100k_found_truth_at_every_size": rows.iter().all(|r| r.7),
-        "rfisst_100k_max_seconds": rows.iter().map(|r| r.6).fold(0.0, f64::max),
-        "rfisst_max_seconds": rows.iter().map(|r| r.4).fold(0.0, f64::max),
-        "sampler": {"burn_in": SamplerConfig::default().burn_in, "steps": SamplerConfig::default().steps, "exhaustive_limit": SamplerConfig::default().exhaustive_limit, "exact_start": SamplerConfig::default().exact_start},
-        "sizes": rows.iter().map(|r| json!({"children": r.0 as f64, "objects": r.1, "measurements": r.2, "exhaustive_seconds": r.3, "rfisst_seconds": r.4, "rfisst_found_truth": r.5, "rfisst_100k_seconds": r.6, "rfisst_100k_found_truth": r.7, "pure_sampling_seconds": r.8})).collect::<Vec<_>>(),
-    });
-    write_json(&dir.join("scaling.json"), &figures).map_err(err)?;
+    let sampler = SamplerConfig::default();
+    let figures = ScalingFigures {
+        experiment: "scaling".into(),
+        seed,
+        crossover_children: crossover.map(|c| c as f64),
+        pure_sampling_crossover_children: pure_crossover.map(|c| c as f64),
+        speedup_at_1e8: ratio_at(1e8),
+        largest_children: largest as f64,
+        exhaustive_budget_seconds: EXHAUSTIVE_BUDGET_SECONDS,
+        exhaustive_broken_beyond: rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
+        rfisst_found_truth_at_every_size: found_all,
+        rfisst_sizes_truth_missed: rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect(),
+        rfisst_100k_found_truth_at_every_size: rows.iter().all(|r| r.7),
+        rfisst_100k_max_seconds: rows.iter().map(|r| r.6).fold(0.0, f64::max),
+        rfisst_max_seconds: rows.iter().map(|r| r.4).fold(0.0, f64::max),
+        sampler: ScalingSampler {
+            burn_in: sampler.burn_in,
+            steps: sampler.steps,
+            exhaustive_limit: sampler.exhaustive_limit,
+            exact_start: sampler.exact_start,
+        },
+    };
+    let sizes = rows
+        .iter()
+        .map(|r| ScalingSize {
+            children: r.0 as f64,
+            objects: r.1,
+            measurements: r.2,
+            exhaustive_seconds: r.3,
+            rfisst_seconds: r.4,
+            rfisst_found_truth: r.5,
+            rfisst_100k_seconds: r.6,
+            rfisst_100k_found_truth: r.7,
+            pure_sampling_seconds: r.8,
+        })
+        .collect();
+    write_json(&dir.join("scaling.json"), &ScalingReport { figures: figures.clone(), sizes })?;
     let series = [
         Series {
             name: "exhaustive (HOMHT)".into(),
@@ -626,17 +710,13 @@ fn scaling(dir: &Path, seed: u64) -> Result<Value, String> {
         Scale::Log10,
         &series,
     )?;
-    let mut brief = figures.clone();
-    if let Some(o) = brief.as_object_mut() {
-        o.remove("sizes");
-    }
-    Ok(brief)
+    Ok(figures)
 }
 
 /// Debris crossing: R-FISST vs HOMHT with the same time budget per scan, and the truth-association check.
-fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
+fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures, Error> {
     let scenario = sim::debris_crossing(seed).run();
-    scenario.save(&dir.join("scenario.json")).map_err(err)?;
+    scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Host;
 
     // R-FISST first, with the truth-association check on its MAP parent before each scan.
@@ -668,31 +748,42 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<Value, String> {
     let true_count: Vec<f64> =
         (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
     let gospa = |series: &[(Option<f64>, f64)]| mean(&series.iter().filter_map(|s| s.0).collect::<Vec<_>>());
-    let min_children = checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(f64::INFINITY, f64::min);
-    let figures = json!({
-        "experiment": "debris",
-        "seed": seed,
-        "scans": scenario.scans.len(),
-        "min_possible_children_per_map_parent": min_children,
-        "max_possible_children_per_map_parent": checks.iter().filter_map(|c| c["possible_children"].as_f64()).fold(0.0, f64::max),
-        "truth_association_found_fraction": fraction_true(&checks, "truth_found_or_beaten"),
-        "truth_association_found_fraction_100k_steps": fraction_true(&checks, "truth_found_or_beaten_100k_steps"),
-        "rfisst": {"mean_gospa": gospa(&rfisst_series), "final_expected_cardinality": rfisst_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean_rfisst_ms, "max_ms_per_scan": rfisst_ms.iter().copied().fold(0.0, f64::max)},
-        "homht": {"mean_gospa": gospa(&homht_series), "final_expected_cardinality": homht_series.last().map_or(0.0, |s| s.1), "mean_ms_per_scan": mean(&homht_ms), "children_budget_per_scan": budget, "rejected_scans": homht_rejected},
-        "true_final_cardinality": true_count.last().copied().unwrap_or(0.0),
-    });
-    let mut full = figures.clone();
-    full["per_scan"] = json!(
-        (0..scenario.scans.len())
-            .map(|k| json!({
-                "scan": k,
-                "rfisst_gospa": rfisst_series[k].0, "rfisst_expected_cardinality": rfisst_series[k].1,
-                "homht_gospa": homht_series[k].0, "homht_expected_cardinality": homht_series[k].1,
-                "true_cardinality": true_count[k], "check": checks[k],
-            }))
-            .collect::<Vec<_>>()
-    );
-    write_json(&dir.join("debris.json"), &full).map_err(err)?;
+    let children: Vec<f64> = checks.iter().map(|c| c.possible_children).filter(|c| c.is_finite()).collect();
+    let figures = DebrisFigures {
+        experiment: "debris".into(),
+        seed,
+        scans: scenario.scans.len(),
+        min_possible_children_per_map_parent: children.iter().copied().fold(f64::INFINITY, f64::min),
+        max_possible_children_per_map_parent: children.iter().copied().fold(0.0, f64::max),
+        truth_association_found_fraction: fraction_true(&checks, |o| o.truth_found_or_beaten),
+        truth_association_found_fraction_100k_steps: fraction_true(&checks, |o| o.truth_found_or_beaten_100k_steps),
+        rfisst: DebrisRfisst {
+            mean_gospa: gospa(&rfisst_series),
+            final_expected_cardinality: rfisst_series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean_rfisst_ms,
+            max_ms_per_scan: rfisst_ms.iter().copied().fold(0.0, f64::max),
+        },
+        homht: DebrisHomht {
+            mean_gospa: gospa(&homht_series),
+            final_expected_cardinality: homht_series.last().map_or(0.0, |s| s.1),
+            mean_ms_per_scan: mean(&homht_ms),
+            children_budget_per_scan: budget,
+            rejected_scans: homht_rejected,
+        },
+        true_final_cardinality: true_count.last().copied().unwrap_or(0.0),
+    };
+    let per_scan = (0..scenario.scans.len())
+        .map(|k| DebrisScan {
+            scan: k,
+            rfisst_gospa: rfisst_series[k].0,
+            rfisst_expected_cardinality: rfisst_series[k].1,
+            homht_gospa: homht_series[k].0,
+            homht_expected_cardinality: homht_series[k].1,
+            true_cardinality: true_count[k],
+            check: checks[k],
+        })
+        .collect();
+    write_json(&dir.join("debris.json"), &DebrisReport { figures: figures.clone(), per_scan })?;
     let over_time = |f: &dyn Fn(usize) -> Option<f64>| {
         (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>()
     };
@@ -753,8 +844,10 @@ fn association_check(
     fov: &tracker_core::Region<f64>,
     seed: u64,
     base: SamplerConfig,
-) -> Result<Value, String> {
-    let Some(map) = parent.hypotheses.first() else { return Ok(json!({"possible_children": 0.0})) };
+) -> Result<AssociationCheck, Error> {
+    let Some(map) = parent.hypotheses.first() else {
+        return Ok(AssociationCheck { possible_children: 0.0, outcome: None });
+    };
     let mut matrix = AssociationMatrix::<f64, 128, 64>::new(zs.len(), 0, 0.0);
     let mut column_label: HashMap<u32, u16> = HashMap::new();
     for &t in &map.tracks {
@@ -797,17 +890,19 @@ fn association_check(
     for steps in [base.steps, 100_000] {
         let mut generator = ClusteredChildren::<f64, 128, 64, 256>::new(SamplerConfig { steps, ..base }, seed);
         let mut best = Best { truth: &truth, found: false, best: f64::NEG_INFINITY };
-        generator.generate(&matrix, &mut best).map_err(|e| format!("{e:?}"))?;
+        generator.generate(&matrix, &mut best).map_err(|e| err(format!("{e:?}")))?;
         outcomes.push(best);
     }
-    Ok(json!({
-        "possible_children": association_count(in_view as u32, zs.len() as u32) as f64,
-        "objects_in_view": in_view,
-        "measurements": zs.len(),
-        "truth_offered": outcomes[0].found,
-        "truth_found_or_beaten": outcomes[0].found || outcomes[0].best >= truth_score,
-        "best_over_truth_log": outcomes[0].best - truth_score,
-        "truth_found_or_beaten_100k_steps": outcomes[1].found || outcomes[1].best >= truth_score,
-        "best_over_truth_log_100k_steps": outcomes[1].best - truth_score,
-    }))
+    Ok(AssociationCheck {
+        possible_children: association_count(in_view as u32, zs.len() as u32) as f64,
+        outcome: Some(CheckOutcome {
+            objects_in_view: in_view,
+            measurements: zs.len(),
+            truth_offered: outcomes[0].found,
+            truth_found_or_beaten: outcomes[0].found || outcomes[0].best >= truth_score,
+            best_over_truth_log: outcomes[0].best - truth_score,
+            truth_found_or_beaten_100k_steps: outcomes[1].found || outcomes[1].best >= truth_score,
+            best_over_truth_log_100k_steps: outcomes[1].best - truth_score,
+        }),
+    })
 }

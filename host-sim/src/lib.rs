@@ -5,11 +5,14 @@
 //! - [`setup`] turns a scenario into tracker-core values; [`runner`] runs a core tracker or the
 //!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
+//! - [`report`] holds the typed records of every JSON file the commands write; [`error`] the one error
+//!   type of the commands and its exit codes.
 
 // `!(x > 0)` is deliberate: unlike `x <= 0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod digest;
+pub mod error;
 pub mod evaluate;
 pub mod experiment;
 pub mod gibbs;
@@ -18,6 +21,7 @@ pub mod murty;
 pub mod perf;
 pub mod plots;
 pub mod reference;
+pub mod report;
 pub mod rng;
 pub mod runner;
 pub mod sampler_check;
@@ -26,3 +30,5 @@ pub mod setup;
 pub mod sim;
 pub mod snapshot;
 pub mod soak;
+
+pub use error::Error;

@@ -2,14 +2,16 @@
 //!
 //! Exit codes: 0 success; 2 a malformed scenario file or invalid arguments (one-line message on stderr);
 //! 3 the run finished but the tracker rejected some scans (listed in `summary.json` and on stderr);
-//! 1 any other failure (for example an output file that cannot be written).
+//! 1 any other failure: an output file that cannot be written, or an internal error.
 
 use clap::{Parser, Subcommand};
+use host_sim::Error;
 use host_sim::evaluate::{self, Options};
+use host_sim::experiment::Experiment;
 use host_sim::runner::{Profile, TrackerKind};
-use host_sim::scenario::{Scenario, ScenarioError};
-use host_sim::sim;
-use std::path::PathBuf;
+use host_sim::scenario::Scenario;
+use host_sim::sim::Preset;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -58,8 +60,9 @@ impl Common {
 enum Command {
     /// Simulate a preset scenario and write it as a scenario file.
     Generate {
-        /// fifty-birth-death, fifteen-compare, debris-crossing or linear-small.
-        preset: String,
+        /// The preset.
+        #[arg(value_enum)]
+        preset: Preset,
         /// Seed of every random choice.
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -93,10 +96,11 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// Reproduce a paper experiment (fifty, fifteen, scaling, debris) or all of them.
+    /// Reproduce a paper experiment (fifty, fifteen, scaling, debris), the ablation, or all of them.
     Experiment {
-        /// fifty, fifteen, scaling, debris or all.
-        name: String,
+        /// The experiment.
+        #[arg(value_enum)]
+        experiment: Experiment,
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
@@ -118,7 +122,7 @@ enum Command {
     },
     /// Run a long scenario with objects entering and leaving; writes a JSON file of health figures.
     Soak {
-        /// Number of scans.
+        /// Number of scans, at most 10,000,000.
         #[arg(long, default_value_t = 100_000)]
         scans: u64,
         /// Seed.
@@ -153,22 +157,51 @@ enum Command {
     },
 }
 
-enum Failure {
-    Input(ScenarioError),
+/// Why a command failed, at the command line's edge: a one-line message and an exit code.
+enum CliError {
+    /// A failed command (exit code 2 for bad input, 1 otherwise; [`Error::exit_code`]).
+    Failed(Error),
+    /// The run finished but the tracker rejected some scans (exit code 3).
     Rejected,
 }
 
-fn execute(cli: Cli) -> Result<(), Failure> {
+impl From<Error> for CliError {
+    fn from(e: Error) -> Self {
+        CliError::Failed(e)
+    }
+}
+
+impl From<host_sim::scenario::ScenarioError> for CliError {
+    fn from(e: host_sim::scenario::ScenarioError) -> Self {
+        CliError::Failed(e.into())
+    }
+}
+
+impl CliError {
+    /// The exit code.
+    fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Failed(e) => e.exit_code(),
+            CliError::Rejected => 3,
+        }
+    }
+}
+
+impl std::fmt::Display for CliError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CliError::Failed(e) => write!(f, "{e}"),
+            CliError::Rejected => f.write_str("the tracker rejected some scans (see rejected_scans in summary.json)"),
+        }
+    }
+}
+
+fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Generate { preset, seed, out } => {
-            let simulation = sim::preset(&preset, seed).ok_or_else(|| {
-                Failure::Input(ScenarioError(format!(
-                    "unknown preset \"{preset}\"; one of: {}",
-                    sim::PRESETS.join(", ")
-                )))
-            })?;
+            let simulation = preset.simulation(seed);
             let scenario = simulation.run();
-            scenario.save(&out).map_err(Failure::Input)?;
+            scenario.save(&out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, {} objects)",
                 out.display(),
@@ -179,62 +212,48 @@ fn execute(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Run { file, tracker, out, common } => {
-            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
-            let (summary, clean) =
-                evaluate::run(&scenario, tracker, &common.options(), &out).map_err(Failure::Input)?;
+            let scenario = Scenario::load(&file)?;
+            let (summary, clean) = evaluate::run(&scenario, tracker, &common.options(), &out)?;
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
-            if clean { Ok(()) } else { Err(Failure::Rejected) }
+            if clean { Ok(()) } else { Err(CliError::Rejected) }
         }
         Command::Compare { file, tracker, out, common } => {
             if tracker == TrackerKind::Reference {
-                return Err(Failure::Input(ScenarioError(
-                    "--tracker: the bounded tracker must be homht or rfisst".into(),
-                )));
+                return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst").into());
             }
-            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
-            let result = evaluate::compare(&scenario, tracker, &common.options(), &out).map_err(Failure::Input)?;
-            let mut brief = result.clone();
-            if let Some(object) = brief.as_object_mut() {
-                object.remove("per_scan");
-            }
-            println!("{}", serde_json::to_string_pretty(&brief).unwrap_or_default());
+            let scenario = Scenario::load(&file)?;
+            let result = evaluate::compare(&scenario, tracker, &common.options(), &out)?;
+            println!("{}", serde_json::to_string_pretty(&result.summary).unwrap_or_default());
             Ok(())
         }
-        Command::Experiment { name, out, seed, runs, quiet } => {
-            host_sim::experiment::run(&name, &out, seed, runs, quiet).map_err(|e| Failure::Input(ScenarioError(e)))?;
-            Ok(())
+        Command::Experiment { experiment, out, seed, runs, quiet } => {
+            Ok(host_sim::experiment::run(experiment, &out, seed, runs, quiet)?)
         }
         Command::Perf { out } => {
-            let report = host_sim::perf::run().map_err(|e| Failure::Input(ScenarioError(e)))?;
+            let report = host_sim::perf::run().map_err(Error::internal)?;
             write_report(&out, &report)
         }
         Command::Soak { scans, seed, out, quiet } => {
-            let report = host_sim::soak::run(scans, seed, quiet).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            let report = host_sim::soak::run(scans, seed, quiet)?;
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {
-            let scenario = Scenario::load(&file).map_err(Failure::Input)?;
-            let digest = host_sim::digest::run(&scenario, scans).map_err(|e| Failure::Input(ScenarioError(e)))?;
+            let scenario = Scenario::load(&file)?;
+            let digest = host_sim::digest::run(&scenario, scans)?;
             println!("{digest}");
             Ok(())
         }
         Command::SamplerCheck { cases, seed, out } => {
-            let report = host_sim::sampler_check::run(cases, seed).map_err(|e| Failure::Input(ScenarioError(e)))?;
-            let text = serde_json::to_string_pretty(&report).unwrap_or_default();
-            std::fs::write(&out, format!("{text}\n"))
-                .map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
-            println!("{text}");
-            Ok(())
+            let report = host_sim::sampler_check::run(cases, seed)?;
+            write_report(&out, &report)
         }
     }
 }
 
 /// Writes a JSON report to `out` and prints it.
-fn write_report(out: &std::path::Path, report: &serde_json::Value) -> Result<(), Failure> {
-    let text = serde_json::to_string_pretty(report).unwrap_or_default();
-    std::fs::write(out, format!("{text}\n"))
-        .map_err(|e| Failure::Input(ScenarioError(format!("{}: {e}", out.display()))))?;
-    println!("{text}");
+fn write_report(out: &Path, report: &impl serde::Serialize) -> Result<(), CliError> {
+    evaluate::write_json(out, report)?;
+    println!("{}", serde_json::to_string_pretty(report).unwrap_or_default());
     Ok(())
 }
 
@@ -251,13 +270,9 @@ fn main() -> ExitCode {
     };
     match outcome {
         Ok(Ok(())) => ExitCode::SUCCESS,
-        Ok(Err(Failure::Input(e))) => {
+        Ok(Err(e)) => {
             eprintln!("error: {e}");
-            ExitCode::from(2)
-        }
-        Ok(Err(Failure::Rejected)) => {
-            eprintln!("error: the tracker rejected some scans (see rejected_scans in summary.json)");
-            ExitCode::from(3)
+            ExitCode::from(e.exit_code())
         }
         Err(_) => {
             eprintln!("error: internal failure (a panic); please report it with the scenario file");

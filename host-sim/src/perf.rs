@@ -37,7 +37,7 @@ use crate::murty::Murty;
 use crate::setup;
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
-use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::{SplitMix64, Xoshiro256PlusPlus};
 use serde_json::{Value, json};
 use std::hint::black_box;
 use std::time::Instant;
@@ -58,15 +58,6 @@ const SAMPLES_PER_ROUND: usize = 40;
 /// Passes over the fifty-object scenario (in the first rounds).
 const FIFTY_PASSES: usize = 5;
 
-/// SplitMix64 step (the bench inputs' generator).
-fn splitmix(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
 /// The crossing matrix of the benches (`benches::crossing_matrix`, same generator and output): each of
 /// `rows` measurements is inside the gate of `in_gate` objects around its own (entries −2 to +8 nats).
 pub fn crossing_matrix<const N: usize, const Z: usize>(
@@ -75,14 +66,15 @@ pub fn crossing_matrix<const N: usize, const Z: usize>(
     in_gate: usize,
     seed: u64,
 ) -> AssociationMatrix<f64, N, Z> {
-    let mut state = seed;
+    // The bench inputs' generator: SplitMix64 from the seed.
+    let mut state = SplitMix64::seed_from_u64(seed);
     let mut m = AssociationMatrix::new(rows, columns, 0.0);
     let mut column_entries = vec![vec![f64::NEG_INFINITY; rows]; columns];
     for row in 0..rows {
         let centre = row * columns / rows.max(1);
         for k in 0..in_gate {
             let column = (centre + k).min(columns - 1);
-            let u = (splitmix(&mut state) >> 11) as f64 / (1u64 << 53) as f64;
+            let u = (state.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
             if let Some(entry) = column_entries[column].get_mut(row) {
                 *entry = -2.0 + 10.0 * u;
             }
@@ -292,11 +284,11 @@ impl ExhaustiveBench {
     const COLUMNS: usize = 9;
 
     fn new() -> Self {
-        let mut state = 11u64;
+        let mut state = SplitMix64::seed_from_u64(11);
         let mut matrix = AssociationMatrix::new(Self::ROWS, Self::COLUMNS, 0.0);
         for column in 0..Self::COLUMNS {
             let entries: Vec<f64> = (0..Self::ROWS)
-                .map(|_| -2.0 + 10.0 * ((splitmix(&mut state) >> 11) as f64 / (1u64 << 53) as f64))
+                .map(|_| -2.0 + 10.0 * ((state.next_u64() >> 11) as f64 / (1u64 << 53) as f64))
                 .collect();
             matrix.set_column(column, &entries, false);
         }

@@ -18,6 +18,18 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{FontStyle, register_font};
 
+/// A figure that could not be drawn or written: a one-line message naming the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlotError(pub String);
+
+impl std::fmt::Display for PlotError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for PlotError {}
+
 /// The sensor's field of view drawn as two boundary rays and an arc: origin, boresight direction (radians from +x),
 /// half angle (radians), max range. Same units as the points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,7 +91,7 @@ pub enum Scale {
 /// Panels are 600x600 px with the legend in a strip below. Each panel's axes fit its points, its central body and its
 /// sensor origin (the whole FOV only when there is nothing else); FOV lines are clipped to that view. Outside-bound
 /// estimates are drawn as red stars.
-pub fn plot_snapshots(stem: &Path, panels: &[SnapshotPanel]) -> Result<(), String> {
+pub fn plot_snapshots(stem: &Path, panels: &[SnapshotPanel]) -> Result<(), PlotError> {
     ensure_font_registered()?;
     write_png_and_svg(stem, &SnapshotFigure::new(panels)?)
 }
@@ -88,7 +100,7 @@ pub fn plot_snapshots(stem: &Path, panels: &[SnapshotPanel]) -> Result<(), Strin
 ///
 /// Weights are sorted into descending order (rank 1 = most likely); non-finite weights are dropped. The y axis grows
 /// beyond [0, 1] only if a weight does. Panels are laid out like [`plot_snapshots`], about 500x420 px each.
-pub fn plot_hypothesis_weights(stem: &Path, panels: &[(String, Vec<f64>)]) -> Result<(), String> {
+pub fn plot_hypothesis_weights(stem: &Path, panels: &[(String, Vec<f64>)]) -> Result<(), PlotError> {
     ensure_font_registered()?;
     write_png_and_svg(stem, &WeightsFigure { panels })
 }
@@ -107,7 +119,7 @@ pub fn plot_series(
     x_scale: Scale,
     y_scale: Scale,
     series: &[Series],
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     ensure_font_registered()?;
     write_png_and_svg(stem, &LineChart { title, x_label, y_label, x_scale, y_scale, series })
 }
@@ -143,12 +155,12 @@ const PALETTE: [RGBColor; 10] = [
 ];
 
 /// Registers the vendored font once per process under the family name plotters uses by default.
-fn ensure_font_registered() -> Result<(), String> {
-    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+fn ensure_font_registered() -> Result<(), PlotError> {
+    static REGISTERED: OnceLock<Result<(), PlotError>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
             register_font(FONT, FontStyle::Normal, FONT_BYTES)
-                .map_err(|_| "plots: the vendored DejaVuSans.ttf is not a valid font".to_string())
+                .map_err(|_| PlotError("plots: the vendored DejaVuSans.ttf is not a valid font".to_string()))
         })
         .clone()
 }
@@ -158,11 +170,11 @@ trait Figure {
     /// Canvas size in pixels (width, height).
     fn canvas_size(&self) -> (u32, u32);
     /// Draws onto a white canvas.
-    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError>;
 }
 
-fn to_message(error: impl Display) -> String {
-    error.to_string()
+fn to_message(error: impl Display) -> PlotError {
+    PlotError(error.to_string())
 }
 
 /// `stem` + "." + `extension` (appended, so dots inside the stem survive).
@@ -174,33 +186,33 @@ fn path_with_extension(stem: &Path, extension: &str) -> PathBuf {
 }
 
 /// Renders `figure` to `<stem>.png` and `<stem>.svg`, creating the parent directory if needed.
-fn write_png_and_svg(stem: &Path, figure: &impl Figure) -> Result<(), String> {
+fn write_png_and_svg(stem: &Path, figure: &impl Figure) -> Result<(), PlotError> {
     if stem.as_os_str().is_empty() {
-        return Err("plots: empty output path".to_string());
+        return Err(PlotError("plots: empty output path".to_string()));
     }
     let size = figure.canvas_size();
     if size.0 > MAX_CANVAS_SIDE || size.1 > MAX_CANVAS_SIDE {
-        return Err(format!(
+        return Err(PlotError(format!(
             "plots: figure for {} would be {}x{} px, more than {MAX_CANVAS_SIDE} px per side (too many panels?)",
             stem.display(),
             size.0,
             size.1
-        ));
+        )));
     }
     if let Some(parent) = stem.parent().filter(|parent| !parent.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)
-            .map_err(|e| format!("plots: cannot create directory {}: {e}", parent.display()))?;
+            .map_err(|e| PlotError(format!("plots: cannot create directory {}: {e}", parent.display())))?;
     }
 
     let png_path = path_with_extension(stem, "png");
     render(BitMapBackend::new(&png_path, size).into_drawing_area(), figure)
-        .map_err(|e| format!("plots: writing {} failed: {e}", png_path.display()))?;
+        .map_err(|e| PlotError(format!("plots: writing {} failed: {e}", png_path.display())))?;
     let svg_path = path_with_extension(stem, "svg");
     render(SVGBackend::new(&svg_path, size).into_drawing_area(), figure)
-        .map_err(|e| format!("plots: writing {} failed: {e}", svg_path.display()))
+        .map_err(|e| PlotError(format!("plots: writing {} failed: {e}", svg_path.display())))
 }
 
-fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, figure: &impl Figure) -> Result<(), String> {
+fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, figure: &impl Figure) -> Result<(), PlotError> {
     root.fill(&WHITE).map_err(to_message)?;
     figure.draw_on(&root)?;
     root.present().map_err(to_message)
@@ -322,13 +334,13 @@ fn centered_text(size: u32) -> TextStyle<'static> {
 }
 
 /// Writes a centred grey message, used when there is nothing to plot.
-fn draw_message<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, message: &str) -> Result<(), String> {
+fn draw_message<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, message: &str) -> Result<(), PlotError> {
     let (width, height) = area.dim_in_pixel();
     let style = centered_text(22).color(&RGBColor(110, 110, 110));
     area.draw(&Text::new(message.to_string(), (width as i32 / 2, height as i32 / 2), style)).map_err(to_message)
 }
 
-fn draw_panel_title<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str) -> Result<(), String> {
+fn draw_panel_title<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str) -> Result<(), PlotError> {
     let (width, height) = area.dim_in_pixel();
     area.draw(&Text::new(title.to_string(), (width as i32 / 2, height as i32 / 2), centered_text(22)))
         .map_err(to_message)
@@ -431,7 +443,7 @@ struct SnapshotFigure<'a> {
 }
 
 impl<'a> SnapshotFigure<'a> {
-    fn new(panels: &'a [SnapshotPanel]) -> Result<Self, String> {
+    fn new(panels: &'a [SnapshotPanel]) -> Result<Self, PlotError> {
         let (columns, rows) = panel_grid(panels.len());
         let width = canvas_side(columns, SNAPSHOT_PANEL_SIDE);
         let panels_height = canvas_side(rows, SNAPSHOT_PANEL_SIDE);
@@ -449,7 +461,7 @@ impl<'a> SnapshotFigure<'a> {
 }
 
 /// Flows legend entries into lines no wider than `width`.
-fn layout_legend(symbols: &[LegendSymbol], width: u32) -> Result<Vec<Vec<PlacedLegendEntry>>, String> {
+fn layout_legend(symbols: &[LegendSymbol], width: u32) -> Result<Vec<Vec<PlacedLegendEntry>>, PlotError> {
     let font = (FONT, LEGEND_FONT_SIZE).into_font();
     let mut lines = Vec::new();
     let mut line: Vec<PlacedLegendEntry> = Vec::new();
@@ -474,7 +486,7 @@ impl Figure for SnapshotFigure<'_> {
         (self.width, self.panels_height.saturating_add(legend_height))
     }
 
-    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         let (panels_area, legend_area) = root.split_vertically(self.panels_height);
         if self.panels.is_empty() {
             draw_message(&panels_area, "No snapshot panels")?;
@@ -489,7 +501,7 @@ impl Figure for SnapshotFigure<'_> {
 fn draw_snapshot_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     lines: &[Vec<PlacedLegendEntry>],
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     let text_style = TextStyle::from((FONT, LEGEND_FONT_SIZE).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
     for (row, line) in lines.iter().enumerate() {
         let y = (LEGEND_PADDING + row as u32 * LEGEND_LINE_HEIGHT + LEGEND_LINE_HEIGHT / 2) as i32;
@@ -652,7 +664,10 @@ fn axis_caption(axis: &str, unit: &str) -> String {
     if unit.is_empty() { axis.to_string() } else { format!("{axis} [{unit}]") }
 }
 
-fn draw_snapshot_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &SnapshotPanel) -> Result<(), String> {
+fn draw_snapshot_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &SnapshotPanel,
+) -> Result<(), PlotError> {
     let (title_area, chart_area) = area.split_vertically(PANEL_TITLE_HEIGHT);
     draw_panel_title(&title_area, &panel.title)?;
 
@@ -732,7 +747,7 @@ impl Figure for WeightsFigure<'_> {
         (canvas_side(columns, WEIGHT_PANEL_SIZE.0), canvas_side(rows, WEIGHT_PANEL_SIZE.1))
     }
 
-    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         if self.panels.is_empty() {
             return draw_message(root, "No hypothesis weights");
         }
@@ -759,7 +774,7 @@ fn draw_weights_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     title: &str,
     weights: &[f64],
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     let (title_area, chart_area) = area.split_vertically(PANEL_TITLE_HEIGHT);
     draw_panel_title(&title_area, title)?;
 
@@ -844,7 +859,7 @@ impl Figure for LineChart<'_> {
         LINE_CHART_SIZE
     }
 
-    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         let runs = self.drawable_runs();
         let mut bounds = None;
         for &(x, y) in runs.iter().flatten().flatten() {
@@ -912,7 +927,7 @@ struct LineChartContent<'a> {
 }
 
 impl LineChartContent<'_> {
-    fn draw<DB, X, Y>(&self, root: &DrawingArea<DB, Shift>, x_spec: X, y_spec: Y) -> Result<(), String>
+    fn draw<DB, X, Y>(&self, root: &DrawingArea<DB, Shift>, x_spec: X, y_spec: Y) -> Result<(), PlotError>
     where
         DB: DrawingBackend,
         X: AsRangedCoord<Value = f64>,
@@ -1249,7 +1264,7 @@ mod tests {
         let blocker = dir.stem("blocker");
         std::fs::write(&blocker, b"a file, not a directory").unwrap();
         let error = plot_series(&blocker.join("chart"), "t", "x", "y", Scale::Linear, Scale::Linear, &[]).unwrap_err();
-        assert!(error.contains("blocker"), "message names the path: {error}");
+        assert!(error.0.contains("blocker"), "message names the path: {error}");
         assert!(plot_hypothesis_weights(Path::new(""), &[]).is_err());
     }
 
@@ -1258,7 +1273,7 @@ mod tests {
         let dir = TestDir::new("too-many");
         let panels = vec![SnapshotPanel::default(); 400];
         let error = plot_snapshots(&dir.stem("huge"), &panels).unwrap_err();
-        assert!(error.contains("px"), "{error}");
+        assert!(error.0.contains("px"), "{error}");
     }
 
     #[test]

@@ -81,13 +81,23 @@ pub struct StepInfo {
     pub budget_reached: bool,
 }
 
+/// A scan the tracker rejected, with the tracker's one-line message; the tracker is unchanged.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StepRejected(pub String);
+
+impl std::fmt::Display for StepRejected {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
 /// A tracker that processes scans.
 pub trait Runner: Send {
     /// Processes one scan.
     ///
     /// # Errors
-    /// The tracker's error as a message; the tracker is unchanged.
-    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String>;
+    /// [`StepRejected`] with the tracker's message; the tracker is unchanged.
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected>;
     /// The posterior now.
     fn snapshot(&self) -> Snapshot;
 }
@@ -101,8 +111,8 @@ impl<M, const H: usize, const N: usize, const Z: usize, const K: usize, const B:
 where
     M: MotionModel<f64, 4> + Send,
 {
-    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String> {
-        let report = self.tracker.step(time, measurements).map_err(|e| e.to_string())?;
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected> {
+        let report = self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string()))?;
         Ok(StepInfo {
             children: report.children,
             hypotheses: report.hypotheses,
@@ -139,8 +149,8 @@ struct ReferenceRunner<M> {
 }
 
 impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
-    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, String> {
-        let report = self.tracker.step(time, measurements).map_err(|e| e.to_string())?;
+    fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected> {
+        let report = self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string()))?;
         Ok(StepInfo {
             children: report.children,
             hypotheses: report.hypotheses,
@@ -170,15 +180,17 @@ impl Default for ReferenceBudget {
     }
 }
 
+/// The reference for `scenario`. It has no object capacity N: its event model is checked with the objects
+/// of the prior's largest hypothesis when it is built, and with each parent's objects at every scan.
 fn reference_runner<M>(
     scenario: &Scenario,
     motion: M,
     budget: ReferenceBudget,
-    max_objects: usize,
 ) -> Result<Box<dyn Runner>, ScenarioError>
 where
     M: MotionModel<f64, 4> + Clone + Send + 'static,
 {
+    let max_objects = scenario.prior.hypotheses.iter().map(|h| h.objects.len()).max().unwrap_or(0);
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
@@ -218,17 +230,13 @@ pub fn build(
 ) -> Result<Box<dyn Runner>, ScenarioError> {
     let children = if kind == TrackerKind::Rfisst { setup::sampled(scenario) } else { setup::exhaustive(scenario) };
     match (kind, scenario.motion) {
-        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => reference_runner(
-            scenario,
-            setup::two_body(&scenario.motion).expect("two-body"),
-            reference,
-            profile.caps().1,
-        ),
+        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => {
+            reference_runner(scenario, setup::two_body(&scenario.motion).expect("two-body"), reference)
+        }
         (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
             scenario,
             setup::constant_velocity(&scenario.motion).expect("constant velocity"),
             reference,
-            profile.caps().1,
         ),
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {
             core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)

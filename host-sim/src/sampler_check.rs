@@ -11,11 +11,12 @@
 //! - weight L1: Σ |w_sampler − w_exact| over all hypotheses;
 //! - top-1 found: the sampler kept the exact MAP hypothesis (or one tied with it).
 
+use crate::error::Error;
 use crate::reference::ReferenceTracker;
+use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use crate::rng::{Random, Stream};
 use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
-use serde_json::json;
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
@@ -128,27 +129,27 @@ struct Scores {
 }
 
 impl Scores {
-    fn json(&self) -> serde_json::Value {
+    fn record(&self) -> SamplerScores {
         let n = self.captured.len().max(1) as f64;
-        json!({
-            "mean_captured_mass": self.captured.iter().sum::<f64>() / n,
-            "min_captured_mass": self.captured.iter().copied().fold(1.0, f64::min),
-            // The case index of the minimum, to replay it.
-            "min_captured_case": (0..self.captured.len()).min_by(|&a, &b| self.captured[a].total_cmp(&self.captured[b])),
-            "mean_weight_l1": self.l1.iter().sum::<f64>() / n,
-            "top1_found_fraction": self.top1.iter().filter(|&&t| t).count() as f64 / n,
-            "mean_sampler_steps_per_case": self.steps.iter().sum::<u64>() as f64 / n,
-        })
+        SamplerScores {
+            mean_captured_mass: self.captured.iter().sum::<f64>() / n,
+            min_captured_mass: self.captured.iter().copied().fold(1.0, f64::min),
+            min_captured_case: (0..self.captured.len()).min_by(|&a, &b| self.captured[a].total_cmp(&self.captured[b])),
+            mean_weight_l1: self.l1.iter().sum::<f64>() / n,
+            top1_found_fraction: self.top1.iter().filter(|&&t| t).count() as f64 / n,
+            mean_sampler_steps_per_case: self.steps.iter().sum::<u64>() as f64 / n,
+        }
     }
 }
 
-fn run_sampler(case: &Case, sampler: SamplerConfig) -> Result<(Snapshot, u64), String> {
+fn run_sampler(index: u64, case: &Case, sampler: SamplerConfig) -> Result<(Snapshot, u64), Error> {
+    let failed = |e: &dyn std::fmt::Display| Error::internal(format!("case {index}: {e}"));
     let mut config = case.config.clone();
     config.children = ChildGeneration::Sampled(sampler);
     let prior: Vec<PriorHypothesis<'_, f64, 4>> =
         case.prior.iter().map(|(w, o)| PriorHypothesis { weight: *w, objects: o }).collect();
-    let mut tracker = Box::new(CheckTracker::new(config, &prior, 0.0).map_err(|e| e.to_string())?);
-    let report = tracker.step(1.0, &case.measurements).map_err(|e| e.to_string())?;
+    let mut tracker = Box::new(CheckTracker::new(config, &prior, 0.0).map_err(|e| failed(&e))?);
+    let report = tracker.step(1.0, &case.measurements).map_err(|e| failed(&e))?;
     Ok((Snapshot::of(&*tracker), report.sampler_steps))
 }
 
@@ -165,7 +166,7 @@ fn score(exact: &Snapshot, sampled: &Snapshot, scores: &mut Scores) {
 ///
 /// # Errors
 /// A message if a case cannot be built or run (a bug: cases are valid by construction).
-pub fn run(cases: usize, seed: u64) -> Result<serde_json::Value, String> {
+pub fn run(cases: usize, seed: u64) -> Result<SamplerCheckReport, Error> {
     let default = SamplerConfig::default();
     let pure = SamplerConfig { clusters: false, ..default };
     let mut default_scores = Scores::default();
@@ -173,26 +174,33 @@ pub fn run(cases: usize, seed: u64) -> Result<serde_json::Value, String> {
     let mut children = vec![];
     for index in 0..cases as u64 {
         let case = random_case(seed, index);
-        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2, 16)?;
-        let report = reference.step(1.0, &case.measurements).map_err(|e| format!("case {index}: {e}"))?;
+        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2, 16)
+            .map_err(|e| Error::internal(format!("case {index}: {e}")))?;
+        let report =
+            reference.step(1.0, &case.measurements).map_err(|e| Error::internal(format!("case {index}: {e}")))?;
         children.push(report.children as f64);
         let exact = reference.snapshot();
         for (config, scores) in [(default, &mut default_scores), (pure, &mut pure_scores)] {
-            let (sampled, steps) = run_sampler(&case, config).map_err(|e| format!("case {index}: {e}"))?;
+            let (sampled, steps) = run_sampler(index, &case, config)?;
             score(&exact, &sampled, scores);
             scores.steps.push(steps);
         }
     }
-    let mut report = default_scores.json();
-    let fields = report.as_object_mut().ok_or("report is an object")?;
-    fields.insert("cases".into(), json!(cases));
-    fields.insert("seed".into(), json!(seed));
-    fields.insert("mean_children_per_case".into(), json!(children.iter().sum::<f64>() / cases.max(1) as f64));
-    fields.insert("max_children_per_case".into(), json!(children.iter().copied().fold(0.0, f64::max)));
-    fields.insert(
-        "sampler".into(),
-        json!({"burn_in": default.burn_in, "steps": default.steps, "proposal": format!("{:?}", default.proposal), "clusters": default.clusters, "exhaustive_limit": default.exhaustive_limit, "exact_start": default.exact_start}),
-    );
-    fields.insert("pure_sampling".into(), pure_scores.json());
+    let report = SamplerCheckReport {
+        default: default_scores.record(),
+        cases,
+        seed,
+        mean_children_per_case: children.iter().sum::<f64>() / cases.max(1) as f64,
+        max_children_per_case: children.iter().copied().fold(0.0, f64::max),
+        sampler: SamplerSettings {
+            burn_in: default.burn_in,
+            steps: default.steps,
+            proposal: format!("{:?}", default.proposal),
+            clusters: default.clusters,
+            exhaustive_limit: default.exhaustive_limit,
+            exact_start: default.exact_start,
+        },
+        pure_sampling: pure_scores.record(),
+    };
     Ok(report)
 }

@@ -12,6 +12,23 @@ use std::path::Path;
 /// The format tag every scenario file carries.
 pub const FORMAT: &str = "rfisst-scenario/1";
 
+/// The largest scenario file read, in bytes (256 MiB): a longer file is rejected before it is parsed.
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
+/// The largest label of a prior object: the labels above it are kept for the births that follow.
+pub const MAX_PRIOR_LABEL: u32 = i32::MAX as u32;
+
+/// The largest magnitude of a covariance entry (of R, a birth cell or a prior object): sums and products
+/// of two entries, such as the symmetrisation (A + Aᵀ)/2 and H P Hᵀ + R, stay finite.
+pub const MAX_COVARIANCE_ENTRY: f64 = 1e150;
+
+/// The largest GOSPA order p.
+pub const MAX_GOSPA_ORDER: f64 = 100.0;
+
+/// The range of c^p (GOSPA cut-off c to the order p) and of the error bound: the metrics sum terms of
+/// that size, so inside it a distance can neither overflow nor vanish.
+pub const GOSPA_POWER_RANGE: (f64, f64) = (1e-200, 1e200);
+
 /// A problem with a scenario file: a one-line message that names the field.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ScenarioError(pub String);
@@ -28,10 +45,51 @@ fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError 
     ScenarioError(one_line(&format!("{field}: {message}")))
 }
 
-/// The message with every control character escaped (`\n`, `\r`, `\u{b}`, ...): a file's keys and values
-/// may hold any of them, and an error is always one line.
-fn one_line(message: &str) -> String {
-    message.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
+/// The message with every control character escaped (`\n`, `\r`, `\u{b}`, ...), and every invisible
+/// format character, line or paragraph separator and bidirectional control as `\u{202e}`: a file's keys
+/// and values may hold any of them, and an error is always one line that reads as it is stored.
+pub fn one_line(message: &str) -> String {
+    message
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_debug().to_string()
+            } else if is_format(c) {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// Unicode's line and paragraph separators (Zl, Zp) and format characters (Cf): invisible, or they move
+/// or reverse the text after them.
+fn is_format(c: char) -> bool {
+    matches!(
+        c,
+        '\u{ad}'
+            | '\u{600}'..='\u{605}'
+            | '\u{61c}'
+            | '\u{6dd}'
+            | '\u{70f}'
+            | '\u{890}'..='\u{891}'
+            | '\u{8e2}'
+            | '\u{180e}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{2028}'..='\u{202e}'
+            | '\u{2060}'..='\u{2064}'
+            | '\u{2066}'..='\u{206f}'
+            | '\u{feff}'
+            | '\u{fff9}'..='\u{fffb}'
+            | '\u{110bd}'
+            | '\u{110cd}'
+            | '\u{13430}'..='\u{1343f}'
+            | '\u{1bca0}'..='\u{1bca3}'
+            | '\u{1d173}'..='\u{1d17a}'
+            | '\u{e0001}'
+            | '\u{e0020}'..='\u{e007f}'
+    )
 }
 
 /// A complete scenario.
@@ -374,20 +432,21 @@ impl Default for EvaluationSpec {
 }
 
 impl Scenario {
-    /// Reads and checks a scenario file.
+    /// Reads and checks a scenario file of at most [`MAX_FILE_BYTES`].
     ///
     /// # Errors
     /// A one-line [`ScenarioError`] naming the file's problem.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| error(path.display(), e))?;
-        Self::from_json(&text)
+        Self::from_json(&read_limited(path)?)
     }
 
-    /// Parses and checks a scenario from JSON text.
+    /// Parses and checks a scenario from JSON text (a leading byte-order mark is skipped).
     ///
     /// # Errors
     /// A one-line [`ScenarioError`] naming the field.
     pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
+        // A UTF-8 byte-order mark is not JSON, but editors write one: skip it.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let deserializer = &mut serde_json::Deserializer::from_str(text);
         let scenario: Scenario = serde_path_to_error::deserialize(&mut *deserializer).map_err(|e| {
             // One line (`error`, `one_line`): keys and values may hold escaped line breaks.
@@ -404,10 +463,10 @@ impl Scenario {
     /// Writes the scenario as pretty JSON.
     ///
     /// # Errors
-    /// The I/O error, as a message.
-    pub fn save(&self, path: &Path) -> Result<(), ScenarioError> {
-        let text = serde_json::to_string_pretty(self).map_err(|e| error(path.display(), e))?;
-        std::fs::write(path, text).map_err(|e| error(path.display(), e))
+    /// [`crate::Error::Output`] when the file cannot be written.
+    pub fn save(&self, path: &Path) -> Result<(), crate::Error> {
+        let text = serde_json::to_string_pretty(self).map_err(|e| crate::Error::output(path, e))?;
+        std::fs::write(path, text).map_err(|e| crate::Error::output(path, e))
     }
 
     /// Checks everything the trackers rely on that the JSON types cannot express.
@@ -418,6 +477,19 @@ impl Scenario {
         if self.format != FORMAT {
             return Err(error("format", format!("expected \"{FORMAT}\", found \"{}\"", self.format)));
         }
+        self.validate_models()?;
+        self.validate_sensor()?;
+        self.validate_births_and_tracker()?;
+        self.prior.validate()?;
+        self.validate_scans()?;
+        if let Some(truth) = &self.truth {
+            truth.validate(&self.scans)?;
+        }
+        self.evaluation.validate()
+    }
+
+    /// Motion and measurement models.
+    fn validate_models(&self) -> Result<(), ScenarioError> {
         match self.motion {
             MotionSpec::TwoBody { mu, acceleration_noise, max_step, max_substeps } => {
                 positive("motion.mu", mu)?;
@@ -432,8 +504,11 @@ impl Scenario {
             }
         }
         let MeasurementSpec::Position { noise_covariance } = self.measurement;
-        covariance2("measurement.noise_covariance", &noise_covariance)?;
+        covariance2("measurement.noise_covariance", &noise_covariance)
+    }
 
+    /// Detection, clutter and field of view.
+    fn validate_sensor(&self) -> Result<(), ScenarioError> {
         let sensor = &self.sensor;
         let pd = sensor.detection_probability;
         if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
@@ -450,7 +525,7 @@ impl Scenario {
                         format!("{field_of_view_deg} is not in (0, 360]"),
                     ));
                 }
-                positive("sensor.field_of_view.max_range", max_range)?;
+                positive("sensor.field_of_view.max_range", max_range)
             }
             FieldOfViewSpec::Rectangle { min, max } => {
                 finite_all("sensor.field_of_view.min", &min)?;
@@ -458,10 +533,14 @@ impl Scenario {
                 if !(max[0] > min[0] && max[1] > min[1]) {
                     return Err(error("sensor.field_of_view", "max must exceed min on both axes"));
                 }
+                Ok(())
             }
-            FieldOfViewSpec::Everywhere { volume } => positive("sensor.field_of_view.volume", volume)?,
+            FieldOfViewSpec::Everywhere { volume } => positive("sensor.field_of_view.volume", volume),
         }
+    }
 
+    /// Birth and death probabilities, birth cells and the tracker settings.
+    fn validate_births_and_tracker(&self) -> Result<(), ScenarioError> {
         let alpha = self.birth.probability;
         if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
             return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
@@ -483,34 +562,11 @@ impl Scenario {
         if self.tracker.sampler.steps == 0 {
             return Err(error("tracker.sampler.steps", "must be > 0"));
         }
+        Ok(())
+    }
 
-        finite("prior.time", self.prior.time)?;
-        if self.prior.hypotheses.is_empty() {
-            return Err(error("prior.hypotheses", "needs at least one hypothesis"));
-        }
-        let mut total = 0.0;
-        for (h, hypothesis) in self.prior.hypotheses.iter().enumerate() {
-            let w = hypothesis.weight;
-            if !(w.is_finite() && w >= 0.0) {
-                return Err(error(format!("prior.hypotheses[{h}].weight"), format!("{w} is not finite and >= 0")));
-            }
-            total += w;
-            for (o, object) in hypothesis.objects.iter().enumerate() {
-                let field = format!("prior.hypotheses[{h}].objects[{o}]");
-                finite_all(&format!("{field}.mean"), &object.mean)?;
-                covariance4(&format!("{field}.covariance"), &object.covariance)?;
-                if hypothesis.objects[..o].iter().any(|other| other.label == object.label) {
-                    return Err(error(
-                        format!("{field}.label"),
-                        format!("label {} appears twice in the hypothesis", object.label),
-                    ));
-                }
-            }
-        }
-        if total <= 0.0 {
-            return Err(error("prior.hypotheses", "weights sum to zero"));
-        }
-
+    /// Scan times and measurements.
+    fn validate_scans(&self) -> Result<(), ScenarioError> {
         let mut previous = self.prior.time;
         for (k, scan) in self.scans.iter().enumerate() {
             finite(&format!("scans[{k}].time"), scan.time)?;
@@ -525,74 +581,154 @@ impl Scenario {
                 finite_all(&format!("scans[{k}].measurements[{j}]"), z)?;
             }
         }
-
-        if let Some(truth) = &self.truth {
-            if truth.scans.len() != self.scans.len() {
-                return Err(error(
-                    "truth.scans",
-                    format!("has {} entries for {} scans", truth.scans.len(), self.scans.len()),
-                ));
-            }
-            for (i, object) in truth.objects.iter().enumerate() {
-                if truth.objects[..i].iter().any(|other| other.id == object.id) {
-                    return Err(error(format!("truth.objects[{i}].id"), format!("id {} appears twice", object.id)));
-                }
-            }
-            for (k, (scan, truth_scan)) in self.scans.iter().zip(&truth.scans).enumerate() {
-                if truth_scan.origins.len() != scan.measurements.len() {
-                    return Err(error(
-                        format!("truth.scans[{k}].origins"),
-                        format!(
-                            "has {} entries for {} measurements",
-                            truth_scan.origins.len(),
-                            scan.measurements.len()
-                        ),
-                    ));
-                }
-                for (i, state) in truth_scan.objects.iter().enumerate() {
-                    finite_all(&format!("truth.scans[{k}].objects[{i}].state"), &state.state)?;
-                    if !truth.objects.iter().any(|o| o.id == state.id) {
-                        return Err(error(
-                            format!("truth.scans[{k}].objects[{i}].id"),
-                            format!("unknown object id {}", state.id),
-                        ));
-                    }
-                }
-                for (j, origin) in truth_scan.origins.iter().enumerate() {
-                    if let Some(id) = origin
-                        && truth_scan.origins[..j].contains(&Some(*id))
-                    {
-                        return Err(error(
-                            format!("truth.scans[{k}].origins[{j}]"),
-                            format!("object {id} already produced a measurement in this scan"),
-                        ));
-                    }
-                    if let Some(id) = origin
-                        && !truth_scan.objects.iter().any(|o| o.id == *id)
-                    {
-                        return Err(error(
-                            format!("truth.scans[{k}].origins[{j}]"),
-                            format!("object {id} does not exist at this scan"),
-                        ));
-                    }
-                }
-            }
-        }
-        let e = &self.evaluation;
-        positive("evaluation.error_bound", e.error_bound)?;
-        positive("evaluation.gospa_cutoff", e.gospa_cutoff)?;
-        if !(e.gospa_order.is_finite() && e.gospa_order >= 1.0) {
-            return Err(error("evaluation.gospa_order", "must be >= 1"));
-        }
-        if !(e.confirmation_existence > 0.0 && e.confirmation_existence <= 1.0) {
-            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
-        }
         Ok(())
     }
 
     /// The largest number of measurements in one scan.
     pub fn max_measurements(&self) -> usize {
         self.scans.iter().map(|s| s.measurements.len()).max().unwrap_or(0)
+    }
+}
+
+/// The text of the file at `path`, read only up to [`MAX_FILE_BYTES`] (`/dev/zero` is rejected, not read to
+/// the end).
+fn read_limited(path: &Path) -> Result<String, ScenarioError> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| error(path.display(), e))?;
+    let mut bytes = vec![];
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| error(path.display(), e))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(error(path.display(), format!("longer than the limit of {} MiB", MAX_FILE_BYTES >> 20)));
+    }
+    String::from_utf8(bytes).map_err(|e| error(path.display(), format!("not UTF-8: {e}")))
+}
+
+impl PriorSpec {
+    /// Time, weights (finite, ≥ 0, with a finite positive sum), objects and labels.
+    fn validate(&self) -> Result<(), ScenarioError> {
+        finite("prior.time", self.time)?;
+        if self.hypotheses.is_empty() {
+            return Err(error("prior.hypotheses", "needs at least one hypothesis"));
+        }
+        let mut total = 0.0;
+        for (h, hypothesis) in self.hypotheses.iter().enumerate() {
+            let w = hypothesis.weight;
+            if !(w.is_finite() && w >= 0.0) {
+                return Err(error(format!("prior.hypotheses[{h}].weight"), format!("{w} is not finite and >= 0")));
+            }
+            total += w;
+            for (o, object) in hypothesis.objects.iter().enumerate() {
+                let field = format!("prior.hypotheses[{h}].objects[{o}]");
+                if object.label > MAX_PRIOR_LABEL {
+                    return Err(error(
+                        format!("{field}.label"),
+                        format!("{} is above {MAX_PRIOR_LABEL} (labels above it are kept for births)", object.label),
+                    ));
+                }
+                finite_all(&format!("{field}.mean"), &object.mean)?;
+                covariance4(&format!("{field}.covariance"), &object.covariance)?;
+                if hypothesis.objects[..o].iter().any(|other| other.label == object.label) {
+                    return Err(error(
+                        format!("{field}.label"),
+                        format!("label {} appears twice in the hypothesis", object.label),
+                    ));
+                }
+            }
+        }
+        if !total.is_finite() {
+            return Err(error("prior.hypotheses", "the sum of the weights overflows (is not finite)"));
+        }
+        if total <= 0.0 {
+            return Err(error("prior.hypotheses", "weights sum to zero"));
+        }
+        Ok(())
+    }
+}
+
+impl TruthSpec {
+    /// One truth entry per scan, unique ids, known ids, one origin per measurement.
+    fn validate(&self, scans: &[ScanSpec]) -> Result<(), ScenarioError> {
+        if self.scans.len() != scans.len() {
+            return Err(error("truth.scans", format!("has {} entries for {} scans", self.scans.len(), scans.len())));
+        }
+        for (i, object) in self.objects.iter().enumerate() {
+            if self.objects[..i].iter().any(|other| other.id == object.id) {
+                return Err(error(format!("truth.objects[{i}].id"), format!("id {} appears twice", object.id)));
+            }
+        }
+        for (k, (scan, truth_scan)) in scans.iter().zip(&self.scans).enumerate() {
+            if truth_scan.origins.len() != scan.measurements.len() {
+                return Err(error(
+                    format!("truth.scans[{k}].origins"),
+                    format!("has {} entries for {} measurements", truth_scan.origins.len(), scan.measurements.len()),
+                ));
+            }
+            for (i, state) in truth_scan.objects.iter().enumerate() {
+                finite_all(&format!("truth.scans[{k}].objects[{i}].state"), &state.state)?;
+                if !self.objects.iter().any(|o| o.id == state.id) {
+                    return Err(error(
+                        format!("truth.scans[{k}].objects[{i}].id"),
+                        format!("unknown object id {}", state.id),
+                    ));
+                }
+            }
+            truth_scan.validate_origins(k)?;
+        }
+        Ok(())
+    }
+}
+
+impl TruthScanSpec {
+    /// Each object produces at most one measurement, and only while it exists.
+    fn validate_origins(&self, k: usize) -> Result<(), ScenarioError> {
+        for (j, origin) in self.origins.iter().enumerate() {
+            let Some(id) = origin else { continue };
+            if self.origins[..j].contains(&Some(*id)) {
+                return Err(error(
+                    format!("truth.scans[{k}].origins[{j}]"),
+                    format!("object {id} already produced a measurement in this scan"),
+                ));
+            }
+            if !self.objects.iter().any(|o| o.id == *id) {
+                return Err(error(
+                    format!("truth.scans[{k}].origins[{j}]"),
+                    format!("object {id} does not exist at this scan"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl EvaluationSpec {
+    /// Bounds, GOSPA order and cut-off: every figure of the metrics stays finite and non-zero (see
+    /// [`MAX_GOSPA_ORDER`] and [`GOSPA_POWER_RANGE`]).
+    fn validate(&self) -> Result<(), ScenarioError> {
+        positive("evaluation.error_bound", self.error_bound)?;
+        positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
+        let p = self.gospa_order;
+        if !(p.is_finite() && (1.0..=MAX_GOSPA_ORDER).contains(&p)) {
+            return Err(error("evaluation.gospa_order", format!("{p} is not in [1, {MAX_GOSPA_ORDER}]")));
+        }
+        let (low, high) = GOSPA_POWER_RANGE;
+        let power = self.gospa_cutoff.powf(p);
+        if !(low..=high).contains(&power) {
+            return Err(error(
+                "evaluation.gospa_cutoff",
+                format!("{:?}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", self.gospa_cutoff),
+            ));
+        }
+        // The error bound is a GOSPA cut-off of order 1.
+        if !(low..=high).contains(&self.error_bound) {
+            return Err(error(
+                "evaluation.error_bound",
+                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
+            ));
+        }
+        if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {
+            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
+        }
+        Ok(())
     }
 }
 
@@ -621,6 +757,9 @@ fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
 fn check_covariance<const D: usize>(field: &str, m: nalgebra::SMatrix<f64, D, D>) -> Result<(), ScenarioError> {
     if !m.iter().all(|v| v.is_finite()) {
         return Err(error(field, "has a non-finite entry"));
+    }
+    if let Some(v) = m.iter().find(|v| v.abs() > MAX_COVARIANCE_ENTRY) {
+        return Err(error(field, format!("entry {v:?} is beyond ±{MAX_COVARIANCE_ENTRY:e}")));
     }
     if m != m.transpose() {
         return Err(error(field, "is not symmetric"));

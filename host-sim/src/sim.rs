@@ -559,12 +559,31 @@ pub fn linear_small(seed: u64) -> Simulation {
 
 /// The simulation of a preset, by name.
 pub fn preset(name: &str, seed: u64) -> Option<Simulation> {
-    match name {
-        "fifty-birth-death" => Some(fifty_birth_death(seed)),
-        "fifteen-compare" => Some(fifteen_compare(seed)),
-        "debris-crossing" => Some(debris_crossing(seed)),
-        "linear-small" => Some(linear_small(seed)),
-        _ => None,
+    <Preset as clap::ValueEnum>::from_str(name, false).ok().map(|p| p.simulation(seed))
+}
+
+/// The presets, by the names of [`PRESETS`] (`host-sim generate <PRESET>`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Preset {
+    /// Paper 003 §IV: 50 objects, 45 in the prior, 5 births.
+    FiftyBirthDeath,
+    /// Paper 003 §V-A: 15 objects starting in the field of view.
+    FifteenCompare,
+    /// A breakup cloud crossing the field of view.
+    DebrisCrossing,
+    /// A few constant-velocity objects in a rectangle, six scans.
+    LinearSmall,
+}
+
+impl Preset {
+    /// The simulation of this preset with `seed`.
+    pub fn simulation(self, seed: u64) -> Simulation {
+        match self {
+            Preset::FiftyBirthDeath => fifty_birth_death(seed),
+            Preset::FifteenCompare => fifteen_compare(seed),
+            Preset::DebrisCrossing => debris_crossing(seed),
+            Preset::LinearSmall => linear_small(seed),
+        }
     }
 }
 

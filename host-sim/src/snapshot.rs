@@ -2,12 +2,12 @@
 //! and the distinct tracks they hold. Both the core tracker and the reference produce one, so outputs and
 //! comparisons are written once.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::{HashMap, HashSet};
 use tracker_core::{MeasurementModel, MotionModel, Tracker};
 
 /// One track.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TrackOut {
     /// Object label.
     pub label: u32,

@@ -59,13 +59,14 @@
 //! assert!(LinearTracker::<f64, 1, 1, 1, 1, 0>::with_objects(config, &[], 0.0).is_ok());
 //! ```
 
+use crate::error::Error;
+use crate::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
 use crate::rng::{Random, Stream};
 use crate::scenario::FieldOfViewSpec;
 use crate::setup;
 use crate::sim::{self, EARTH_MU, Orbit};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use nalgebra::{SMatrix, SVector};
-use serde_json::json;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::time::Instant;
@@ -83,6 +84,8 @@ pub const BIRTH_RATE: f64 = 2e-3;
 pub const DEATH_RATE: f64 = 1e-4;
 /// Seconds between scans.
 pub const SCAN_INTERVAL: f64 = 60.0;
+/// The most scans of one soak: the run keeps one time per scan (4 bytes) for its percentiles.
+pub const MAX_SCANS: u64 = 10_000_000;
 /// Measurement noise standard deviation (km).
 const SIGMA: f64 = 0.5;
 
@@ -132,6 +135,35 @@ struct Health {
     children_dropped_for_store: u64,
 }
 
+impl Health {
+    /// Scan `k`'s step result and the tracker's state after it.
+    fn record(
+        &mut self,
+        k: u64,
+        result: Result<tracker_core::StepReport<f64>, tracker_core::StepError>,
+        tracker: &SsaTracker<f64>,
+    ) {
+        match result {
+            Ok(report) => {
+                self.max_hypotheses = self.max_hypotheses.max(report.hypotheses);
+                self.max_tracks = self.max_tracks.max(report.tracks);
+                self.births_beyond_capacity += report.births_beyond_object_capacity;
+                self.children_dropped_for_store += report.children_dropped_for_store as u64;
+            }
+            Err(error) => {
+                *self.errors.entry(variant(&error)).or_default() += 1;
+                self.first_error.get_or_insert((k + 1, error.to_string()));
+            }
+        }
+        let bad = non_finite_values(tracker);
+        if bad > 0 {
+            self.non_finite += bad;
+            self.non_finite_scans += 1;
+            self.first_non_finite_scan.get_or_insert(k + 1);
+        }
+    }
+}
+
 /// The name of an error's variant (`Numerical { .. }` → `Numerical`).
 fn variant(error: &tracker_core::StepError) -> String {
     let text = format!("{error:?}");
@@ -165,46 +197,39 @@ fn progress(scans: u64, quiet: bool) -> ProgressBar {
     bar
 }
 
-/// Runs `scans` scans of the soak scenario with `seed` and returns the report.
-///
-/// # Errors
-/// A one-line message when `scans` is 0 or the tracker cannot be built (which would be a bug).
-pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<serde_json::Value, String> {
-    if scans == 0 {
-        return Err("--scans: must be > 0".into());
-    }
-    let started = Instant::now();
+/// The tracker's birth probability per cell.
+const TRACKER_BIRTH_PROBABILITY: f64 = 1e-3;
+/// The tracker's death probability.
+const TRACKER_DEATH_PROBABILITY: f64 = 1e-4;
+
+/// The soak's tracker (the embedded capacities) and the number of its birth cells.
+fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize), Error> {
     let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
-    let motion = sim::ssa_motion();
-    let two_body = setup::two_body(&motion).ok_or("soak: the SSA motion model is two-body")?;
-    let fov = setup::region(&sensor.field_of_view);
+    let two_body =
+        setup::two_body(&sim::ssa_motion()).ok_or_else(|| Error::internal("soak: the motion is two-body"))?;
     let cells = sim::ssa_birth_cells(&sensor, 6_600.0, 30_000.0, 8, 0.3);
     let mut birth = BirthModel::none();
-    birth.probability = 1e-3;
+    birth.probability = TRACKER_BIRTH_PROBABILITY;
     birth.detection = BirthDetection::AllDetected;
     for cell in &cells {
-        birth.cells.push(setup::gaussian(&cell.mean, &cell.covariance)).map_err(|_| "soak: too many birth cells")?;
+        birth
+            .cells
+            .push(setup::gaussian(&cell.mean, &cell.covariance))
+            .map_err(|_| Error::internal("soak: too many birth cells"))?;
     }
     let config: SsaConfig<f64> = Config {
         motion: two_body,
         measurement: PositionMeasurement::isotropic(SIGMA),
         sensor: setup::sensor(&sensor),
         birth,
-        death_probability: 1e-4,
+        death_probability: TRACKER_DEATH_PROBABILITY,
         gate: Some(25.0),
         children: ChildGeneration::Sampled(SamplerConfig::default()),
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         seed,
     };
-
-    // The truth at t = 0 and the prior (the true states with a small error, as the presets do).
-    let mut alive: Vec<Object> = (0..INITIAL_OBJECTS as u64)
-        .map(|id| {
-            let orbit = sim::random_orbit(&mut Random::stream(seed, Stream::Orbit, id), 6_878.0, 26_560.0, 0.02);
-            Object::new(seed, id, orbit)
-        })
-        .collect();
+    // The prior: the true states with a small error, as the presets do.
     let (sp, sv) = (1.0, 2e-4);
     let covariance = SMatrix::<f64, 4, 4>::from_diagonal(&SVector::from([sp * sp, sp * sp, sv * sv, sv * sv]));
     let prior: Vec<PriorObject<f64, 4>> = alive
@@ -217,75 +242,111 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<serde_json::Value, Stri
         })
         .collect();
     let hypothesis = [tracker_core::PriorHypothesis { weight: 1.0, objects: &prior }];
-    let mut tracker =
-        Box::new(SsaTracker::<f64>::new(config, &hypothesis, 0.0).map_err(|e| format!("soak: tracker: {e}"))?);
-    let noise = SMatrix::<f64, 2, 2>::identity() * (SIGMA * SIGMA);
+    let tracker =
+        SsaTracker::<f64>::new(config, &hypothesis, 0.0).map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
+    Ok((Box::new(tracker), cells.len()))
+}
 
-    let bar = progress(scans, quiet);
-    let mut health = Health::default();
-    let mut next_id = INITIAL_OBJECTS as u64;
-    let (mut births, mut deaths) = (0u64, 0u64);
-    let mut max_alive = alive.len();
-    let mut durations: Vec<f32> = Vec::with_capacity(scans as usize);
-    let mut cardinality_error = 0.0;
-    let mut max_cardinality_error: f64 = 0.0;
-    let mut measurement_total = 0u64;
-    for k in 0..scans {
-        let time = (k + 1) as f64 * SCAN_INTERVAL;
-        // Deaths; the survivors move one interval; at most one birth, placed in the field of view now.
+/// The true objects, generated scan by scan.
+struct World {
+    seed: u64,
+    motion: crate::scenario::MotionSpec,
+    sensor: crate::scenario::SensorSpec,
+    fov: tracker_core::Region<f64>,
+    noise: SMatrix<f64, 2, 2>,
+    alive: Vec<Object>,
+    next_id: u64,
+    births: u64,
+    deaths: u64,
+    max_alive: usize,
+}
+
+impl World {
+    /// The objects at t = 0, all known to the prior.
+    fn new(seed: u64) -> Self {
+        let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
+        let alive: Vec<Object> = (0..INITIAL_OBJECTS as u64)
+            .map(|id| {
+                let orbit = sim::random_orbit(&mut Random::stream(seed, Stream::Orbit, id), 6_878.0, 26_560.0, 0.02);
+                Object::new(seed, id, orbit)
+            })
+            .collect();
+        World {
+            seed,
+            motion: sim::ssa_motion(),
+            fov: setup::region(&sensor.field_of_view),
+            sensor,
+            noise: SMatrix::<f64, 2, 2>::identity() * (SIGMA * SIGMA),
+            max_alive: alive.len(),
+            alive,
+            next_id: INITIAL_OBJECTS as u64,
+            births: 0,
+            deaths: 0,
+        }
+    }
+
+    /// Scan `k`: deaths, the survivors move one interval, at most one birth placed in the field of view;
+    /// returns the scan's measurements (detections and clutter, shuffled).
+    fn scan(&mut self, k: u64) -> Vec<SVector<f64, 2>> {
+        let seed = self.seed;
         let mut events = Random::stream(seed, Stream::Scenario, k);
-        let before = alive.len();
-        alive.retain(|_| events.uniform() >= DEATH_RATE);
-        deaths += (before - alive.len()) as u64;
-        for object in &mut alive {
-            object.state = sim::move_object(&motion, object.state, SCAN_INTERVAL, &mut object.motion);
+        let before = self.alive.len();
+        self.alive.retain(|_| events.uniform() >= DEATH_RATE);
+        self.deaths += (before - self.alive.len()) as u64;
+        for object in &mut self.alive {
+            object.state = sim::move_object(&self.motion, object.state, SCAN_INTERVAL, &mut object.motion);
         }
         if events.uniform() < BIRTH_RATE {
-            let orbit = orbit_in_view(&mut Random::stream(seed, Stream::Orbit, next_id));
-            alive.push(Object::new(seed, next_id, orbit));
-            next_id += 1;
-            births += 1;
+            let orbit = orbit_in_view(&mut Random::stream(seed, Stream::Orbit, self.next_id));
+            self.alive.push(Object::new(seed, self.next_id, orbit));
+            self.next_id += 1;
+            self.births += 1;
         }
-        max_alive = max_alive.max(alive.len());
+        self.max_alive = self.max_alive.max(self.alive.len());
         let mut measurements: Vec<SVector<f64, 2>> = vec![];
-        for object in &mut alive {
+        for object in &mut self.alive {
             // Draw the detection and the noise every scan, so that each object's stream stays aligned.
-            let detected = object.detection.uniform() < sensor.detection_probability;
-            let z = position(&object.state) + object.detection.gaussian(&noise);
-            if detected && fov.contains(&position(&object.state)) && fov.contains(&z) {
+            let detected = object.detection.uniform() < self.sensor.detection_probability;
+            let z = position(&object.state) + object.detection.gaussian(&self.noise);
+            if detected && self.fov.contains(&position(&object.state)) && self.fov.contains(&z) {
                 measurements.push(z);
             }
         }
         let mut clutter = Random::stream(seed, Stream::Clutter, k);
-        for _ in 0..clutter.poisson(sensor.clutter_rate) {
-            measurements.push(SVector::from(sim::uniform_in_region(&sensor.field_of_view, &mut clutter)));
+        for _ in 0..clutter.poisson(self.sensor.clutter_rate) {
+            measurements.push(SVector::from(sim::uniform_in_region(&self.sensor.field_of_view, &mut clutter)));
         }
         events.shuffle(&mut measurements);
+        measurements
+    }
+}
+
+/// Runs `scans` scans of the soak scenario with `seed` and returns the report.
+///
+/// # Errors
+/// [`Error::Input`] when `scans` is 0 or above [`MAX_SCANS`]; [`Error::Internal`] when the tracker cannot
+/// be built (which would be a bug).
+pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
+    if !(1..=MAX_SCANS).contains(&scans) {
+        return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
+    }
+    let started = Instant::now();
+    let mut world = World::new(seed);
+    let (mut tracker, birth_cells) = tracker(seed, &world.alive)?;
+    let bar = progress(scans, quiet);
+    let mut health = Health::default();
+    // Grown scan by scan, never reserved for `scans` up front.
+    let mut durations: Vec<f32> = vec![];
+    let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
+    for k in 0..scans {
+        let measurements = world.scan(k);
         health.max_measurements = health.max_measurements.max(measurements.len());
         measurement_total += measurements.len() as u64;
-
         let step_started = Instant::now();
-        let result = tracker.step(time, &measurements);
+        let result = tracker.step((k + 1) as f64 * SCAN_INTERVAL, &measurements);
         durations.push(step_started.elapsed().as_secs_f32() * 1e3);
-        match result {
-            Ok(report) => {
-                health.max_hypotheses = health.max_hypotheses.max(report.hypotheses);
-                health.max_tracks = health.max_tracks.max(report.tracks);
-                health.births_beyond_capacity += report.births_beyond_object_capacity;
-                health.children_dropped_for_store += report.children_dropped_for_store as u64;
-            }
-            Err(error) => {
-                *health.errors.entry(variant(&error)).or_default() += 1;
-                health.first_error.get_or_insert((k + 1, error.to_string()));
-            }
-        }
-        let bad = non_finite_values(&tracker);
-        if bad > 0 {
-            health.non_finite += bad;
-            health.non_finite_scans += 1;
-            health.first_non_finite_scan.get_or_insert(k + 1);
-        }
-        let difference = (tracker.expected_cardinality() - alive.len() as f64).abs();
+        health.record(k, result, &tracker);
+        let difference = (tracker.expected_cardinality() - world.alive.len() as f64).abs();
         cardinality_error += difference;
         max_cardinality_error = max_cardinality_error.max(difference);
         bar.inc(1);
@@ -296,66 +357,78 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<serde_json::Value, Stri
     sorted.sort_unstable_by(f32::total_cmp);
     let percentile =
         |p: f64| f64::from(sorted[((p * (sorted.len() - 1) as f64).round() as usize).min(sorted.len() - 1)]);
-    let mean_ms = durations.iter().map(|&d| f64::from(d)).sum::<f64>() / durations.len() as f64;
+    Ok(SoakReport {
+        scans,
+        seed,
+        nan_count: health.non_finite,
+        non_finite_scans: health.non_finite_scans,
+        first_non_finite_scan: health.first_non_finite_scan,
+        max_hypotheses: health.max_hypotheses,
+        max_ms_per_scan: percentile(1.0),
+        mean_ms_per_scan: durations.iter().map(|&d| f64::from(d)).sum::<f64>() / durations.len() as f64,
+        p50_ms_per_scan: percentile(0.5),
+        p99_ms_per_scan: percentile(0.99),
+        errors_by_kind: health.errors,
+        first_error: health.first_error.map(|(scan, message)| SoakError { scan, message }),
+        track_store_high_water: health.max_tracks,
+        track_store_capacity: ssa_caps::TRACKS,
+        hypothesis_capacity: ssa_caps::HYPOTHESES,
+        max_measurements_per_scan: health.max_measurements,
+        measurement_capacity: ssa_caps::MEASUREMENTS,
+        measurements: measurement_total,
+        births_beyond_object_capacity: health.births_beyond_capacity,
+        children_dropped_for_store: health.children_dropped_for_store,
+        truth: SoakTruth {
+            initial_objects: INITIAL_OBJECTS,
+            births: world.births,
+            deaths: world.deaths,
+            max_alive: world.max_alive,
+            final_alive: world.alive.len(),
+        },
+        final_expected_cardinality: tracker.expected_cardinality(),
+        mean_abs_cardinality_error: cardinality_error / scans as f64,
+        max_abs_cardinality_error: max_cardinality_error,
+        wall_seconds: started.elapsed().as_secs_f64(),
+        setup: setup_record(&world.sensor, birth_cells)?,
+    })
+}
+
+/// The scenario and tracker in words and numbers.
+fn setup_record(sensor: &crate::scenario::SensorSpec, birth_cells: usize) -> Result<SoakSetup, Error> {
     let FieldOfViewSpec::Sector { field_of_view_deg, max_range, .. } = sensor.field_of_view else {
-        return Err("soak: the SSA sensor is a sector".into());
+        return Err(Error::internal("soak: the SSA sensor is a sector"));
     };
-    Ok(json!({
-        "scans": scans,
-        "seed": seed,
-        "nan_count": health.non_finite,
-        "non_finite_scans": health.non_finite_scans,
-        "first_non_finite_scan": health.first_non_finite_scan,
-        "max_hypotheses": health.max_hypotheses,
-        "max_ms_per_scan": percentile(1.0),
-        "mean_ms_per_scan": mean_ms,
-        "p50_ms_per_scan": percentile(0.5),
-        "p99_ms_per_scan": percentile(0.99),
-        "errors_by_kind": health.errors,
-        "first_error": health.first_error.map(|(scan, message)| json!({ "scan": scan, "message": message })),
-        "track_store_high_water": health.max_tracks,
-        "track_store_capacity": ssa_caps::TRACKS,
-        "hypothesis_capacity": ssa_caps::HYPOTHESES,
-        "max_measurements_per_scan": health.max_measurements,
-        "measurement_capacity": ssa_caps::MEASUREMENTS,
-        "measurements": measurement_total,
-        "births_beyond_object_capacity": health.births_beyond_capacity,
-        "children_dropped_for_store": health.children_dropped_for_store,
-        "truth": {
-            "initial_objects": INITIAL_OBJECTS,
-            "births": births,
-            "deaths": deaths,
-            "max_alive": max_alive,
-            "final_alive": alive.len(),
-        },
-        "final_expected_cardinality": tracker.expected_cardinality(),
-        "mean_abs_cardinality_error": cardinality_error / scans as f64,
-        "max_abs_cardinality_error": max_cardinality_error,
-        "wall_seconds": started.elapsed().as_secs_f64(),
-        "setup": {
-            "tracker": format!(
-                "tracker-core SsaTracker<f64> (H = {}, N = {}, Z = {}, K = {}, B = {}), R-FISST sampled children, default SamplerConfig",
-                ssa_caps::HYPOTHESES, ssa_caps::OBJECTS, ssa_caps::MEASUREMENTS, ssa_caps::TRACKS, ssa_caps::BIRTH_CELLS
-            ),
-            "motion": "planar two-body, q = 1e-13 km^2/s^3, RK4 sub-steps of at most 20 s",
-            "sensor": format!("sector of {field_of_view_deg} deg to {max_range} km, p_D = {}, clutter {} per scan", sensor.detection_probability, sensor.clutter_rate),
-            "scan_interval_s": SCAN_INTERVAL,
-            "birth_rate_per_scan": BIRTH_RATE,
-            "death_rate_per_object_per_scan": DEATH_RATE,
-            "tracker_birth_probability_per_cell": 1e-3,
-            "tracker_birth_cells": cells.len(),
-            "tracker_death_probability": 1e-4,
-        },
-    }))
+    Ok(SoakSetup {
+        tracker: format!(
+            "tracker-core SsaTracker<f64> (H = {}, N = {}, Z = {}, K = {}, B = {}), R-FISST sampled children, default SamplerConfig",
+            ssa_caps::HYPOTHESES,
+            ssa_caps::OBJECTS,
+            ssa_caps::MEASUREMENTS,
+            ssa_caps::TRACKS,
+            ssa_caps::BIRTH_CELLS
+        ),
+        motion: "planar two-body, q = 1e-13 km^2/s^3, RK4 sub-steps of at most 20 s".into(),
+        sensor: format!(
+            "sector of {field_of_view_deg} deg to {max_range} km, p_D = {}, clutter {} per scan",
+            sensor.detection_probability, sensor.clutter_rate
+        ),
+        scan_interval_s: SCAN_INTERVAL,
+        birth_rate_per_scan: BIRTH_RATE,
+        death_rate_per_object_per_scan: DEATH_RATE,
+        tracker_birth_probability_per_cell: TRACKER_BIRTH_PROBABILITY,
+        tracker_birth_cells: birth_cells,
+        tracker_death_probability: TRACKER_DEATH_PROBABILITY,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde_json::json;
 
     /// The figures that do not depend on timing.
-    fn untimed(report: &serde_json::Value) -> serde_json::Value {
-        let mut report = report.clone();
+    fn untimed(report: &SoakReport) -> serde_json::Value {
+        let mut report = serde_json::to_value(report).unwrap();
         if let Some(object) = report.as_object_mut() {
             object.retain(|key, _| !key.contains("ms_per_scan") && key != "wall_seconds");
         }
@@ -370,7 +443,8 @@ mod tests {
     #[test]
     fn a_short_soak_is_healthy_and_deterministic() {
         with_large_stack(|| {
-            let report = run(100, 4, true).unwrap();
+            let record = run(100, 4, true).unwrap();
+            let report = serde_json::to_value(&record).unwrap();
             for key in ["scans", "nan_count", "max_hypotheses", "max_ms_per_scan", "errors_by_kind"] {
                 assert!(report.get(key).is_some(), "{key} missing");
             }
@@ -379,13 +453,15 @@ mod tests {
             assert_eq!(report["errors_by_kind"], json!({}));
             let max_hypotheses = report["max_hypotheses"].as_u64().unwrap();
             assert!((1..=ssa_caps::HYPOTHESES as u64).contains(&max_hypotheses));
-            assert_eq!(untimed(&run(100, 4, true).unwrap()), untimed(&report));
-            assert_ne!(untimed(&run(100, 5, true).unwrap()), untimed(&report));
+            assert_eq!(untimed(&run(100, 4, true).unwrap()), untimed(&record));
+            assert_ne!(untimed(&run(100, 5, true).unwrap()), untimed(&record));
         });
     }
 
     #[test]
-    fn zero_scans_is_an_error() {
-        assert!(run(0, 1, true).is_err());
+    fn zero_or_too_many_scans_is_an_error() {
+        for scans in [0, MAX_SCANS + 1, u64::MAX] {
+            assert!(matches!(run(scans, 1, true), Err(Error::Input(_))), "{scans}");
+        }
     }
 }

@@ -228,11 +228,30 @@ fn generate_unknown_preset_exits_2() {
     let path = dir.join("x.json");
     let output = host_sim(&["generate".as_ref(), "sixty-objects".as_ref(), "--out".as_ref(), path.as_os_str()]);
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    // clap's usage message: the bad value and every preset.
     let err = stderr(&output);
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.starts_with("error: unknown preset \"sixty-objects\""), "{err}");
-    assert!(err.contains("linear-small"), "lists the presets: {err}");
+    assert!(err.starts_with("error: invalid value 'sixty-objects'"), "{err}");
+    for preset in ["fifty-birth-death", "fifteen-compare", "debris-crossing", "linear-small"] {
+        assert!(err.contains(preset), "lists {preset}: {err}");
+    }
     assert!(!path.exists());
+}
+
+#[test]
+fn help_lists_every_preset_experiment_tracker_and_profile() {
+    for (command, values) in [
+        ("generate", &["fifty-birth-death", "fifteen-compare", "debris-crossing", "linear-small"][..]),
+        ("experiment", &["fifty", "fifteen", "scaling", "debris", "ablation", "all"]),
+        ("run", &["reference", "homht", "rfisst", "embedded", "host"]),
+        ("compare", &["reference", "homht", "rfisst", "embedded", "host"]),
+    ] {
+        let output = host_sim(&[command, "--help"]);
+        assert_success(&output);
+        let help = stdout(&output);
+        for value in values {
+            assert!(help.contains(value), "{command} --help misses {value}:\n{help}");
+        }
+    }
 }
 
 #[test]
@@ -569,7 +588,7 @@ fn malformed_cases() -> Vec<Case> {
         mutated("partial evaluation section", "evaluation: missing field `gospa_order`", |v| {
             object(&mut v["evaluation"]).remove("gospa_order");
         }),
-        mutated("GOSPA order below 1", "evaluation.gospa_order: must be >= 1", |v| {
+        mutated("GOSPA order below 1", "evaluation.gospa_order: 0.5 is not in [1, 100]", |v| {
             v["evaluation"]["gospa_order"] = json!(0.5);
         }),
         // Reported when the tracker is built: 1 × 0.01 + 64 × 0.02 ≥ 1 with the embedded N = 64.
@@ -589,6 +608,42 @@ fn malformed_cases() -> Vec<Case> {
             v["prior"]["hypotheses"] = Value::Array(vec![hypothesis; 33]);
         }),
     ];
+    // Metric parameters that would make GOSPA overflow (written as null before).
+    cases.push(mutated("GOSPA order 400", "evaluation.gospa_order: 400 is not in [1, 100]", |v| {
+        v["evaluation"] =
+            json!({"error_bound": 10.0, "gospa_cutoff": 50.0, "gospa_order": 400.0, "confirmation_existence": 0.9});
+    }));
+    cases.push(mutated("GOSPA cut-off to the order overflows", "evaluation.gospa_cutoff: 1e200^2", |v| {
+        v["evaluation"] =
+            json!({"error_bound": 10.0, "gospa_cutoff": 1e200, "gospa_order": 2.0, "confirmation_existence": 0.9});
+    }));
+    cases.push(mutated("error bound 1e308", "evaluation.error_bound: 1e308 is not in", |v| {
+        v["evaluation"] =
+            json!({"error_bound": 1e308, "gospa_cutoff": 50.0, "gospa_order": 2.0, "confirmation_existence": 0.9});
+    }));
+    cases.push(mutated(
+        "prior weights whose sum overflows",
+        "prior.hypotheses: the sum of the weights overflows",
+        |v| {
+            let first = v["prior"]["hypotheses"][0].clone();
+            v["prior"]["hypotheses"] = json!([first.clone(), first]);
+            v["prior"]["hypotheses"][0]["weight"] = json!(1e308);
+            v["prior"]["hypotheses"][1]["weight"] = json!(1e308);
+        },
+    ));
+    cases.push(mutated("R = 1e308", "measurement.noise_covariance: entry 1e308 is beyond ±1e150", |v| {
+        v["measurement"]["noise_covariance"] = json!([[1e308, 0.0], [0.0, 1e308]]);
+    }));
+    cases.push(mutated("prior covariance 1e200", "prior.hypotheses[0].objects[0].covariance: entry", |v| {
+        v["prior"]["hypotheses"][0]["objects"][0]["covariance"][0][0] = json!(1e200);
+    }));
+    cases.push(mutated(
+        "prior label u32::MAX",
+        "prior.hypotheses[0].objects[1].label: 4294967295 is above 2147483647",
+        |v| {
+            v["prior"]["hypotheses"][0]["objects"][1]["label"] = json!(4294967295u32);
+        },
+    ));
     // 0.01 + 64 × 0.008 < 1 but 0.01 + 128 × 0.008 ≥ 1: only the host profile's N = 128 rejects it.
     let mut host = mutated("M_b alpha + N beta >= 1 (host)", "M_b alpha + N beta must be < 1", |v| {
         v["death_probability"] = json!(0.008);
@@ -741,4 +796,403 @@ fn a_value_with_control_characters_gives_a_one_line_error() {
             panic!("{name}: {why}\n{}", describe(&output));
         }
     }
+}
+
+#[test]
+fn unicode_separators_and_bidi_controls_are_escaped() {
+    let dir = TempDir::new("escaped-unicode");
+    for (name, key, shown) in [
+        ("line-separator.json", "a\u{2028}b", "a\\u{2028}b"),
+        ("paragraph-separator.json", "a\u{2029}b", "a\\u{2029}b"),
+        ("right-to-left-override.json", "a\u{202e}b", "a\\u{202e}b"),
+        ("isolate.json", "a\u{2066}b", "a\\u{2066}b"),
+        ("zero-width-space.json", "a\u{200b}b", "a\\u{200b}b"),
+    ] {
+        let file = dir.join(name);
+        let text = format!(r#"{{"format":"rfisst-scenario/1","sensor":{{"{key}":1}}}}"#);
+        std::fs::write(&file, text).expect("write");
+        let output = host_sim(&["run".as_ref(), file.as_os_str(), "--out".as_ref(), dir.join("out").as_os_str()]);
+        if let Err(why) = check_malformed(&output, &format!("sensor.{shown}")) {
+            panic!("{name}: {why}\n{}", describe(&output));
+        }
+        let err = stderr(&output);
+        assert!(!err.contains(['\u{2028}', '\u{2029}', '\u{202e}', '\u{2066}', '\u{200b}']), "{name}: raw {err:?}");
+    }
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let dir = TempDir::new("bom");
+    let file = dir.join("bom.json");
+    let text = "\u{feff}".to_string() + &std::fs::read_to_string(FIXTURE).expect("fixture");
+    std::fs::write(&file, text).expect("write");
+    let out = dir.join("out");
+    let output = host_sim(&["run".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    assert_eq!(read_json(&out.join("summary.json"))["scans"], json!(3));
+}
+
+#[test]
+fn a_file_beyond_the_size_limit_is_rejected_before_parsing() {
+    let dir = TempDir::new("size-limit");
+    // /dev/zero never ends: only the first 256 MiB + 1 bytes are read.
+    let output = host_sim(&["run", "/dev/zero", "--quiet", "--out", dir.join("out").to_str().expect("utf-8")]);
+    if let Err(why) = check_malformed(&output, "/dev/zero: longer than the limit of 256 MiB") {
+        panic!("{why}\n{}", describe(&output));
+    }
+}
+
+#[test]
+fn soak_scan_count_is_bounded() {
+    let dir = TempDir::new("soak-scans");
+    let out = dir.join("soak.json");
+    for scans in ["0", "10000001", "1000000000000", "18446744073709551615"] {
+        let output =
+            host_sim(&["soak".as_ref(), "--scans".as_ref(), scans.as_ref(), "--out".as_ref(), out.as_os_str()]);
+        if let Err(why) = check_malformed(&output, &format!("--scans {scans}: must be in [1, 10000000]")) {
+            panic!("{scans}: {why}\n{}", describe(&output));
+        }
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn experiment_seeds_beyond_u64_are_an_error() {
+    let dir = TempDir::new("seed-overflow");
+    let output = host_sim(&[
+        "experiment".as_ref(),
+        "fifty".as_ref(),
+        "--seed".as_ref(),
+        "18446744073709551615".as_ref(),
+        "--runs".as_ref(),
+        "2".as_ref(),
+        "--out".as_ref(),
+        dir.join("out").as_os_str(),
+    ]);
+    if let Err(why) = check_malformed(&output, "--seed 18446744073709551615 --runs 2: the last seed would pass") {
+        panic!("{why}\n{}", describe(&output));
+    }
+}
+
+#[test]
+fn without_scans_the_summary_reports_the_prior() {
+    let dir = TempDir::new("no-scans");
+    let mut scenario = fixture();
+    scenario["scans"] = json!([]);
+    scenario["truth"]["scans"] = json!([]);
+    let file = dir.join("empty.json");
+    write_json(&file, &scenario);
+    for tracker in ["homht", "reference"] {
+        let out = dir.join(tracker);
+        let output = host_sim(&[
+            "run".as_ref(),
+            file.as_os_str(),
+            "--tracker".as_ref(),
+            tracker.as_ref(),
+            "--quiet".as_ref(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        assert_success(&output);
+        let summary = read_json(&out.join("summary.json"));
+        // The prior holds two objects with weight 1.
+        assert_eq!(summary["final_expected_cardinality"], json!(2.0), "{tracker}: {summary}");
+        assert_eq!(summary["final_map_cardinality"], json!(2), "{tracker}: {summary}");
+        assert_eq!(summary["scans"], json!(0));
+    }
+}
+
+#[test]
+fn the_reference_does_not_apply_the_profiles_object_capacity() {
+    // 0.01 + 64 × 0.03 ≥ 1 (the embedded N), but 0.01 + 2 × 0.03 < 1 for the two objects of the fixture.
+    let dir = TempDir::new("reference-no-n");
+    let mut scenario = fixture();
+    scenario["death_probability"] = json!(0.03);
+    let file = dir.join("beta.json");
+    write_json(&file, &scenario);
+    let run = |tracker: &str| {
+        host_sim(&[
+            "run".as_ref(),
+            file.as_os_str(),
+            "--tracker".as_ref(),
+            tracker.as_ref(),
+            "--quiet".as_ref(),
+            "--out".as_ref(),
+            dir.join(tracker).as_os_str(),
+        ])
+    };
+    assert_success(&run("reference"));
+    let output = run("homht");
+    if let Err(why) = check_malformed(&output, "M_b alpha + N beta must be < 1") {
+        panic!("{why}\n{}", describe(&output));
+    }
+}
+
+#[test]
+fn an_output_that_cannot_be_written_exits_1() {
+    let dir = TempDir::new("unwritable");
+    let blocker = dir.join("file");
+    std::fs::write(&blocker, "not a directory").expect("write");
+    let below = blocker.join("out");
+    for args in [
+        vec!["run".as_ref(), FIXTURE.as_ref(), "--quiet".as_ref(), "--out".as_ref(), below.as_os_str()],
+        vec!["generate".as_ref(), "linear-small".as_ref(), "--out".as_ref(), below.as_os_str()],
+        vec!["sampler-check".as_ref(), "--cases".as_ref(), "1".as_ref(), "--out".as_ref(), below.as_os_str()],
+    ] {
+        let output = host_sim(&args);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {}", describe(&output));
+        let err = stderr(&output);
+        assert!(err.starts_with("error: ") && err.lines().count() == 1, "{args:?}: {err}");
+        assert!(err.contains("file/out"), "{args:?}: names the path: {err}");
+    }
+}
+
+/// The keys of every JSON object of `value`, by path (`summary`, `summary.birth_confirmation_scans[]`, ...).
+fn key_paths(value: &Value, path: &str, out: &mut std::collections::BTreeSet<String>) {
+    match value {
+        Value::Object(map) => {
+            for (key, inner) in map {
+                let inner_path = format!("{path}.{key}");
+                out.insert(inner_path.clone());
+                key_paths(inner, &inner_path, out);
+            }
+        }
+        Value::Array(items) => items.iter().for_each(|item| key_paths(item, &format!("{path}[]"), out)),
+        _ => {}
+    }
+}
+
+fn keys_of(value: &Value) -> Vec<String> {
+    let mut out = std::collections::BTreeSet::new();
+    key_paths(value, "", &mut out);
+    out.into_iter().collect()
+}
+
+/// The keys of `summary.json` and of a `scans.jsonl` line are those the files had before their records were
+/// typed (listed from the output of `host-sim run` at commit 18b844d), and the records read back unchanged.
+#[test]
+fn run_outputs_keep_their_keys_and_read_back_unchanged() {
+    use host_sim::report::{RunSummary, ScanLine};
+    let dir = TempDir::new("keys");
+    let out = dir.join("out");
+    let output = host_sim(&["run".as_ref(), FIXTURE.as_ref(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let text = std::fs::read_to_string(out.join("summary.json")).expect("summary");
+    let summary: Value = serde_json::from_str(&text).expect("json");
+    let expected_summary = [
+        "birth_confirmation_scans",
+        "births_confirmed",
+        "births_total",
+        "error_bound",
+        "final_expected_cardinality",
+        "final_map_cardinality",
+        "gospa_cutoff",
+        "gospa_order",
+        "in_view_misses_after_confirmation",
+        "in_view_red_stars",
+        "label_switches",
+        "max_ms_per_scan",
+        "mean_captured_mass",
+        "mean_gospa",
+        "mean_ms_per_scan",
+        "mean_ospa",
+        "min_captured_mass",
+        "out_of_view_red_stars",
+        "peak_hypotheses",
+        "profile",
+        "reference_budget_reached_scans",
+        "rejected_scans",
+        "scans",
+        "scenario",
+        "tracker",
+        "true_final_cardinality",
+    ];
+    let mut top: Vec<&str> = summary.as_object().expect("object").keys().map(String::as_str).collect();
+    top.sort_unstable();
+    assert_eq!(top, expected_summary);
+    let typed: RunSummary = serde_json::from_str(&text).expect("a RunSummary");
+    assert_eq!(serde_json::to_value(&typed).expect("value"), summary);
+
+    let lines = std::fs::read_to_string(out.join("scans.jsonl")).expect("scans");
+    let first: Value = serde_json::from_str(lines.lines().next().expect("a line")).expect("json");
+    assert_eq!(
+        keys_of(&first),
+        [
+            ".existence",
+            ".existence[].existence",
+            ".existence[].label",
+            ".expected_cardinality",
+            ".hypotheses",
+            ".hypotheses[].tracks",
+            ".hypotheses[].weight",
+            ".hypotheses_total",
+            ".scan",
+            ".time",
+            ".tracks",
+            ".tracks[].covariance",
+            ".tracks[].existence",
+            ".tracks[].label",
+            ".tracks[].mean",
+        ]
+    );
+    for line in lines.lines() {
+        let value: Value = serde_json::from_str(line).expect("json");
+        let typed: ScanLine = serde_json::from_str(line).expect("a ScanLine");
+        assert_eq!(serde_json::to_value(&typed).expect("value"), value);
+    }
+}
+
+/// The same for `compare.json` (keys listed from `host-sim compare` at commit 18b844d).
+#[test]
+fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
+    use host_sim::report::CompareReport;
+    let dir = TempDir::new("compare-keys");
+    let file = linear_small(&dir, Some(3));
+    let out = dir.join("out");
+    let output =
+        host_sim(&["compare".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let text = std::fs::read_to_string(out.join("compare.json")).expect("compare");
+    let value: Value = serde_json::from_str(&text).expect("json");
+    assert_eq!(
+        keys_of(&value),
+        [
+            ".bounded",
+            ".bounded.max_ms_per_scan",
+            ".bounded.mean_gospa",
+            ".bounded.mean_ms_per_scan",
+            ".bounded.tracker",
+            ".bounded_tracker",
+            ".map_agreement",
+            ".mean_captured_mass",
+            ".mean_weight_l1",
+            ".min_captured_mass",
+            ".per_scan",
+            ".per_scan[].bounded_error",
+            ".per_scan[].bounded_hypotheses",
+            ".per_scan[].bounded_ms",
+            ".per_scan[].captured_mass",
+            ".per_scan[].map_agreement",
+            ".per_scan[].reference_error",
+            ".per_scan[].reference_hypotheses",
+            ".per_scan[].reference_ms",
+            ".per_scan[].scan",
+            ".per_scan[].time",
+            ".per_scan[].weight_l1",
+            ".profile",
+            ".reference",
+            ".reference.budget_reached_scans",
+            ".reference.max_ms_per_scan",
+            ".reference.mean_gospa",
+            ".reference.mean_ms_per_scan",
+            ".reference.tracker",
+            ".scans",
+            ".scenario",
+        ]
+    );
+    let typed: CompareReport = serde_json::from_str(&text).expect("a CompareReport");
+    assert_eq!(serde_json::to_value(&typed).expect("value"), value);
+    // The printed figures are the file's without `per_scan`.
+    let printed: Value = serde_json::from_str(&stdout(&output)).expect("printed json");
+    let mut brief = value.clone();
+    brief.as_object_mut().expect("object").remove("per_scan");
+    assert_eq!(printed, brief);
+}
+
+/// The same for the reports of `sampler-check` and `soak` (keys listed from their outputs at commit 18b844d).
+#[test]
+fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
+    use host_sim::report::{SamplerCheckReport, SoakReport};
+    let dir = TempDir::new("report-keys");
+    let file = dir.join("sc.json");
+    let output =
+        host_sim(&["sampler-check".as_ref(), "--cases".as_ref(), "3".as_ref(), "--out".as_ref(), file.as_os_str()]);
+    assert_success(&output);
+    let text = std::fs::read_to_string(&file).expect("report");
+    let value: Value = serde_json::from_str(&text).expect("json");
+    let scores = [
+        "mean_captured_mass",
+        "mean_sampler_steps_per_case",
+        "mean_weight_l1",
+        "min_captured_case",
+        "min_captured_mass",
+        "top1_found_fraction",
+    ];
+    let mut expected: Vec<String> = scores.iter().map(|k| format!(".{k}")).collect();
+    expected.extend(scores.iter().map(|k| format!(".pure_sampling.{k}")));
+    expected.extend(
+        ["cases", "max_children_per_case", "mean_children_per_case", "pure_sampling", "sampler", "seed"]
+            .map(|k| format!(".{k}")),
+    );
+    expected.extend(
+        ["burn_in", "clusters", "exact_start", "exhaustive_limit", "proposal", "steps"]
+            .map(|k| format!(".sampler.{k}")),
+    );
+    expected.sort();
+    assert_eq!(keys_of(&value), expected);
+    let typed: SamplerCheckReport = serde_json::from_str(&text).expect("a SamplerCheckReport");
+    assert_eq!(serde_json::to_value(&typed).expect("value"), value);
+
+    let file = dir.join("soak.json");
+    let output = host_sim(&[
+        "soak".as_ref(),
+        "--scans".as_ref(),
+        "3".as_ref(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        file.as_os_str(),
+    ]);
+    assert_success(&output);
+    let text = std::fs::read_to_string(&file).expect("report");
+    let value: Value = serde_json::from_str(&text).expect("json");
+    let mut expected: Vec<String> = [
+        "births_beyond_object_capacity",
+        "children_dropped_for_store",
+        "errors_by_kind",
+        "final_expected_cardinality",
+        "first_error",
+        "first_non_finite_scan",
+        "hypothesis_capacity",
+        "max_abs_cardinality_error",
+        "max_hypotheses",
+        "max_measurements_per_scan",
+        "max_ms_per_scan",
+        "mean_abs_cardinality_error",
+        "mean_ms_per_scan",
+        "measurement_capacity",
+        "measurements",
+        "nan_count",
+        "non_finite_scans",
+        "p50_ms_per_scan",
+        "p99_ms_per_scan",
+        "scans",
+        "seed",
+        "setup",
+        "track_store_capacity",
+        "track_store_high_water",
+        "truth",
+        "wall_seconds",
+    ]
+    .iter()
+    .map(|k| format!(".{k}"))
+    .collect();
+    expected.extend(
+        [
+            "birth_rate_per_scan",
+            "death_rate_per_object_per_scan",
+            "motion",
+            "scan_interval_s",
+            "sensor",
+            "tracker",
+            "tracker_birth_cells",
+            "tracker_birth_probability_per_cell",
+            "tracker_death_probability",
+        ]
+        .map(|k| format!(".setup.{k}")),
+    );
+    expected.extend(["births", "deaths", "final_alive", "initial_objects", "max_alive"].map(|k| format!(".truth.{k}")));
+    expected.sort();
+    assert_eq!(keys_of(&value), expected);
+    let typed: SoakReport = serde_json::from_str(&text).expect("a SoakReport");
+    assert_eq!(serde_json::to_value(&typed).expect("value"), value);
 }
