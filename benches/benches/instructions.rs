@@ -7,7 +7,8 @@
 //!   birth cell per parent). `ssa_f64` and `ssa_f32` are `SsaTracker<f64>` / `SsaTracker<f32>` at
 //!   [`tracker_core::ssa_caps`] (H = 32, N = 64, Z = 32, K = 256, B = 8); `ssa_f64_n_full` holds N objects
 //!   per hypothesis (no room for a birth, so no birth chains); the others vary one cap of the f64 tracker
-//!   (`hH`, `nN` with K = 4N, `zZ`).
+//!   (`hH`, `nN` with K = 4N, `zZ`); `ssa_f64_budget_M` is `ssa_f64` with a budget of M Metropolis moves
+//!   for the scan (`Tracker::step_with_budget`; the unlimited scan makes 604,800).
 //! - `chain`: one Metropolis chain of 20,000 steps with the default (informed) proposal on the 32 × 64
 //!   crossing matrix of the `sampler` bench (tables, greedy start, climb, steps, duplicate removal).
 //! - `ekf`: two-body predict (dt = 60 s) and update, f64.
@@ -63,6 +64,12 @@ fn z4() -> Box<dyn Scan> {
 fn z8() -> Box<dyn Scan> {
     Box::new(worst_case::<f64, H, N, 8, K, B>(N - 1))
 }
+/// `ssa_f64` with a budget of `moves` Metropolis moves for the scan (`Tracker::step_with_budget`).
+fn ssa_f64_budget(moves: u64) -> Box<dyn Scan> {
+    let mut scan = worst_case::<f64, H, N, Z, K, B>(N - 1);
+    scan.move_budget = moves;
+    Box::new(scan)
+}
 
 #[library_benchmark]
 #[bench::ssa_f64(setup = ssa_f64)]
@@ -74,6 +81,10 @@ fn z8() -> Box<dyn Scan> {
 #[bench::n32(setup = n32)]
 #[bench::z4(setup = z4)]
 #[bench::z8(setup = z8)]
+#[bench::ssa_f64_budget_0(args = (0), setup = ssa_f64_budget)]
+#[bench::ssa_f64_budget_10k(args = (10_000), setup = ssa_f64_budget)]
+#[bench::ssa_f64_budget_100k(args = (100_000), setup = ssa_f64_budget)]
+#[bench::ssa_f64_budget_300k(args = (300_000), setup = ssa_f64_budget)]
 fn step(mut scan: Box<dyn Scan>) -> usize {
     black_box(scan.run())
 }

@@ -141,6 +141,8 @@ pub struct WorstCase<T: Real, const H: usize, const N: usize, const Z: usize, co
     pub measurements: Vec<SVector<T, 2>>,
     /// Time of the scan.
     pub time: f64,
+    /// The scan's budget of Metropolis moves (`u64::MAX`: none).
+    pub move_budget: u64,
 }
 
 impl<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
@@ -151,7 +153,7 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, co
     /// # Errors
     /// The tracker's.
     pub fn step(&mut self) -> Result<StepReport<T>, StepError> {
-        self.tracker.step(self.time, &self.measurements)
+        self.tracker.step_with_budget(self.time, &self.measurements, self.move_budget)
     }
 }
 
@@ -213,7 +215,7 @@ pub fn worst_case<T: Real, const H: usize, const N: usize, const Z: usize, const
             SVector::from([T::of_f64(centre[0] + dx), T::of_f64(centre[1] + dy)])
         })
         .collect();
-    WorstCase { tracker, measurements, time: WORST_CASE_DT }
+    WorstCase { tracker, measurements, time: WORST_CASE_DT, move_budget: u64::MAX }
 }
 
 #[cfg(test)]
