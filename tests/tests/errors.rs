@@ -186,10 +186,10 @@ fn invalid_priors_are_typed_errors() {
         build(&[PriorHypothesis { weight: -1.0, objects: &[good] }], 0.0),
         Some(ConfigError::PriorWeight { hypothesis: 0 })
     );
-    assert_eq!(
-        build(&[PriorHypothesis { weight: 0.0, objects: &[good] }], 0.0),
-        Some(ConfigError::PriorWeight { hypothesis: 0 })
-    );
+    assert_eq!(build(&[PriorHypothesis { weight: 0.0, objects: &[good] }], 0.0), Some(ConfigError::PriorWeightTotal));
+    // Each weight is finite, their sum is not.
+    let huge = [PriorHypothesis { weight: 1e308, objects: &[good] }, PriorHypothesis { weight: 1e308, objects: &[] }];
+    assert_eq!(build(&huge, 0.0), Some(ConfigError::PriorWeightTotal));
     assert_eq!(
         build(&[PriorHypothesis { weight: 1.0, objects: &[degenerate] }], 0.0),
         Some(ConfigError::PriorObject { hypothesis: 0, object: 0 })

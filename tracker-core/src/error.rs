@@ -75,11 +75,13 @@ pub enum ConfigError {
     PriorEmpty,
     /// The prior has more hypotheses than the capacity `H`.
     PriorTooManyHypotheses,
-    /// A prior weight is negative or not finite, or all are zero.
+    /// A prior weight is negative or not finite.
     PriorWeight {
         /// The hypothesis.
         hypothesis: usize,
     },
+    /// The prior weights sum to zero, or their sum overflows.
+    PriorWeightTotal,
     /// A prior hypothesis has more objects than the capacity `N`.
     PriorTooManyObjects {
         /// The hypothesis.
@@ -128,7 +130,10 @@ impl core::fmt::Display for ConfigError {
             ConfigError::PriorEmpty => f.write_str("prior has no hypothesis"),
             ConfigError::PriorTooManyHypotheses => f.write_str("prior has more hypotheses than the capacity H"),
             ConfigError::PriorWeight { hypothesis } => {
-                write!(f, "prior hypothesis {hypothesis}: weight must be finite and >= 0, and not all zero")
+                write!(f, "prior hypothesis {hypothesis}: weight must be finite and >= 0")
+            }
+            ConfigError::PriorWeightTotal => {
+                f.write_str("prior weights must not all be zero, and their sum must be finite")
             }
             ConfigError::PriorTooManyObjects { hypothesis } => {
                 write!(f, "prior hypothesis {hypothesis}: more objects than the capacity N")

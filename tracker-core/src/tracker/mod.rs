@@ -438,7 +438,7 @@ where
     /// // Weights must not all be zero.
     /// let zero = [PriorHypothesis { weight: 0.0, objects: &objects }];
     /// let error = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config, &zero, 0.0).unwrap_err();
-    /// assert_eq!(error, ConfigError::PriorWeight { hypothesis: 0 });
+    /// assert_eq!(error, ConfigError::PriorWeightTotal);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn new(

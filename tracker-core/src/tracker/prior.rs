@@ -148,7 +148,7 @@ fn prior_weight_total<T: Real, const S: usize, const H: usize>(
         total += hypothesis.weight;
     }
     if !(total > T::zero() && total.is_finite_value()) {
-        return Err(ConfigError::PriorWeight { hypothesis: 0 });
+        return Err(ConfigError::PriorWeightTotal);
     }
     Ok(total)
 }
