@@ -14,6 +14,7 @@ pub mod evaluate;
 pub mod experiment;
 pub mod metrics;
 pub mod murty;
+pub mod orbit;
 pub mod perf;
 pub mod plots;
 pub mod reference;

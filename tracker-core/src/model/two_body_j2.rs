@@ -205,7 +205,8 @@ impl<T: Real> TwoBodyJ2<T> {
             for i in 0..3 {
                 // Rows 0-2: the velocity rows of Φ; rows 3-5: G times the position rows of Φ.
                 phi_dot[(i, col)] = phi[(i + 3, col)];
-                phi_dot[(i + 3, col)] = g[(i, 0)] * phi[(0, col)] + g[(i, 1)] * phi[(1, col)] + g[(i, 2)] * phi[(2, col)];
+                phi_dot[(i + 3, col)] =
+                    g[(i, 0)] * phi[(0, col)] + g[(i, 1)] * phi[(1, col)] + g[(i, 2)] * phi[(2, col)];
             }
         }
         Ok((derivative, phi_dot))
@@ -235,7 +236,9 @@ impl<T: Real> TwoBodyJ2<T> {
         let r_hat = r / r_norm;
         let c_hat = h / h_norm;
         let i_hat = c_hat.cross(&r_hat);
-        r_hat * r_hat.transpose() * radial + i_hat * i_hat.transpose() * in_track + c_hat * c_hat.transpose() * cross_track
+        r_hat * r_hat.transpose() * radial
+            + i_hat * i_hat.transpose() * in_track
+            + c_hat * c_hat.transpose() * cross_track
     }
 }
 
