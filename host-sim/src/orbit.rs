@@ -92,6 +92,9 @@ impl Propagator {
         if !dt.is_finite() || state.iter().any(|v| !v.is_finite()) {
             return Err(OrbitError::NonFinite);
         }
+        if dt == 0.0 {
+            return Ok(state);
+        }
         let mut y = state;
         let mut t = 0.0_f64;
         let direction = if dt < 0.0 { -1.0 } else { 1.0 };
@@ -101,9 +104,6 @@ impl Propagator {
         let mut h = (0.01 * r / v.max(1e-9)).min(dt.abs()).max(1e-6) * direction;
         for _ in 0..self.max_steps {
             let remaining = dt - t;
-            if remaining * direction <= 0.0 {
-                return Ok(y);
-            }
             let last = h.abs() >= remaining.abs();
             if last {
                 h = remaining;
@@ -111,7 +111,10 @@ impl Propagator {
             let (next, error) = self.step(&y, h)?;
             if error <= 1.0 {
                 y = next;
-                t = if last { dt } else { t + h };
+                if last {
+                    return Ok(y);
+                }
+                t += h;
             }
             // h ← h · clamp(0.9 · error^(−1/8), 0.2, 5): 1/8 for the 7th-order error estimate.
             let factor = if error == 0.0 { 5.0 } else { (0.9 * error.powf(-1.0 / 8.0)).clamp(0.2, 5.0) };

@@ -2,14 +2,14 @@
 //! r̈ = −μ r / |r|³ + a_J2(r), the Earth's oblateness as its zonal term J2 (docs/maths.md §6.7).
 //!
 //! **Frame.** Inertial, Earth-centred, with z along the Earth's rotation pole: J2 is symmetric about
-//! the inertial z axis, which is the pole in TEME or GCRF up to precession and nutation (≈ 0.3° between
-//! GCRF's z and the pole of date in 2025; TEME's z is the pole of date). The truth and the tracker must
+//! the inertial z axis, which is the pole in TEME, and in GCRF up to precession and nutation (GCRF's z
+//! is ≈ 0.14° from the pole of date in 2025, 20″ a year since J2000). The truth and the tracker must
 //! share the frame: SGP4 output is TEME, so feed TEME states and TEME-derived measurements.
 //!
 //! **Neglected.** Higher zonals and tesserals (J3 ≈ −2.5e-6, J4 ≈ −1.6e-6: about 1/400 of J2),
 //! atmospheric drag, solar radiation pressure and lunisolar third-body gravity. For LEO these reach
-//! metres to kilometres over hours (drag the largest below ≈ 600 km); they are what the process noise
-//! must cover.
+//! tens of metres to kilometres over hours (drag the largest below ≈ 600 km; estimates in docs/maths.md
+//! §6.7); they are what the process noise must cover.
 //!
 //! **Integration.** State and transition matrix Φ are integrated together by classical fixed-step RK4 on
 //! the variational equations Φ̇ = A(x) Φ, A = [[0, I], [G, 0]], with the gravity gradient G = ∂a/∂r
