@@ -384,6 +384,8 @@ mod tests {
         worst
     }
 
+    // Measured (`cargo test -p tracker-core two_body_j2`, with a print): LEO 9.7e-10 over 60 s and
+    // 1.5e-8 over one orbit; GEO 1.2e-9 and 1.3e-7.
     #[test]
     fn two_body_j2_transition_matrix_matches_finite_differences() {
         let model = TwoBodyJ2 { max_substeps: 5000, ..MODEL }; // one GEO orbit is 4309 steps of 20 s
@@ -395,6 +397,7 @@ mod tests {
         }
     }
 
+    // Measured: relative errors 3e-12 to 1.7e-10 (finite-difference truncation and rounding).
     #[test]
     fn two_body_j2_gravity_gradient_matches_finite_differences() {
         let positions = [
@@ -570,6 +573,7 @@ mod tests {
         assert_eq!(q.fixed_view::<3, 3>(3, 3).into_owned(), SMatrix::<f64, 3, 3>::identity() * 1e-12);
     }
 
+    // Measured: f32 against f64 after 600 s, 1.6 m (LEO) and 4.7 m (GEO).
     #[test]
     fn two_body_j2_runs_in_f32() {
         let model32 = TwoBodyJ2::<f32>::earth(ProcessNoise::Isotropic(1e-12), 20.0, 1100);
