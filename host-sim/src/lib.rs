@@ -18,6 +18,7 @@ pub mod experiment;
 pub mod gibbs;
 pub mod metrics;
 pub mod murty;
+pub mod orbit;
 pub mod perf;
 pub mod plots;
 pub mod reference;

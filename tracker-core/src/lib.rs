@@ -67,7 +67,7 @@ pub mod weight;
 pub use config::{BirthDetection, BirthModel, ChildGeneration, Config, StoreOverflow};
 pub use ekf::{Gaussian, NumericalError};
 pub use error::{ConfigError, StepError};
-pub use model::{ConstantVelocity, MeasurementModel, MotionModel, PositionMeasurement, TwoBody};
+pub use model::{ConstantVelocity, MeasurementModel, MotionModel, PositionMeasurement, TwoBody, TwoBodyJ2};
 pub use real::Real;
 pub use report::StepReport;
 pub use sensor::{Region, Sensor};

@@ -10,15 +10,19 @@
 //! - [`ConstantVelocity`]: 2-D constant velocity, linear, for exactness tests and cross-checks.
 //! - [`TwoBody`]: planar Keplerian gravity, state and transition matrix integrated together by a
 //!   fixed-step RK4 with a bounded number of sub-steps.
+//! - [`TwoBodyJ2`]: 3-D two-body + J2 (Earth oblateness) in an Earth-centred inertial frame, with
+//!   the analytic gravity gradient in the variational equations and RIC-frame process noise.
 //! - [`PositionMeasurement`]: the position (x, y) of a planar state with Gaussian noise.
 
 mod constant_velocity;
 mod position;
 mod two_body;
+mod two_body_j2;
 
 pub use constant_velocity::ConstantVelocity;
 pub use position::PositionMeasurement;
 pub use two_body::TwoBody;
+pub use two_body_j2::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, ProcessNoise, TwoBodyJ2};
 
 use crate::real::Real;
 use nalgebra::{SMatrix, SVector};
