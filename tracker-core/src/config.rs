@@ -136,7 +136,13 @@ mod tests {
             covariance: nalgebra::SMatrix::identity(),
         });
         let config: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, 2> = Config {
-            motion: TwoBody { mu: 398_600.0, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 100 },
+            motion: TwoBody {
+                mu: 398_600.0,
+                acceleration_noise: 1e-13,
+                max_step: 20.0,
+                max_substeps: 100,
+                min_radius: 6378.137,
+            },
             measurement: PositionMeasurement::isotropic(0.5),
             sensor: Sensor {
                 detection_probability: 0.9,
