@@ -13,13 +13,20 @@
 //!
 //! **Invariant.** Every covariance in an `Ok` result of [`predict`] and [`update`] (and of
 //! [`correction`]) is finite, exactly symmetric and positive definite by a Cholesky factorisation: it
-//! passes [`is_valid_covariance`]. Covariances are symmetrised after every operation, and the result is
-//! then factored; a failure is [`NumericalError::NotPositiveDefinite`], never an `Ok` with an indefinite
-//! covariance. Exact arithmetic keeps P positive definite; rounding does not when P is so wide that the
-//! update must cancel most of its digits (a variance of 10²⁵ against a measurement variance of 0.25 needs
-//! 26 significant digits; f64 has 16, f32 7). The check only rejects: a covariance that passes is the
-//! same bits as without it. Ordinary tracks are far from that limit, so their results are unchanged; a
-//! track that fails is handled by the tracker's [`crate::config::NumericalFailure`] policy.
+//! passes [`is_valid_covariance`], so one bad step cannot poison the next scans. Covariances are
+//! symmetrised after every operation, and the result is then factored. Exact arithmetic keeps P positive
+//! definite; rounding does not when P is so wide that the step must cancel most of its digits (a
+//! velocity variance of 10²⁵ against a measurement variance of 0.25 needs 26 significant digits; f64 has
+//! 16, f32 7), and the Joseph form then returned negative variances. Now:
+//! - a covariance that factors is returned as computed: ordinary tracks give the same bits as before;
+//! - one that does not is repaired once, each variance multiplied by 1 + 8 ε (ε the scalar's machine
+//!   epsilon: a change of the order of the rounding that broke it, and conservative); this keeps tracks
+//!   whose covariance is singular only to rounding (wide priors, a rank-deficient R);
+//! - one the repair does not fix is [`NumericalError::NotPositiveDefinite`], handled by the tracker's
+//!   [`crate::config::NumericalFailure`] policy.
+//!
+//! A square-root (Cholesky-factor) filter would keep P positive semi-definite by construction, but it
+//! changes the bits of every step (the QEMU digest and the golden files) and costs more per update.
 
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{Real, c, ln};
@@ -49,6 +56,7 @@ impl<T: Real, const S: usize> Gaussian<T, S> {
 /// Why an EKF operation failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum NumericalError {
     /// A covariance that must be positive definite is not: S, or the result of a prediction or an update
     /// (rounding lost its definiteness, see the module documentation).
@@ -165,9 +173,7 @@ pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
     let phi = propagation.transition;
     // P⁻ = Φ P Φᵀ + Q
     let covariance = symmetrise(&(phi * prior.covariance * phi.transpose() + model.process_noise(&prior.mean, dt)));
-    let predicted = Gaussian { mean: propagation.state, covariance };
-    check(&predicted)?;
-    Ok(predicted)
+    check(Gaussian { mean: propagation.state, covariance })
 }
 
 /// The innovation of a predicted track: ẑ = h(x̂⁻) and S = H P⁻ Hᵀ + R, factored.
@@ -220,10 +226,7 @@ pub fn correction<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D
     if !gain.iter().chain(covariance.iter()).all(|v| v.is_finite_value()) {
         return Err(NumericalError::NonFinite);
     }
-    if Cholesky::new(covariance).is_none() {
-        return Err(NumericalError::NotPositiveDefinite);
-    }
-    Ok(Correction { gain, covariance })
+    Ok(Correction { gain, covariance: positive_definite(covariance)? })
 }
 
 impl<T: Real, const S: usize, const D: usize> Correction<T, S, D> {
@@ -262,15 +265,35 @@ pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: us
     correction(model, predicted, innovation)?.apply(predicted, innovation, z)
 }
 
-/// `Ok` when `gaussian` is finite and its (symmetrised) covariance factors.
-fn check<T: Real, const S: usize>(gaussian: &Gaussian<T, S>) -> Result<(), NumericalError> {
+/// `gaussian` when it is finite and its covariance factors (after [`positive_definite`]).
+fn check<T: Real, const S: usize>(gaussian: Gaussian<T, S>) -> Result<Gaussian<T, S>, NumericalError> {
     if !gaussian.mean.iter().chain(gaussian.covariance.iter()).all(|v| v.is_finite_value()) {
         return Err(NumericalError::NonFinite);
     }
-    if Cholesky::new(gaussian.covariance).is_none() {
-        return Err(NumericalError::NotPositiveDefinite);
+    Ok(Gaussian { mean: gaussian.mean, covariance: positive_definite(gaussian.covariance)? })
+}
+
+/// Relative inflation of the diagonal in the repair of [`positive_definite`], in units of ε.
+const REPAIR_EPSILONS: f64 = 8.0;
+
+/// A finite symmetric `covariance` when it factors (the same bits); otherwise, once, with each variance
+/// multiplied by 1 + 8 ε (ε the scalar's machine epsilon), a change of the order of the rounding of the
+/// operation that produced it, when that factors; otherwise [`NumericalError::NotPositiveDefinite`].
+fn positive_definite<T: Real, const S: usize>(
+    covariance: SMatrix<T, S, S>,
+) -> Result<SMatrix<T, S, S>, NumericalError> {
+    if Cholesky::new(covariance).is_some() {
+        return Ok(covariance);
     }
-    Ok(())
+    let factor = T::one() + T::of_f64(REPAIR_EPSILONS) * T::default_epsilon();
+    let mut inflated = covariance;
+    for i in 0..S {
+        inflated[(i, i)] *= factor;
+    }
+    match Cholesky::new(inflated) {
+        Some(_) => Ok(inflated),
+        None => Err(NumericalError::NotPositiveDefinite),
+    }
 }
 
 /// ½ (A + Aᵀ).
@@ -366,14 +389,31 @@ mod tests {
                 }
             }
         }
-        // Moderate priors work in both precisions; the widest fail in both (typed, not indefinite).
+        // Moderate priors work in both precisions; f64 survives wider priors than f32 (with the
+        // repair); f32 fails on some (typed, never indefinite).
         assert_eq!(wide_prior::<f64>(1e10, 1.0, 4), Ok(()));
         assert_eq!(wide_prior::<f32>(1e5, 1.0, 4), Ok(()));
-        for variance in [1e25, 1e30] {
-            assert_eq!(wide_prior::<f64>(variance, 1.0, 4), Err(NumericalError::NotPositiveDefinite));
-            assert_eq!(wide_prior::<f32>(variance, 1.0, 4), Err(NumericalError::NotPositiveDefinite));
-        }
-        assert!(failed[0] > 0 && failed[1] >= failed[0], "failures f64/f32: {failed:?}");
+        assert_eq!(wide_prior::<f64>(1e25, 1.0, 4), Ok(()));
+        assert_eq!(wide_prior::<f32>(1e25, 1.0, 4), Err(NumericalError::NotPositiveDefinite));
+        assert!(failed[1] > failed[0], "failures f64/f32: {failed:?}");
+    }
+
+    #[test]
+    fn repair_is_bounded_and_only_touches_failing_covariances() {
+        // A covariance that factors is returned unchanged (same bits).
+        let good = SMatrix::<f64, 2, 2>::new(2.0, 0.3, 0.3, 1.0);
+        assert_eq!(positive_definite(good), Ok(good));
+        // Singular to rounding: repaired by the 1 + 8ε inflation of the diagonal, nothing else.
+        let singular = SMatrix::<f64, 2, 2>::repeat(1e25);
+        let repaired = positive_definite(singular).unwrap();
+        assert!(Cholesky::new(singular).is_none() && is_valid_covariance(&repaired));
+        assert_eq!(repaired[(0, 1)], singular[(0, 1)]);
+        assert_eq!(repaired[(0, 0)], 1e25 * (1.0 + 8.0 * f64::EPSILON));
+        // Indefinite beyond rounding: an error.
+        let indefinite = SMatrix::<f64, 2, 2>::new(1.0, 1.0 + 1e-12, 1.0 + 1e-12, 1.0);
+        assert_eq!(positive_definite(indefinite), Err(NumericalError::NotPositiveDefinite));
+        let negative = SMatrix::<f32, 2, 2>::new(1.0, 0.0, 0.0, -57.5);
+        assert_eq!(positive_definite(negative), Err(NumericalError::NotPositiveDefinite));
     }
 
     /// Without the final check the Joseph form of a 10²⁵ prior is indefinite: the check is what stops it.
@@ -405,7 +445,12 @@ mod tests {
                     let sensor = PositionMeasurement::isotropic(0.5f32);
                     let prior = Gaussian {
                         mean: SVector::from([10.0f32, -3.0, 0.1, 0.2]),
-                        covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, variance as f32, variance as f32])),
+                        covariance: SMatrix::from_diagonal(&SVector::from([
+                            1.0,
+                            1.0,
+                            variance as f32,
+                            variance as f32,
+                        ])),
                     };
                     let result = predict(&motion, &prior, dt as f32).and_then(|predicted| {
                         assert!(is_valid_covariance(&predicted.covariance));

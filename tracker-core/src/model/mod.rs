@@ -26,6 +26,7 @@ use nalgebra::{SMatrix, SVector};
 /// Why a model could not produce a prediction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ModelError {
     /// The time step needs more integrator sub-steps than the model allows.
     TimeStepTooLarge,

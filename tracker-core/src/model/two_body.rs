@@ -259,7 +259,13 @@ mod tests {
                 assert_eq!(point_mass().propagate(&centre, dt), Err(ModelError::Singular));
             }
         }
-        let f32_model = TwoBody::<f32> { mu: 398_600.44, acceleration_noise: 1e-9, max_step: 20.0, max_substeps: 100, min_radius: 0.0 };
+        let f32_model = TwoBody::<f32> {
+            mu: 398_600.44,
+            acceleration_noise: 1e-9,
+            max_step: 20.0,
+            max_substeps: 100,
+            min_radius: 0.0,
+        };
         assert_eq!(f32_model.propagate(&SVector::from([1e-3, 0.0, 0.0, 0.0]), 60.0), Err(ModelError::Unresolved));
     }
 
@@ -298,10 +304,9 @@ mod tests {
                     assert!(p.state.iter().chain(p.transition.iter()).all(|v| v.is_finite()));
                     assert!(p.state.xy().norm() >= model.min_radius);
                 }
-                Err(e) => assert!(matches!(
-                    e,
-                    ModelError::Unresolved | ModelError::InsideBody | ModelError::TimeStepTooLarge
-                )),
+                Err(e) => {
+                    assert!(matches!(e, ModelError::Unresolved | ModelError::InsideBody | ModelError::TimeStepTooLarge))
+                }
             }
         }
         assert!(accepted > 100, "{accepted}");
