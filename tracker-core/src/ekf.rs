@@ -4,8 +4,7 @@
 //! - Innovation: ẑ = h(x̂⁻), S = H P⁻ Hᵀ + R, factored once as S = L Lᵀ (Cholesky). A failed
 //!   factorisation is [`NumericalError::NotPositiveDefinite`], never ignored.
 //! - Likelihood: ln ĝ = ln N(z; ẑ, S) = −½ |L⁻¹ν|² − Σ ln Lᵢᵢ − (D/2) ln 2π with ν = z − ẑ; no explicit
-//!   inverse. For a linear model ĝ is the exact predicted likelihood ∫ g(z|x) p⁻(x) dx (docs/maths.md,
-//!   predicted likelihood).
+//!   inverse. For a linear model ĝ is the exact predicted likelihood ∫ g(z|x) p⁻(x) dx (digest §4.1).
 //! - Update: K = P⁻ Hᵀ S⁻¹ (solved through L), x̂ = x̂⁻ + K ν and the Joseph form
 //!   P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ. K, H and P depend on the predicted track only, not on z, so
 //!   [`correction`] computes them once per track and [`Correction::apply`] adds K ν for each measurement;
@@ -18,15 +17,18 @@
 //! definite; rounding does not when P is so wide that the step must cancel most of its digits (a
 //! velocity variance of 10²⁵ against a measurement variance of 0.25 needs 26 significant digits; f64 has
 //! 16, f32 7), and the Joseph form then returned negative variances. Now:
-//! - a covariance that factors is returned as computed: ordinary tracks give the same bits as before;
+//! - a covariance that factors is returned as computed, the same bits as without the check;
 //! - one that does not is repaired once, each variance multiplied by 1 + 8 ε (ε the scalar's machine
 //!   epsilon: a change of the order of the rounding that broke it, and conservative); this keeps tracks
 //!   whose covariance is singular only to rounding (wide priors, a rank-deficient R);
 //! - one the repair does not fix is [`NumericalError::NotPositiveDefinite`], handled by the tracker's
 //!   [`crate::config::NumericalFailure`] policy.
 //!
-//! A square-root (Cholesky-factor) filter would keep P positive semi-definite by construction, but it
-//! changes the bits of every step (the QEMU digest and the golden files) and costs more per update.
+//! In f32 this is not only a matter of absurd priors: on the QEMU scenario (fifty-birth-death, seed 1)
+//! the embedded `SsaTracker<f32>` produced a covariance that fails Cholesky at scan 34; the repair keeps
+//! that track. A square-root (Cholesky-factor) filter would keep P positive semi-definite by
+//! construction, but it changes the bits of every step (the QEMU digest and the golden files) and costs
+//! more per update.
 
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{Real, c, ln};
