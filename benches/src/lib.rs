@@ -74,6 +74,7 @@ pub fn ssa_motion<T: Real>() -> TwoBody<T> {
         acceleration_noise: T::of_f64(1e-13),
         max_step: T::of_f64(20.0),
         max_substeps: 20_000,
+        min_radius: TwoBody::DEFAULT_MIN_RADIUS,
     }
 }
 

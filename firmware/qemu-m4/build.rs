@@ -102,7 +102,7 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
     w(
         &mut o,
         format!(
-            "        motion: TwoBody {{ mu: {}, acceleration_noise: {}, max_step: {}, max_substeps: {} }},\n",
+            "        motion: TwoBody {{ mu: {}, acceleration_noise: {}, max_step: {}, max_substeps: {}, min_radius: 0.0 }},\n",
             f32_of(number(motion, "motion.mu")?),
             f32_of(number(motion, "motion.acceleration_noise")?),
             f32_of(number(motion, "motion.max_step")?),

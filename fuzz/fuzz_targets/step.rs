@@ -335,6 +335,7 @@ fuzz_target!(|input: Input| {
                 acceleration_noise: input.acceleration_noise.of(),
                 max_step: input.max_step.of(),
                 max_substeps: substeps,
+                min_radius: TwoBody::DEFAULT_MIN_RADIUS,
             };
             run_twice::<f32, _>(&input, motion);
         } else {
@@ -343,6 +344,7 @@ fuzz_target!(|input: Input| {
                 acceleration_noise: input.acceleration_noise.of(),
                 max_step: input.max_step.of(),
                 max_substeps: substeps,
+                min_radius: TwoBody::DEFAULT_MIN_RADIUS,
             };
             run_twice::<f64, _>(&input, motion);
         }

@@ -104,6 +104,7 @@ pub fn ssa_config<T: Real>(
             acceleration_noise: of(config.motion.acceleration_noise),
             max_step: of(config.motion.max_step),
             max_substeps: config.motion.max_substeps,
+            min_radius: of(config.motion.min_radius),
         },
         measurement: PositionMeasurement { noise: config.measurement.noise.map(of) },
         sensor: Sensor {

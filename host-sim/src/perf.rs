@@ -216,8 +216,13 @@ impl EkfBench {
             mean: SVector::from([r * look.cos(), r * look.sin(), -v * look.sin(), v * look.cos()]),
             covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, 4e-8, 4e-8])),
         };
-        let two_body =
-            TwoBody { mu: crate::sim::EARTH_MU, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 20_000 };
+        let two_body = TwoBody {
+            mu: crate::sim::EARTH_MU,
+            acceleration_noise: 1e-13,
+            max_step: 20.0,
+            max_substeps: 20_000,
+            min_radius: TwoBody::DEFAULT_MIN_RADIUS,
+        };
         let measurement = PositionMeasurement::isotropic(0.5);
         let predicted = ekf::predict(&two_body, &prior, 60.0).map_err(|e| e.to_string())?;
         let innovation = ekf::innovation(&measurement, &predicted).map_err(|e| e.to_string())?;

@@ -45,7 +45,7 @@ pub fn measurement(spec: &MeasurementSpec) -> PositionMeasurement<f64> {
 pub fn two_body(spec: &MotionSpec) -> Option<TwoBody<f64>> {
     match *spec {
         MotionSpec::TwoBody { mu, acceleration_noise, max_step, max_substeps } => {
-            Some(TwoBody { mu, acceleration_noise, max_step, max_substeps })
+            Some(TwoBody { mu, acceleration_noise, max_step, max_substeps, min_radius: TwoBody::DEFAULT_MIN_RADIUS })
         }
         MotionSpec::ConstantVelocity { .. } => None,
     }

@@ -138,7 +138,13 @@ pub fn move_object(motion: &MotionSpec, state: [f64; 4], dt: f64, random: &mut R
     let x = SVector::<f64, 4>::from(state);
     let (next, noise) = match *motion {
         MotionSpec::TwoBody { mu, acceleration_noise, max_step, max_substeps } => {
-            let model = TwoBody { mu, acceleration_noise, max_step, max_substeps: max_substeps.max(1_000_000) };
+            let model = TwoBody {
+                mu,
+                acceleration_noise,
+                max_step,
+                max_substeps: max_substeps.max(1_000_000),
+                min_radius: TwoBody::DEFAULT_MIN_RADIUS,
+            };
             (model.propagate(&x, dt).map(|p| p.state).unwrap_or(x), model.process_noise(&x, dt))
         }
         MotionSpec::ConstantVelocity { acceleration_noise } => {

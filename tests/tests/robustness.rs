@@ -268,7 +268,13 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
         for children in generations() {
             let mu = 398_600.441_8;
             let config: SsaConfig<f64> = Config {
-                motion: TwoBody { mu, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 1_000 },
+                motion: TwoBody {
+                    mu,
+                    acceleration_noise: 1e-13,
+                    max_step: 20.0,
+                    max_substeps: 1_000,
+                    min_radius: TwoBody::DEFAULT_MIN_RADIUS,
+                },
                 measurement: PositionMeasurement::isotropic(0.5),
                 sensor: Sensor {
                     detection_probability: 0.95,
@@ -670,7 +676,13 @@ fn invalid_configuration_is_a_typed_error() {
 
     // Q of the two-body model: same rule; and its integrator parameters.
     let mut config = SsaConfig::<f64> {
-        motion: TwoBody { mu: 398_600.441_8, acceleration_noise: 0.0, max_step: 20.0, max_substeps: 100 },
+        motion: TwoBody {
+            mu: 398_600.441_8,
+            acceleration_noise: 0.0,
+            max_step: 20.0,
+            max_substeps: 100,
+            min_radius: TwoBody::DEFAULT_MIN_RADIUS,
+        },
         measurement: PositionMeasurement::isotropic(0.5),
         sensor: Sensor {
             detection_probability: 0.9,

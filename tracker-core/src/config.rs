@@ -209,6 +209,27 @@ pub enum StoreOverflow {
     Error,
 }
 
+/// What a scan does when the EKF fails for one track: a [`crate::NumericalError`] from its
+/// prediction, its innovation or its update (a covariance the filter cannot keep positive definite, an
+/// object inside the central body or lost by the integrator, a non-finite value).
+///
+/// With [`NumericalFailure::Error`] one such track rejects every later scan too, since it stays in
+/// every hypothesis and fails again: the tracker never recovers. Hence the default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum NumericalFailure {
+    /// Drop the track: it leaves every hypothesis that holds it in this scan, before the children are
+    /// generated, as if it had died with probability 1 (hypothesis weights unchanged, the other
+    /// objects and their labels untouched; its label is never reused). The scan then goes on, and
+    /// [`crate::report::NumericalDrops`] in the step report counts the dropped tracks and names the
+    /// first. **The default.**
+    #[default]
+    DropTrack,
+    /// Strict: the scan fails with [`crate::StepError::Numerical`] and the tracker is left unchanged.
+    Error,
+}
+
 /// How the H∞ hypotheses are chosen among the children (paper 003 §III-A).
 ///
 /// # Examples
@@ -328,7 +349,13 @@ mod tests {
             covariance: nalgebra::SMatrix::identity(),
         });
         let config: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, 2> = Config {
-            motion: TwoBody { mu: 398_600.0, acceleration_noise: 1e-13, max_step: 20.0, max_substeps: 100 },
+            motion: TwoBody {
+                mu: 398_600.0,
+                acceleration_noise: 1e-13,
+                max_step: 20.0,
+                max_substeps: 100,
+                min_radius: 6378.137,
+            },
             measurement: PositionMeasurement::isotropic(0.5),
             sensor: Sensor {
                 detection_probability: 0.9,
@@ -346,5 +373,20 @@ mod tests {
         let text = serde_json::to_string(&config).unwrap();
         let back: Config<f64, TwoBody<f64>, PositionMeasurement<f64>, 4, 2> = serde_json::from_str(&text).unwrap();
         assert_eq!(back, config);
+    }
+
+    #[test]
+    fn numerical_failure_defaults_to_dropping_the_track_and_round_trips() {
+        assert_eq!(NumericalFailure::default(), NumericalFailure::DropTrack);
+        for policy in [NumericalFailure::DropTrack, NumericalFailure::Error] {
+            let text = serde_json::to_string(&policy).unwrap();
+            assert_eq!(serde_json::from_str::<NumericalFailure>(&text).unwrap(), policy);
+        }
+        let drops = crate::report::NumericalDrops {
+            count: 2,
+            first: Some((crate::TrackLabel(7), crate::NumericalError::Model(crate::model::ModelError::InsideBody))),
+        };
+        let text = serde_json::to_string(&drops).unwrap();
+        assert_eq!(serde_json::from_str::<crate::report::NumericalDrops>(&text).unwrap(), drops);
     }
 }

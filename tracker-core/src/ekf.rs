@@ -6,9 +6,29 @@
 //! - Likelihood: ln ĝ = ln N(z; ẑ, S) = −½ |L⁻¹ν|² − Σ ln Lᵢᵢ − (D/2) ln 2π with ν = z − ẑ; no explicit
 //!   inverse. For a linear model ĝ is the exact predicted likelihood ∫ g(z|x) p⁻(x) dx (docs/maths.md §6.2).
 //! - Update: K = P⁻ Hᵀ S⁻¹ (solved through L), x̂ = x̂⁻ + K ν and the Joseph form
-//!   P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ, which keeps P symmetric positive semi-definite.
+//!   P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ. K, H and P depend on the predicted track only, not on z, so
+//!   [`correction`] computes them once per track and [`Correction::apply`] adds K ν for each measurement;
+//!   [`update`] is the two in one call, with the same bits.
 //!
-//! Covariances are symmetrised after every operation so that rounding never breaks symmetry.
+//! **Invariant.** Every covariance in an `Ok` result of [`predict`] and [`update`] (and of
+//! [`correction`]) is finite, exactly symmetric and positive definite by a Cholesky factorisation: it
+//! passes [`is_valid_covariance`], so one bad step cannot poison the next scans. Covariances are
+//! symmetrised after every operation, and the result is then factored. Exact arithmetic keeps P positive
+//! definite; rounding does not when P is so wide that the step must cancel most of its digits (a
+//! velocity variance of 10²⁵ against a measurement variance of 0.25 needs 26 significant digits; f64 has
+//! 16, f32 7), and the Joseph form then returned negative variances. Now:
+//! - a covariance that factors is returned as computed, the same bits as without the check;
+//! - one that does not is repaired once, each variance multiplied by 1 + 8 ε (ε the scalar's machine
+//!   epsilon: a change of the order of the rounding that broke it, and conservative); this keeps tracks
+//!   whose covariance is singular only to rounding (wide priors, a rank-deficient R);
+//! - one the repair does not fix is [`NumericalError::NotPositiveDefinite`], handled by the tracker's
+//!   [`crate::config::NumericalFailure`] policy.
+//!
+//! In f32 this is not only a matter of absurd priors: on the QEMU scenario (fifty-birth-death, seed 1)
+//! the embedded `SsaTracker<f32>` produced a covariance that fails Cholesky at scan 34; the repair keeps
+//! that track. A square-root (Cholesky-factor) filter would keep P positive semi-definite by
+//! construction, but it changes the bits of every step (the QEMU digest and the golden files) and costs
+//! more per update.
 
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{Real, c, ln};
@@ -72,8 +92,10 @@ impl<T: Real, const S: usize> Gaussian<T, S> {
 /// Why an EKF operation failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum NumericalError {
-    /// A covariance that must be positive definite (S, or a prior covariance) is not.
+    /// A covariance that must be positive definite is not: S, or the result of a prediction or an update
+    /// (rounding lost its definiteness, see the module documentation).
     NotPositiveDefinite,
     /// A NaN or infinity appeared in a mean or covariance.
     NonFinite,
@@ -216,7 +238,8 @@ impl<T: Real, const D: usize> Innovation<T, D> {
 /// ```
 ///
 /// # Errors
-/// The motion model's error, or [`NumericalError::NonFinite`].
+/// The motion model's error, [`NumericalError::NonFinite`], or [`NumericalError::NotPositiveDefinite`]
+/// when P⁻ does not factor.
 pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
     model: &M,
     prior: &Gaussian<T, S>,
@@ -226,12 +249,7 @@ pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
     let phi = propagation.transition;
     // P⁻ = Φ P Φᵀ + Q
     let covariance = symmetrise(&(phi * prior.covariance * phi.transpose() + model.process_noise(&prior.mean, dt)));
-    let predicted = Gaussian { mean: propagation.state, covariance };
-    if predicted.mean.iter().chain(predicted.covariance.iter()).all(|v| v.is_finite_value()) {
-        Ok(predicted)
-    } else {
-        Err(NumericalError::NonFinite)
-    }
+    check(Gaussian { mean: propagation.state, covariance })
 }
 
 /// The innovation of a predicted track: ẑ = h(x̂⁻) and S = H P⁻ Hᵀ + R, factored.
@@ -261,16 +279,26 @@ pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D
     Innovation::new(model.measure(&predicted.mean), s)
 }
 
-/// Updates a predicted track with measurement `z` (Joseph form).
+/// The measurement-independent part of an update: the gain K and the posterior covariance P.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Correction<T: Real, const S: usize, const D: usize> {
+    /// K = P⁻ Hᵀ S⁻¹.
+    pub gain: SMatrix<T, S, D>,
+    /// The Joseph-form posterior covariance (passes [`is_valid_covariance`]).
+    pub covariance: SMatrix<T, S, S>,
+}
+
+/// The gain and the posterior covariance of a predicted track (Joseph form); they do not depend on the
+/// measurement.
 ///
 /// # Errors
-/// [`NumericalError::NonFinite`] when the result is not finite.
-pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+/// [`NumericalError::NonFinite`] when they are not finite, [`NumericalError::NotPositiveDefinite`] when
+/// the posterior covariance does not factor.
+pub fn correction<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
     innovation: &Innovation<T, D>,
-    z: &SVector<T, D>,
-) -> Result<Gaussian<T, S>, NumericalError> {
+) -> Result<Correction<T, S, D>, NumericalError> {
     let h = model.jacobian(&predicted.mean);
     let hp = h * predicted.covariance; // H P⁻ (D × S)
     // Kᵀ = S⁻¹ H P⁻, column by column through L Lᵀ.
@@ -280,17 +308,80 @@ pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: us
         gain_t.set_column(col, &solved);
     }
     let gain = gain_t.transpose();
-    let nu = z - innovation.predicted;
-    let mean = predicted.mean + gain * nu;
     // P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ   (Joseph)
     let i_kh = SMatrix::<T, S, S>::identity() - gain * h;
     let covariance =
         symmetrise(&(i_kh * predicted.covariance * i_kh.transpose() + gain * model.noise_covariance() * gain_t));
-    let updated = Gaussian { mean, covariance };
-    if updated.mean.iter().chain(updated.covariance.iter()).all(|v| v.is_finite_value()) {
-        Ok(updated)
-    } else {
-        Err(NumericalError::NonFinite)
+    if !gain.iter().chain(covariance.iter()).all(|v| v.is_finite_value()) {
+        return Err(NumericalError::NonFinite);
+    }
+    Ok(Correction { gain, covariance: positive_definite(covariance)? })
+}
+
+impl<T: Real, const S: usize, const D: usize> Correction<T, S, D> {
+    /// The posterior of `predicted` given measurement `z`: mean x̂⁻ + K (z − ẑ), covariance P.
+    ///
+    /// # Errors
+    /// [`NumericalError::NonFinite`] when the mean is not finite.
+    pub fn apply(
+        &self,
+        predicted: &Gaussian<T, S>,
+        innovation: &Innovation<T, D>,
+        z: &SVector<T, D>,
+    ) -> Result<Gaussian<T, S>, NumericalError> {
+        let nu = z - innovation.predicted;
+        let mean = predicted.mean + self.gain * nu;
+        if mean.iter().all(|v| v.is_finite_value()) {
+            Ok(Gaussian { mean, covariance: self.covariance })
+        } else {
+            Err(NumericalError::NonFinite)
+        }
+    }
+}
+
+/// Updates a predicted track with measurement `z` (Joseph form): [`correction`] then
+/// [`Correction::apply`].
+///
+/// # Errors
+/// [`NumericalError::NonFinite`] when the result is not finite, [`NumericalError::NotPositiveDefinite`]
+/// when the posterior covariance does not factor.
+pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+    model: &G,
+    predicted: &Gaussian<T, S>,
+    innovation: &Innovation<T, D>,
+    z: &SVector<T, D>,
+) -> Result<Gaussian<T, S>, NumericalError> {
+    correction(model, predicted, innovation)?.apply(predicted, innovation, z)
+}
+
+/// `gaussian` when it is finite and its covariance factors (after [`positive_definite`]).
+fn check<T: Real, const S: usize>(gaussian: Gaussian<T, S>) -> Result<Gaussian<T, S>, NumericalError> {
+    if !gaussian.mean.iter().chain(gaussian.covariance.iter()).all(|v| v.is_finite_value()) {
+        return Err(NumericalError::NonFinite);
+    }
+    Ok(Gaussian { mean: gaussian.mean, covariance: positive_definite(gaussian.covariance)? })
+}
+
+/// Relative inflation of the diagonal in the repair of [`positive_definite`], in units of ε.
+const REPAIR_EPSILONS: f64 = 8.0;
+
+/// A finite symmetric `covariance` when it factors (the same bits); otherwise, once, with each variance
+/// multiplied by 1 + 8 ε (ε the scalar's machine epsilon), a change of the order of the rounding of the
+/// operation that produced it, when that factors; otherwise [`NumericalError::NotPositiveDefinite`].
+fn positive_definite<T: Real, const S: usize>(
+    covariance: SMatrix<T, S, S>,
+) -> Result<SMatrix<T, S, S>, NumericalError> {
+    if Cholesky::new(covariance).is_some() {
+        return Ok(covariance);
+    }
+    let factor = T::one() + T::of_f64(REPAIR_EPSILONS) * T::default_epsilon();
+    let mut inflated = covariance;
+    for i in 0..S {
+        inflated[(i, i)] *= factor;
+    }
+    match Cholesky::new(inflated) {
+        Some(_) => Ok(inflated),
+        None => Err(NumericalError::NotPositiveDefinite),
     }
 }
 
@@ -358,5 +449,182 @@ mod tests {
     fn indefinite_innovation_covariance_is_an_error() {
         let s = SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0);
         assert_eq!(Innovation::new(SVector::zeros(), s), Err(NumericalError::NotPositiveDefinite));
+    }
+
+    /// The issue-17 priors: a track whose velocity variance is 10ⁿ, predicted and updated scan after
+    /// scan. Every `Ok` covariance passes `is_valid_covariance`; every failure is typed.
+    fn wide_prior<T: Real>(variance: f64, dt: f64, scans: usize) -> Result<(), NumericalError> {
+        let motion = ConstantVelocity { acceleration_noise: T::of_f64(0.01) };
+        let sensor = PositionMeasurement::isotropic(T::of_f64(0.5));
+        let mut track = Gaussian {
+            mean: SVector::from([0.0, 0.0, 1.0, 1.0].map(T::of_f64)),
+            covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, variance, variance].map(T::of_f64))),
+        };
+        for _ in 0..scans {
+            let predicted = predict(&motion, &track, T::of_f64(dt))?;
+            assert!(is_valid_covariance(&predicted.covariance), "{:?}", predicted.covariance);
+            let innov = innovation(&sensor, &predicted)?;
+            let z = innov.predicted + SVector::from([0.3, -0.2].map(T::of_f64));
+            track = update(&sensor, &predicted, &innov, &z)?;
+            assert!(is_valid_covariance(&track.covariance), "{:?}", track.covariance);
+        }
+        Ok(())
+    }
+
+    fn typed(result: Result<(), NumericalError>) -> bool {
+        matches!(result, Ok(()) | Err(NumericalError::NotPositiveDefinite | NumericalError::NonFinite))
+    }
+
+    #[test]
+    fn wide_prior_gives_a_positive_definite_covariance_or_a_typed_error() {
+        let mut failed = [0usize; 2];
+        for exponent in 0..=36 {
+            let variance = 10f64.powi(exponent);
+            for dt in [1e-3, 1.0, 60.0] {
+                let results = [wide_prior::<f64>(variance, dt, 4), wide_prior::<f32>(variance, dt, 4)];
+                for (count, result) in failed.iter_mut().zip(results) {
+                    assert!(typed(result), "variance {variance:e}, dt {dt}: {result:?}");
+                    *count += usize::from(result.is_err());
+                }
+            }
+        }
+        // Moderate priors work in both precisions; f64 survives wider priors than f32 (with the
+        // repair); f32 fails on some (typed, never indefinite).
+        assert_eq!(wide_prior::<f64>(1e10, 1.0, 4), Ok(()));
+        assert_eq!(wide_prior::<f32>(1e5, 1.0, 4), Ok(()));
+        assert_eq!(wide_prior::<f64>(1e25, 1.0, 4), Ok(()));
+        assert_eq!(wide_prior::<f32>(1e25, 1.0, 4), Err(NumericalError::NotPositiveDefinite));
+        assert!(failed[1] > failed[0], "failures f64/f32: {failed:?}");
+    }
+
+    #[test]
+    fn repair_is_bounded_and_only_touches_failing_covariances() {
+        // A covariance that factors is returned unchanged (same bits).
+        let good = SMatrix::<f64, 2, 2>::new(2.0, 0.3, 0.3, 1.0);
+        assert_eq!(positive_definite(good), Ok(good));
+        // Singular to rounding: repaired by the 1 + 8ε inflation of the diagonal, nothing else.
+        let singular = SMatrix::<f64, 2, 2>::repeat(1e25);
+        let repaired = positive_definite(singular).unwrap();
+        assert!(Cholesky::new(singular).is_none() && is_valid_covariance(&repaired));
+        assert_eq!(repaired[(0, 1)], singular[(0, 1)]);
+        assert_eq!(repaired[(0, 0)], 1e25 * (1.0 + 8.0 * f64::EPSILON));
+        // Indefinite beyond rounding: an error.
+        let indefinite = SMatrix::<f64, 2, 2>::new(1.0, 1.0 + 1e-12, 1.0 + 1e-12, 1.0);
+        assert_eq!(positive_definite(indefinite), Err(NumericalError::NotPositiveDefinite));
+        let negative = SMatrix::<f32, 2, 2>::new(1.0, 0.0, 0.0, -57.5);
+        assert_eq!(positive_definite(negative), Err(NumericalError::NotPositiveDefinite));
+    }
+
+    /// Without the final check the Joseph form of a 10²⁵ prior is indefinite: the check is what stops it.
+    #[test]
+    fn unchecked_joseph_form_of_a_wide_prior_is_indefinite() {
+        let sensor = PositionMeasurement::isotropic(0.5f32);
+        let predicted = Gaussian {
+            mean: SVector::from([1.0f32, 1.0, 1.0, 1.0]),
+            covariance: SMatrix::from_fn(|i, j| if i % 2 == j % 2 { 1e25f32 } else { 0.0 }),
+        };
+        let innov = innovation(&sensor, &predicted).unwrap();
+        let h = sensor.jacobian(&predicted.mean);
+        let hp = h * predicted.covariance;
+        let gain_t = SMatrix::<f32, 2, 4>::from_fn(|i, j| hp[(i, j)] / (1e25 + 0.25));
+        let gain = gain_t.transpose();
+        let i_kh = SMatrix::<f32, 4, 4>::identity() - gain * h;
+        let joseph = symmetrise(&(i_kh * predicted.covariance * i_kh.transpose() + gain * sensor.noise * gain_t));
+        assert!(!is_valid_covariance(&joseph), "{joseph:?}");
+        let z = innov.predicted;
+        assert_eq!(update(&sensor, &predicted, &innov, &z), Err(NumericalError::NotPositiveDefinite));
+    }
+
+    #[test]
+    fn f32_after_a_long_gap_is_positive_definite_or_a_typed_error() {
+        for dt in [1e3, 1e6, 1e8, 1e9, 3e9, 1e10, 1e12] {
+            for q in [1e-13, 1e-6, 1e-2, 1.0] {
+                for variance in [1e-8, 1.0, 1e4] {
+                    let motion = ConstantVelocity { acceleration_noise: q as f32 };
+                    let sensor = PositionMeasurement::isotropic(0.5f32);
+                    let prior = Gaussian {
+                        mean: SVector::from([10.0f32, -3.0, 0.1, 0.2]),
+                        covariance: SMatrix::from_diagonal(&SVector::from([
+                            1.0,
+                            1.0,
+                            variance as f32,
+                            variance as f32,
+                        ])),
+                    };
+                    let result = predict(&motion, &prior, dt as f32).and_then(|predicted| {
+                        assert!(is_valid_covariance(&predicted.covariance));
+                        let innov = innovation(&sensor, &predicted)?;
+                        update(&sensor, &predicted, &innov, &(innov.predicted + SVector::from([0.4f32, 0.1])))
+                    });
+                    match result {
+                        Ok(posterior) => assert!(is_valid_covariance(&posterior.covariance), "{posterior:?}"),
+                        Err(e) => assert!(matches!(e, NumericalError::NotPositiveDefinite | NumericalError::NonFinite)),
+                    }
+                }
+            }
+        }
+    }
+
+    /// Seeded random priors (log-uniform scales 10⁻⁶ … 10³⁰, random correlations), time steps and
+    /// measurements: the invariant holds in both precisions.
+    #[test]
+    fn random_priors_keep_the_invariant() {
+        use rand_core::{Rng, SeedableRng};
+        fn check<T: Real>(rng: &mut rand_xoshiro::Xoshiro256PlusPlus) -> bool {
+            let mut uniform = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+            let mut factor = SMatrix::<f64, 4, 4>::zeros();
+            for i in 0..4 {
+                for j in 0..=i {
+                    factor[(i, j)] = if i == j { 1.0 } else { 2.0 * uniform() - 1.0 };
+                }
+            }
+            let scales = SVector::<f64, 4>::from_fn(|_, _| 10f64.powf(-3.0 + 18.0 * uniform()));
+            let l = SMatrix::<f64, 4, 4>::from_diagonal(&scales) * factor;
+            let prior = Gaussian {
+                mean: SVector::from_fn(|_, _| T::of_f64(200.0 * uniform() - 100.0)),
+                covariance: symmetrise(&(l * l.transpose()).map(T::of_f64)),
+            };
+            let dt = T::of_f64(10f64.powf(-3.0 + 12.0 * uniform()));
+            let motion = ConstantVelocity { acceleration_noise: T::of_f64(10f64.powf(-12.0 + 12.0 * uniform())) };
+            let sensor = PositionMeasurement::isotropic(T::of_f64(10f64.powf(-2.0 + 4.0 * uniform())));
+            let offset = SVector::from([uniform() - 0.5, uniform() - 0.5].map(T::of_f64));
+            if !is_valid_covariance(&prior.covariance) {
+                return false;
+            }
+            let result = predict(&motion, &prior, dt).and_then(|predicted| {
+                assert!(is_valid_covariance(&predicted.covariance));
+                let innov = innovation(&sensor, &predicted)?;
+                update(&sensor, &predicted, &innov, &(innov.predicted + offset))
+            });
+            match result {
+                Ok(posterior) => assert!(is_valid_covariance(&posterior.covariance), "{prior:?} {posterior:?}"),
+                Err(e) => assert!(matches!(e, NumericalError::NotPositiveDefinite | NumericalError::NonFinite)),
+            }
+            result.is_ok()
+        }
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(17);
+        let (mut ok64, mut ok32) = (0, 0);
+        for _ in 0..2000 {
+            ok64 += usize::from(check::<f64>(&mut rng));
+            ok32 += usize::from(check::<f32>(&mut rng));
+        }
+        // Most draws are ordinary and succeed.
+        assert!(ok64 > 1000 && ok32 > 500, "{ok64} {ok32}");
+    }
+
+    #[test]
+    fn update_is_correction_then_apply() {
+        let sensor = PositionMeasurement::isotropic(0.5);
+        let predicted = predict(
+            &ConstantVelocity { acceleration_noise: 0.1 },
+            &Gaussian { mean: SVector::from([1.0, 2.0, 3.0, 4.0]), covariance: SMatrix::<f64, 4, 4>::identity() },
+            2.0,
+        )
+        .unwrap();
+        let innov = innovation(&sensor, &predicted).unwrap();
+        let correction = correction(&sensor, &predicted, &innov).unwrap();
+        for z in [SVector::from([7.0, 10.0]), SVector::from([6.5, 10.25])] {
+            assert_eq!(update(&sensor, &predicted, &innov, &z), correction.apply(&predicted, &innov, &z));
+        }
     }
 }

@@ -1,5 +1,19 @@
 //! What one scan did, in a small `Copy` value returned by [`crate::Tracker::step`].
 
+use crate::NumericalError;
+use crate::store::TrackLabel;
+
+/// Tracks dropped in one scan by [`crate::config::NumericalFailure::DropTrack`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct NumericalDrops {
+    /// Distinct tracks dropped.
+    pub count: usize,
+    /// The first dropped track (in track-store order) and why.
+    pub first: Option<(TrackLabel, NumericalError)>,
+}
+
 /// Summary of one processed scan.
 ///
 /// # Examples

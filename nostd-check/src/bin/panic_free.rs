@@ -92,6 +92,7 @@ fn ssa<T: Real>(argc: i32) -> u64 {
             acceleration_noise: c(1e-13) * x,
             max_step: c(20.0),
             max_substeps: 20_000,
+            min_radius: TwoBody::DEFAULT_MIN_RADIUS,
         },
         measurement: PositionMeasurement::isotropic(c(0.5) * x),
         sensor: Sensor {

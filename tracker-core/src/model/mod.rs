@@ -30,6 +30,7 @@ use nalgebra::{SMatrix, SVector};
 /// Why a model could not produce a prediction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ModelError {
     /// The time step needs more integrator sub-steps than the model allows.
     TimeStepTooLarge,
@@ -37,6 +38,13 @@ pub enum ModelError {
     Singular,
     /// The propagation produced a NaN or an infinity.
     NonFinite,
+    /// The object is (or passes) inside the central body: closer to the centre than the model's
+    /// minimum radius.
+    InsideBody,
+    /// The integrator cannot follow the motion: a sub-step is too long for the local dynamics (a close
+    /// approach to the centre of attraction), or the propagated state is absurd (its energy changed by
+    /// more than the model allows).
+    Unresolved,
 }
 
 impl core::fmt::Display for ModelError {
@@ -45,6 +53,10 @@ impl core::fmt::Display for ModelError {
             ModelError::TimeStepTooLarge => f.write_str("time step needs more integrator sub-steps than allowed"),
             ModelError::Singular => f.write_str("state at a singularity of the motion model"),
             ModelError::NonFinite => f.write_str("propagation produced a non-finite value"),
+            ModelError::InsideBody => f.write_str("object inside the central body (closer than min_radius)"),
+            ModelError::Unresolved => {
+                f.write_str("integrator cannot follow the motion (close approach or absurd propagated state)")
+            }
         }
     }
 }
