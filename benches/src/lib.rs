@@ -126,6 +126,7 @@ pub fn worst_case_config<T: Real, const B: usize>(cells: usize) -> Config<T, Two
         children: ChildGeneration::Sampled(SamplerConfig::default()),
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
         seed: 1,
     }
 }

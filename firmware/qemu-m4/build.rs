@@ -150,6 +150,12 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
         other => return Err(format!("tracker.store_overflow: unknown value \"{other}\"")),
     };
     w(&mut o, format!("        store_overflow: StoreOverflow::{overflow},\n"));
+    let numerical = match optional_string(tracker, "tracker.numerical_failure")?.unwrap_or("drop-track") {
+        "drop-track" => "DropTrack",
+        "error" => "Error",
+        other => return Err(format!("tracker.numerical_failure: unknown value \"{other}\"")),
+    };
+    w(&mut o, format!("        numerical_failure: tracker_core::NumericalFailure::{numerical},\n"));
     w(&mut o, format!("        seed: {},\n", unsigned(tracker, "tracker.seed", u64::MAX)?));
     w(&mut o, "    }\n};\n".into());
 

@@ -223,6 +223,7 @@ fn config<T: Real, M>(input: &Input, motion: M) -> Config<T, M, PositionMeasurem
         },
         selection: if input.sampled_selection { Selection::SampledByWeight } else { Selection::TopWeight },
         store_overflow: if input.store_error { StoreOverflow::Error } else { StoreOverflow::PruneChildren },
+        numerical_failure: Default::default(),
         seed: input.seed,
     }
 }

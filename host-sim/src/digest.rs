@@ -118,6 +118,7 @@ pub fn ssa_config<T: Real>(
         children: config.children,
         selection: config.selection,
         store_overflow: config.store_overflow,
+        numerical_failure: Default::default(),
         seed: config.seed,
     }
 }

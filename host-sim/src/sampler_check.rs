@@ -112,6 +112,7 @@ fn random_case(seed: u64, index: u64) -> Case {
             children: ChildGeneration::Exhaustive { max_children_per_scan: 1_000_000 },
             selection: tracker_core::config::Selection::TopWeight,
             store_overflow: StoreOverflow::PruneChildren,
+            numerical_failure: Default::default(),
             seed: seed ^ index,
         };
         let _ = area;

@@ -246,6 +246,17 @@ pub enum StoreOverflowSpec {
     Error,
 }
 
+/// What a numerical failure of one track does to the scan (`tracker_core::NumericalFailure`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum NumericalFailureSpec {
+    /// Drop that track from every hypothesis and go on (the default).
+    #[default]
+    DropTrack,
+    /// Fail the scan.
+    Error,
+}
+
 /// The Metropolis proposal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
@@ -313,6 +324,9 @@ pub struct TrackerSpec {
     /// Track-store overflow policy.
     #[serde(default)]
     pub store_overflow: StoreOverflowSpec,
+    /// Numerical failure policy.
+    #[serde(default)]
+    pub numerical_failure: NumericalFailureSpec,
     /// Seed of every random choice.
     pub seed: u64,
     /// R-FISST sampler settings.

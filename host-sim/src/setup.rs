@@ -100,6 +100,10 @@ pub fn config<M, const B: usize>(
             StoreOverflowSpec::PruneChildren => StoreOverflow::PruneChildren,
             StoreOverflowSpec::Error => StoreOverflow::Error,
         },
+        numerical_failure: match scenario.tracker.numerical_failure {
+            NumericalFailureSpec::DropTrack => tracker_core::NumericalFailure::DropTrack,
+            NumericalFailureSpec::Error => tracker_core::NumericalFailure::Error,
+        },
         seed: scenario.tracker.seed,
     })
 }

@@ -33,6 +33,7 @@
 //!     children: ChildGeneration::default(),
 //!     selection: Default::default(),
 //!     store_overflow: StoreOverflow::default(),
+//!     numerical_failure: Default::default(),
 //!     seed: 1,
 //! };
 //! // H = 0 hypotheses.
@@ -54,6 +55,7 @@
 //!     children: ChildGeneration::default(),
 //!     selection: Default::default(),
 //!     store_overflow: StoreOverflow::default(),
+//!     numerical_failure: Default::default(),
 //!     seed: 1,
 //! };
 //! assert!(LinearTracker::<f64, 1, 1, 1, 1, 0>::with_objects(config, &[], 0.0).is_ok());
@@ -227,6 +229,7 @@ fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize),
         children: ChildGeneration::Sampled(SamplerConfig::default()),
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
         seed,
     };
     // The prior: the true states with a small error, as the presets do.

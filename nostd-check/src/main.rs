@@ -67,6 +67,7 @@ fn run() -> Result<f64, tracker_core::StepError> {
         children: ChildGeneration::Exhaustive { max_children_per_scan: 100_000 },
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
         seed: 1,
     };
     let objects = [

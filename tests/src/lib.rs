@@ -31,6 +31,7 @@ pub fn linear_config<const B: usize>(
         children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000_000 },
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
         seed: 7,
     }
 }

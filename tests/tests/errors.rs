@@ -5,7 +5,8 @@ use conformance::*;
 use nalgebra::SMatrix;
 use tracker_core::config::ChildGeneration;
 use tracker_core::{
-    ConfigError, LinearTracker, PriorHypothesis, PriorObject, Region, StepError, StoreOverflow, TrackLabel,
+    ConfigError, LinearTracker, NumericalFailure, PriorHypothesis, PriorObject, Region, StepError, StoreOverflow,
+    TrackLabel,
 };
 
 type Tracker = LinearTracker<f64, 8, 4, 3, 8, 1>;
@@ -65,12 +66,39 @@ fn measurement_outside_the_field_of_view() {
     assert_rejected(tracker(), |t| t.step(2.0, &zs), StepError::MeasurementOutsideFieldOfView { index: 1 });
 }
 
+/// The tracker of [`tracker`] with the strict numerical policy.
+fn strict_tracker() -> Tracker {
+    let mut config = tracker().config().clone();
+    config.numerical_failure = NumericalFailure::Error;
+    let objects = [gaussian([0.0, 0.0, 1.0, 0.0], 0.5), gaussian([3.0, 0.0, 1.0, 0.0], 0.5)];
+    let mut t = Tracker::with_objects(config, &objects, 0.0).unwrap();
+    t.step(1.0, &[V2::new(1.0, 0.0), V2::new(4.0, 0.1)]).unwrap();
+    t
+}
+
 #[test]
 fn huge_time_gap_is_a_numerical_error() {
-    // The covariance overflows to infinity: a typed numerical error, not a NaN in the state.
-    let result = tracker().step(1e300, &[]);
+    // The covariance overflows to infinity: with the strict policy a typed numerical error, not a NaN in
+    // the state.
+    let result = strict_tracker().step(1e300, &[]);
     assert!(matches!(result, Err(StepError::Numerical { .. })), "{result:?}");
-    assert_rejected(tracker(), |t| t.step(1e300, &[]), result.unwrap_err());
+    assert_rejected(strict_tracker(), |t| t.step(1e300, &[]), result.unwrap_err());
+}
+
+#[test]
+fn huge_time_gap_drops_the_failing_tracks_by_default() {
+    // The default policy drops every track whose prediction fails, reports them, and the tracker goes on.
+    let mut t = tracker();
+    let tracks = t.tracks().len();
+    assert!(tracks >= 2);
+    let report = t.step(1e300, &[]).unwrap();
+    assert_eq!(report.numerical_drops.count, tracks, "every track of the store is dropped");
+    assert!(matches!(report.numerical_drops.first, Some((_, _))));
+    assert_eq!(t.map_hypothesis().len(), 0);
+    assert!((t.hypotheses().map(|h| h.weight()).sum::<f64>() - 1.0).abs() < 1e-12);
+    // Nothing is left to fail: later scans are processed.
+    let report = t.step(2e300, &[V2::new(1.0, 0.0)]).unwrap();
+    assert_eq!(report.numerical_drops.count, 0);
 }
 
 #[test]

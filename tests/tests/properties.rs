@@ -129,6 +129,7 @@ impl Case {
             },
             selection: Selection::TopWeight,
             store_overflow: StoreOverflow::PruneChildren,
+            numerical_failure: Default::default(),
             seed: self.seed,
         }
     }

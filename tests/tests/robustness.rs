@@ -9,7 +9,7 @@
 
 use conformance::{fingerprint, with_large_stack};
 use nalgebra::{SMatrix, SVector};
-use tracker_core::config::{ChildGeneration, Selection};
+use tracker_core::config::{ChildGeneration, NumericalFailure, Selection};
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
@@ -80,6 +80,9 @@ fn config<T: Real, const B: usize>(children: ChildGeneration) -> LinearConfig<T,
         children,
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        // Strict, so that a numerical failure is a rejected scan these tests can check; the default policy
+        // (drop the track) has its own tests below.
+        numerical_failure: NumericalFailure::Error,
         seed: 11,
     }
 }
@@ -292,6 +295,7 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
                 children,
                 selection: Selection::TopWeight,
                 store_overflow: StoreOverflow::PruneChildren,
+                numerical_failure: NumericalFailure::Error,
                 seed: 3,
             };
             let r: f64 = 7000.0;
@@ -309,7 +313,7 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
             assert_healthy(&*ok);
 
             let centre = gaussian::<f64>([0.0, 0.0, 1.0, 0.0], 1.0);
-            let t = Box::new(SsaTracker::<f64>::with_objects(config, &[object, centre], 0.0).unwrap());
+            let t = Box::new(SsaTracker::<f64>::with_objects(config.clone(), &[object, centre], 0.0).unwrap());
             let singular = StepError::Numerical {
                 label: tracker_core::TrackLabel(1),
                 error: NumericalError::Model(tracker_core::model::ModelError::Singular),
@@ -317,6 +321,27 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
             let mut copy = t.clone();
             assert_eq!(copy.step(60.0, &[]).err(), Some(singular));
             assert_eq!(fingerprint(&*copy), fingerprint(&*t));
+
+            // The default policy drops the object at the centre in every hypothesis, reports it, and
+            // keeps tracking the other one: the tracker does not stall.
+            let mut lenient = config.clone();
+            lenient.numerical_failure = NumericalFailure::DropTrack;
+            let mut t = Box::new(SsaTracker::<f64>::with_objects(lenient, &[object, centre], 0.0).unwrap());
+            let report = t.step(60.0, &[]).unwrap();
+            assert_eq!(report.numerical_drops.count, 1);
+            assert_eq!(report.numerical_drops.first.map(|(label, _)| label), Some(tracker_core::TrackLabel(1)));
+            for k in 2..=5 {
+                // A detection of the object on its circular orbit, so that it stays confirmed.
+                let time = 60.0 * k as f64;
+                let angle = (mu / (r * r * r)).sqrt() * time;
+                let z = SVector::from([r * angle.cos(), r * angle.sin()]);
+                let report = t.step(time, &[z]).unwrap();
+                assert_eq!(report.numerical_drops.count, 0);
+                assert_healthy(&*t);
+            }
+            assert!(t.hypotheses().all(|h| h.tracks().all(|track| track.label == tracker_core::TrackLabel(0))));
+            let existence = t.label_existence(tracker_core::TrackLabel(0));
+            assert!(existence > 0.9, "{existence}");
         }
     });
 }
@@ -695,6 +720,7 @@ fn invalid_configuration_is_a_typed_error() {
         children: ChildGeneration::default(),
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
         seed: 1,
     };
     with_large_stack(move || {

@@ -46,6 +46,7 @@ pub enum BirthDetection {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -110,6 +111,7 @@ impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -181,6 +183,7 @@ impl Default for ChildGeneration {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -251,6 +254,7 @@ pub enum NumericalFailure {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -300,6 +304,7 @@ pub enum Selection {
 ///     children: Default::default(),
 ///     selection: Default::default(),
 ///     store_overflow: Default::default(),
+///     numerical_failure: Default::default(),
 ///     seed: 7,
 /// };
 /// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -331,6 +336,8 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub selection: Selection,
     /// Track-store overflow policy.
     pub store_overflow: StoreOverflow,
+    /// What a numerical failure of one track does to the scan: drop that track (the default) or fail.
+    pub numerical_failure: NumericalFailure,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
     pub seed: u64,
 }
@@ -368,6 +375,7 @@ mod tests {
             children: ChildGeneration::Sampled(crate::sampler::SamplerConfig::default()),
             selection: Selection::SampledByWeight,
             store_overflow: StoreOverflow::Error,
+            numerical_failure: Default::default(),
             seed: 42,
         };
         let text = serde_json::to_string(&config).unwrap();

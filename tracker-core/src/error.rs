@@ -27,6 +27,7 @@ use crate::store::TrackLabel;
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -180,6 +181,7 @@ impl core::error::Error for ConfigError {}
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };

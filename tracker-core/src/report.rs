@@ -36,6 +36,7 @@ pub struct NumericalDrops {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -73,6 +74,8 @@ pub struct StepReport<T> {
     /// Metropolis moves made in this scan (0 with exhaustive children); never more than the budget given
     /// to [`crate::Tracker::step_with_budget`].
     pub sampler_steps: u64,
+    /// Tracks dropped for a numerical failure ([`crate::config::NumericalFailure::DropTrack`]).
+    pub numerical_drops: NumericalDrops,
     /// Expected number of objects after the scan.
     pub expected_cardinality: T,
 }

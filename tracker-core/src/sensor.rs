@@ -165,6 +165,7 @@ impl<T: Real> Region<T> {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };

@@ -16,7 +16,7 @@
 
 use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
-use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
+use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
     BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
@@ -115,6 +115,7 @@ fn ssa<T: Real>(argc: i32) -> u64 {
         children: children(argc),
         selection: selection(argc),
         store_overflow: store_overflow(argc),
+        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
         seed: argc as u64,
     });
     let state = |position: f64| Gaussian {
@@ -163,6 +164,7 @@ fn linear(argc: i32) -> u64 {
         children: children(argc),
         selection: selection(argc),
         store_overflow: store_overflow(argc),
+        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
         seed: argc as u64,
     });
     let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };

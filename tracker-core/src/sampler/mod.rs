@@ -83,6 +83,7 @@ pub enum Proposal {
 /// #     children: Default::default(),
 /// #     selection: Default::default(),
 /// #     store_overflow: Default::default(),
+/// #     numerical_failure: Default::default(),
 /// #     seed: 1,
 /// # };
 /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };

@@ -136,7 +136,8 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             let Some(layout) = inputs.generation.layout(candidate.parent, candidate.event, inputs.birth_cells) else {
                 continue;
             };
-            let count = self.child_sources(candidate, parent, &layout, inputs.measurements.len());
+            let dropped = |slot: u16| inputs.scores.predicted(usize::from(slot)).dropped;
+            let count = self.child_sources(candidate, parent, &layout, inputs.measurements.len(), dropped);
             if !self.has_room(count, next_store) {
                 match inputs.config.store_overflow {
                     StoreOverflow::PruneChildren => {
@@ -175,6 +176,7 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         parent: &Hypothesis<T, N>,
         layout: &ColumnLayout<'_>,
         rows: usize,
+        dropped: impl Fn(u16) -> bool,
     ) -> usize {
         // Which measurement each column's object takes.
         self.row_of_position[..parent.len()].fill(NONE);
@@ -188,7 +190,8 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         }
         let mut count = 0usize;
         for (position, &slot) in parent.slots().iter().enumerate() {
-            if candidate.event == (Event::Death { object: position as u16 }) {
+            // A dead object, or a track dropped for a numerical failure, is in no child.
+            if candidate.event == (Event::Death { object: position as u16 }) || dropped(slot) {
                 continue;
             }
             *self.child_sources.at_mut(count) = (Source::Track(slot), *self.row_of_position.at(position));

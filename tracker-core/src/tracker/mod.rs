@@ -99,6 +99,7 @@ pub struct PriorHypothesis<'a, T: Real, const S: usize> {
 ///     children: ChildGeneration::default(),
 ///     selection: Selection::default(),
 ///     store_overflow: StoreOverflow::default(),
+///     numerical_failure: Default::default(),
 ///     seed: 1,
 /// };
 /// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -165,6 +166,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -201,6 +203,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -237,6 +240,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -273,6 +277,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -309,6 +314,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -345,6 +351,7 @@ impl<'a, T: Real, const S: usize, const N: usize> HypothesisView<'a, T, S, N> {
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -425,6 +432,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -481,6 +489,7 @@ where
     ///     children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000 },
     ///     selection: Selection::TopWeight,
     ///     store_overflow: StoreOverflow::PruneChildren,
+    ///     numerical_failure: tracker_core::NumericalFailure::DropTrack,
     ///     seed: 1,
     /// };
     /// static TRACKER: Mutex<LinearTracker<f64, 8, 4, 4, 16, 1>> = Mutex::new(LinearTracker::empty(CONFIG));
@@ -542,6 +551,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -600,6 +610,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -651,6 +662,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -703,6 +715,7 @@ where
     ///     children: ChildGeneration::Sampled(SamplerConfig { exhaustive_limit: 0, ..SamplerConfig::DEFAULT }),
     ///     selection: Selection::default(),
     ///     store_overflow: StoreOverflow::default(),
+    ///     numerical_failure: Default::default(),
     ///     seed: 1,
     /// };
     /// let objects = [0.0, 3.0].map(|x| Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() });
@@ -726,7 +739,8 @@ where
         let (store, next_store) = split_pair(&mut self.stores, self.active);
         let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
 
-        self.scores.run(&self.config, &self.weight_model, &self.birth_cells, store.as_slice(), dt, measurements)?;
+        let numerical_drops =
+            self.scores.run(&self.config, &self.weight_model, &self.birth_cells, store.as_slice(), dt, measurements)?;
         let generated = self.generation.run(
             &self.config,
             &self.weight_model,
@@ -767,6 +781,7 @@ where
             children_dropped_for_store: outcome.dropped_for_store,
             births_beyond_object_capacity: generated.births_skipped,
             sampler_steps: generated.sampler_moves,
+            numerical_drops,
             expected_cardinality: self.expected_cardinality(),
         })
     }
@@ -796,6 +811,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -828,6 +844,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -861,6 +878,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -896,6 +914,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -933,6 +952,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -970,6 +990,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -1008,6 +1029,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -1046,6 +1068,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -1080,6 +1103,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -1118,6 +1142,7 @@ where
     /// #     children: Default::default(),
     /// #     selection: Default::default(),
     /// #     store_overflow: Default::default(),
+    /// #     numerical_failure: Default::default(),
     /// #     seed: 1,
     /// # };
     /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
