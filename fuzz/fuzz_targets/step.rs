@@ -148,6 +148,8 @@ enum TimeIn {
 struct Scan {
     time: TimeIn,
     measurements: Vec<[Num; 2]>,
+    /// A budget of Metropolis moves for the scan (`Tracker::step_with_budget`), or none.
+    move_budget: Option<u16>,
 }
 
 #[derive(Debug, Clone, Arbitrary)]
@@ -171,6 +173,7 @@ struct Input {
     generation: Generation,
     sampled_selection: bool,
     store_error: bool,
+    numerical_error: bool,
     seed: u64,
     prior: Vec<PriorIn>,
     prior_time: Num,
@@ -223,7 +226,11 @@ fn config<T: Real, M>(input: &Input, motion: M) -> Config<T, M, PositionMeasurem
         },
         selection: if input.sampled_selection { Selection::SampledByWeight } else { Selection::TopWeight },
         store_overflow: if input.store_error { StoreOverflow::Error } else { StoreOverflow::PruneChildren },
-        numerical_failure: Default::default(),
+        numerical_failure: if input.numerical_error {
+            tracker_core::NumericalFailure::Error
+        } else {
+            tracker_core::NumericalFailure::DropTrack
+        },
         seed: input.seed,
     }
 }
@@ -301,9 +308,11 @@ fn run<T: Real, M: MotionModel<T, 4> + Clone>(input: &Input, motion: M) -> Optio
         let measurements: Vec<SVector<T, 2>> =
             scan.measurements.iter().take(Z + 2).map(|z| SVector::from(z.map(|n| n.of::<T>()))).collect();
         let before = state(&*tracker);
-        match tracker.step(time, &measurements) {
+        let budget = scan.move_budget.map_or(u64::MAX, u64::from);
+        match tracker.step_with_budget(time, &measurements, budget) {
             Ok(report) => {
                 assert_healthy(&*tracker);
+                assert!(report.sampler_steps <= budget, "{} moves over a budget of {budget}", report.sampler_steps);
                 let captured = report.captured_mass.as_f64();
                 assert!((0.0..=1.0 + 1e-3).contains(&captured), "captured mass {captured}");
                 assert_eq!(tracker.time(), time);
