@@ -9,6 +9,7 @@
 // `!(x > 0)` is deliberate: unlike `x <= 0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod assignment;
 pub mod digest;
 pub mod evaluate;
 pub mod experiment;

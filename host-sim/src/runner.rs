@@ -174,7 +174,6 @@ fn reference_runner<M>(
     scenario: &Scenario,
     motion: M,
     budget: ReferenceBudget,
-    max_objects: usize,
 ) -> Result<Box<dyn Runner>, ScenarioError>
 where
     M: MotionModel<f64, 4> + Clone + Send + 'static,
@@ -182,9 +181,8 @@ where
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
-    let mut tracker =
-        ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes, max_objects)
-            .map_err(ScenarioError)?;
+    let mut tracker = ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes)
+        .map_err(ScenarioError)?;
     tracker.set_max_children(budget.children);
     Ok(Box::new(ReferenceRunner { tracker }))
 }
@@ -218,17 +216,13 @@ pub fn build(
 ) -> Result<Box<dyn Runner>, ScenarioError> {
     let children = if kind == TrackerKind::Rfisst { setup::sampled(scenario) } else { setup::exhaustive(scenario) };
     match (kind, scenario.motion) {
-        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => reference_runner(
-            scenario,
-            setup::two_body(&scenario.motion).expect("two-body"),
-            reference,
-            profile.caps().1,
-        ),
+        (TrackerKind::Reference, MotionSpec::TwoBody { .. }) => {
+            reference_runner(scenario, setup::two_body(&scenario.motion).expect("two-body"), reference)
+        }
         (TrackerKind::Reference, MotionSpec::ConstantVelocity { .. }) => reference_runner(
             scenario,
             setup::constant_velocity(&scenario.motion).expect("constant velocity"),
             reference,
-            profile.caps().1,
         ),
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {
             core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)

@@ -173,7 +173,7 @@ pub fn run(cases: usize, seed: u64) -> Result<serde_json::Value, String> {
     let mut children = vec![];
     for index in 0..cases as u64 {
         let case = random_case(seed, index);
-        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2, 16)?;
+        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2)?;
         let report = reference.step(1.0, &case.measurements).map_err(|e| format!("case {index}: {e}"))?;
         children.push(report.children as f64);
         let exact = reference.snapshot();
