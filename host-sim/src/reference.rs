@@ -363,10 +363,8 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         let mut parents = order[..kept].to_vec();
         parents.sort_unstable();
         // Slots in track order, so the tables do not depend on the parents' weights.
-        let mut next = 0;
-        for s in slot.iter_mut().filter(|s| **s != NO_SLOT) {
-            *s = next;
-            next += 1;
+        for (next, s) in slot.iter_mut().filter(|s| **s != NO_SLOT).enumerate() {
+            *s = next as u32;
         }
         self.score(dt, measurements, parents, slot, fixed + per_track * used)
     }

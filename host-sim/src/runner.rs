@@ -158,7 +158,7 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
 /// children enumerated per scan (beyond it the scan fails: the reference is broken there).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ReferenceBudget {
-    /// Bytes of children and hypotheses.
+    /// Bytes of everything that grows with the hypotheses, children and measurements.
     pub bytes: usize,
     /// Children enumerated per scan.
     pub children: u64,

@@ -742,9 +742,9 @@ fn reference_has_no_object_capacity() {
 /// `host-sim run FILE --tracker reference --quiet --out OUT` with `extra` arguments.
 fn run_reference(file: &Path, out: &Path, extra: &[&str]) -> Output {
     let mut args: Vec<&std::ffi::OsStr> = vec!["run".as_ref(), file.as_os_str(), "--tracker".as_ref()];
-    args.extend(["reference", "--quiet", "--out"].iter().map(|a| a.as_ref()));
+    args.extend(["reference", "--quiet", "--out"].map(std::ffi::OsStr::new));
     args.push(out.as_os_str());
-    args.extend(extra.iter().map(|a| a.as_ref()));
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
     host_sim(&args)
 }
 
