@@ -298,11 +298,11 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         validate_scan(self.time, &self.region, time, measurements)?;
         let tables = self.tables(time - self.time, measurements)?;
         let mut budget_reached = tables.parents.len() < self.hypotheses.len();
-        let mut children = ChildBuffer::new(
-            self.shares.working.saturating_sub(tables.bytes) / (CHILD_BYTES + 4 * tables.widest),
-            tables.widest,
-            self.max_children,
-        );
+        // The pruned search's candidate lists: at most every (row, column) pair at each depth.
+        let candidates = size_of::<(u32, u32)>().saturating_mul(tables.rows * tables.widest * (tables.widest + 1));
+        let children_bytes = self.shares.working.saturating_sub(tables.bytes).saturating_sub(candidates);
+        let mut children =
+            ChildBuffer::new(children_bytes / (CHILD_BYTES + 4 * tables.widest), tables.widest, self.max_children);
         for &parent in &tables.parents {
             self.enumerate_parent(&tables, parent, &mut children)?;
         }
