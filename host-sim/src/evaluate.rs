@@ -17,7 +17,7 @@ use crate::report::{
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario};
 use crate::setup;
-use crate::snapshot::{Snapshot, match_posteriors};
+use crate::snapshot::{HypothesisOut, Snapshot, TrackOut, match_posteriors};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
@@ -71,6 +71,8 @@ pub struct ScanRecord {
     pub hypotheses: usize,
     /// Fraction of the children's weight kept.
     pub captured_mass: f64,
+    /// Whether the reference's memory budget forced dropping parents or children (never for the core).
+    pub budget_reached: bool,
     /// Expected number of objects.
     pub expected_cardinality: f64,
     /// Objects in the MAP hypothesis.
@@ -315,6 +317,7 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
             children: info.map_or(0, |i| i.children),
             hypotheses: snapshot.hypotheses.len(),
             captured_mass: info.map_or(1.0, |i| i.captured_mass),
+            budget_reached: info.is_some_and(|i| i.budget_reached),
             expected_cardinality: snapshot.expected_cardinality(),
             map_cardinality: map.len(),
             true_cardinality: truth_positions(scenario, k).map(|t| t.len()),
@@ -323,7 +326,9 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
             error,
         });
         if snapshot_scans.contains(&k) {
-            snapshots.push((k, snapshot, within));
+            // The plots need only the MAP tracks and the weights: a full copy of a large posterior
+            // (the reference's) would not fit its memory budget.
+            snapshots.push((k, map_and_weights(&snapshot), within));
         }
     }
     bar.finish_and_clear();
@@ -369,14 +374,42 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         rejected_scans: rejected,
         reference_budget_reached_scans: records
             .iter()
-            .filter(|r| r.captured_mass < 1.0 && kind == TrackerKind::Reference)
+            .filter(|r| r.budget_reached && kind == TrackerKind::Reference)
             .map(|r| r.scan)
             .collect(),
+        peak_resident_kib: None,
     };
-    write_json(&out.join("summary.json"), &summary)?;
     write_run_plots(scenario, &records, &snapshots, out)?;
+    drop(snapshots);
+    let mut summary = summary;
+    // The process's peak resident memory so far (Linux), to check the reference's budget.
+    summary.peak_resident_kib = peak_resident_kib();
+    write_json(&out.join("summary.json"), &summary)?;
     let clean = summary.rejected_scans.is_empty();
     Ok((summary, clean))
+}
+
+/// VmHWM of /proc/self/status in KiB, where there is one.
+fn peak_resident_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// The part of `snapshot` that the run plots use: every hypothesis's weight, the MAP hypothesis's tracks.
+fn map_and_weights(snapshot: &Snapshot) -> Snapshot {
+    let tracks: Vec<TrackOut> = snapshot.map_tracks().into_iter().cloned().collect();
+    let hypotheses = snapshot
+        .hypotheses
+        .iter()
+        .enumerate()
+        .map(|(i, h)| HypothesisOut {
+            weight: h.weight,
+            log_weight: h.log_weight,
+            tracks: if i == 0 { (0..tracks.len()).collect() } else { vec![] },
+        })
+        .collect();
+    Snapshot { hypotheses, tracks }
 }
 
 fn write_run_plots(

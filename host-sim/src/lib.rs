@@ -11,6 +11,7 @@
 // `!(x > 0)` is deliberate: unlike `x <= 0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod assignment;
 pub mod digest;
 pub mod error;
 pub mod evaluate;

@@ -26,8 +26,9 @@ struct Common {
     /// Capacity profile of the core tracker.
     #[arg(long, value_enum, default_value_t = Profile::Embedded)]
     profile: Profile,
-    /// Memory budget of the unbounded reference tracker, in MiB; beyond it the reference drops its
-    /// lowest-weight children and says so.
+    /// Memory budget of the unbounded reference tracker, in MiB (everything that grows with its
+    /// hypotheses, children and measurements); beyond it the reference keeps its best children and
+    /// reports the scan in reference_budget_reached_scans (docs/scenario-format.md).
     #[arg(long, default_value_t = 4096)]
     reference_budget_mib: usize,
     /// Children the reference may enumerate per scan; beyond it the scan is rejected (the reference

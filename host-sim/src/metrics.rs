@@ -7,11 +7,14 @@
 //! - Assignments are optimal (Hungarian algorithm, O(n^3)) and deterministic: the same input always gives the
 //!   same output, ties being broken towards the lowest column index.
 
+use crate::assignment::assign;
 use std::collections::HashMap;
 
-/// Minimum-cost assignment (Hungarian / Kuhn-Munkres, O(n^3)) for a rectangular cost matrix given as rows.
+/// Minimum-cost assignment (Hungarian / Kuhn-Munkres, O(n^3)) for a rectangular cost matrix given as rows,
+/// solved by the host's one solver ([`crate::assignment::assign`]).
 /// Returns for each row the column it is assigned to (None when rows > columns and the row is left out).
-/// Every column is used at most once; the total cost is minimal. Costs are finite f64.
+/// Every column is used at most once; the total cost is minimal. Costs are finite f64 (a NaN cost leaves
+/// every row unassigned).
 ///
 /// All rows must have the same length. When rows <= columns every row is assigned; otherwise every column is.
 pub fn optimal_assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
@@ -22,90 +25,17 @@ pub fn optimal_assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
         return vec![None; rows];
     }
     if rows <= cols {
-        return assign_rows_to_columns(rows, cols, |r, c| cost[r][c]);
+        return match assign(rows, cols, |r, c| Some(cost[r][c])) {
+            Some(columns) => columns.into_iter().map(Some).collect(),
+            None => vec![None; rows],
+        };
     }
     // More rows than columns: solve the transposed problem (every column gets a row) and invert it.
-    let column_to_row = assign_rows_to_columns(cols, rows, |c, r| cost[r][c]);
     let mut row_to_column = vec![None; rows];
-    for (column, row) in column_to_row.into_iter().enumerate() {
-        if let Some(row) = row {
-            row_to_column[row] = Some(column);
-        }
+    for (column, row) in assign(cols, rows, |c, r| Some(cost[r][c])).unwrap_or_default().into_iter().enumerate() {
+        row_to_column[row] = Some(column);
     }
     row_to_column
-}
-
-/// Shortest augmenting path Hungarian algorithm with potentials for `rows <= cols` (every row assigned).
-///
-/// Maintains dual potentials u (rows), v (columns) with cost(i, j) - u_i - v_j >= 0 and equality on matched
-/// pairs; each of the `rows` phases grows one augmenting path in O(rows * cols), so O(n^3) overall. Internally
-/// 1-based, with column 0 a virtual column holding the row being inserted.
-fn assign_rows_to_columns(rows: usize, cols: usize, cost: impl Fn(usize, usize) -> f64) -> Vec<Option<usize>> {
-    debug_assert!(rows <= cols);
-    let mut row_potential = vec![0.0_f64; rows + 1];
-    let mut column_potential = vec![0.0_f64; cols + 1];
-    // row_of_column[j]: 1-based row matched to column j (0 = free).
-    let mut row_of_column = vec![0_usize; cols + 1];
-    // previous_column[j]: predecessor of column j on the current alternating path.
-    let mut previous_column = vec![0_usize; cols + 1];
-    let mut min_slack = vec![f64::INFINITY; cols + 1];
-    let mut visited = vec![false; cols + 1];
-
-    for row in 1..=rows {
-        row_of_column[0] = row;
-        let mut current_column = 0;
-        min_slack.fill(f64::INFINITY);
-        visited.fill(false);
-        loop {
-            visited[current_column] = true;
-            let current_row = row_of_column[current_column];
-            let mut delta = f64::INFINITY;
-            let mut next_column = 0;
-            for j in 1..=cols {
-                if visited[j] {
-                    continue;
-                }
-                // Reduced cost: cost(i, j) - u_i - v_j.
-                let slack = cost(current_row - 1, j - 1) - row_potential[current_row] - column_potential[j];
-                if slack < min_slack[j] {
-                    min_slack[j] = slack;
-                    previous_column[j] = current_column;
-                }
-                // Strict `<` keeps the lowest column on ties; `next_column == 0` guarantees progress even on NaN.
-                if next_column == 0 || min_slack[j] < delta {
-                    delta = min_slack[j];
-                    next_column = j;
-                }
-            }
-            // Dual update: keeps reduced costs non-negative and makes next_column's edge tight.
-            for j in 0..=cols {
-                if visited[j] {
-                    row_potential[row_of_column[j]] += delta;
-                    column_potential[j] -= delta;
-                } else {
-                    min_slack[j] -= delta;
-                }
-            }
-            current_column = next_column;
-            if row_of_column[current_column] == 0 {
-                break;
-            }
-        }
-        // Augment: flip the alternating path back to the virtual column 0.
-        while current_column != 0 {
-            let previous = previous_column[current_column];
-            row_of_column[current_column] = row_of_column[previous];
-            current_column = previous;
-        }
-    }
-
-    let mut assignment = vec![None; rows];
-    for (column, &row) in row_of_column.iter().enumerate().skip(1) {
-        if row != 0 {
-            assignment[row - 1] = Some(column - 1);
-        }
-    }
-    assignment
 }
 
 fn euclidean(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -232,6 +162,7 @@ impl LabelSwitches {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand_core::{Rng, SeedableRng};
 
     const EPS: f64 = 1e-9;
 
@@ -239,16 +170,16 @@ mod tests {
         assert!((actual - expected).abs() <= EPS * (1.0 + expected.abs()), "{actual} != {expected}");
     }
 
-    /// splitmix64: tiny deterministic PRNG for property tests.
-    struct SplitMix64(u64);
+    /// Draws for property tests from rand_xoshiro's splitmix64.
+    struct Draws(rand_xoshiro::SplitMix64);
 
-    impl SplitMix64 {
+    impl Draws {
+        fn new(seed: u64) -> Self {
+            Draws(rand_xoshiro::SplitMix64::seed_from_u64(seed))
+        }
+
         fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
+            self.0.next_u64()
         }
 
         /// Uniform in [0, n); n > 0.
@@ -325,7 +256,7 @@ mod tests {
         paired + c.powf(p) / 2.0 * (truth.len() + estimates.len() - 2 * pairs.len()) as f64
     }
 
-    fn random_partial_assignment(rng: &mut SplitMix64, rows: usize, cols: usize) -> Vec<Option<usize>> {
+    fn random_partial_assignment(rng: &mut Draws, rows: usize, cols: usize) -> Vec<Option<usize>> {
         let mut columns: Vec<usize> = (0..cols).collect();
         // Fisher-Yates shuffle, then keep each row's column with probability 1/2.
         for i in (1..columns.len()).rev() {
@@ -357,7 +288,7 @@ mod tests {
 
     #[test]
     fn assignment_matches_brute_force_on_random_matrices() {
-        let mut rng = SplitMix64(1);
+        let mut rng = Draws::new(1);
         for trial in 0..3000 {
             let rows = rng.below(7);
             let cols = rng.below(7);
@@ -395,7 +326,7 @@ mod tests {
     #[test]
     fn assignment_large_matrix_is_valid_and_beats_identity() {
         // Sanity check of the O(n^3) path on sizes brute force cannot reach.
-        let mut rng = SplitMix64(2);
+        let mut rng = Draws::new(2);
         for (rows, cols) in [(150, 150), (120, 180), (180, 120)] {
             let cost: Vec<Vec<f64>> = (0..rows).map(|_| (0..cols).map(|_| rng.unit()).collect()).collect();
             let assignment = optimal_assignment(&cost);
@@ -498,7 +429,7 @@ mod tests {
         search(truth, estimates, c, p, &mut Vec::new(), &mut vec![false; estimates.len()])
     }
 
-    fn random_case(rng: &mut SplitMix64) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, f64, f64) {
+    fn random_case(rng: &mut Draws) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, f64, f64) {
         let truth_count = rng.below(5);
         let estimate_count = rng.below(5);
         let truth = rng.points(truth_count, 20.0);
@@ -510,7 +441,7 @@ mod tests {
 
     #[test]
     fn gospa_matches_brute_force_and_is_consistent() {
-        let mut rng = SplitMix64(3);
+        let mut rng = Draws::new(3);
         for _ in 0..2000 {
             let (truth, estimates, c, p) = random_case(&mut rng);
             let g = gospa(&truth, &estimates, c, p);
@@ -534,7 +465,7 @@ mod tests {
 
     #[test]
     fn gospa_is_symmetric() {
-        let mut rng = SplitMix64(4);
+        let mut rng = Draws::new(4);
         for _ in 0..2000 {
             let (truth, estimates, c, p) = random_case(&mut rng);
             let forward = gospa(&truth, &estimates, c, p);
@@ -547,7 +478,7 @@ mod tests {
 
     #[test]
     fn gospa_is_not_above_any_other_assignment() {
-        let mut rng = SplitMix64(5);
+        let mut rng = Draws::new(5);
         for _ in 0..2000 {
             let truth_count = rng.below(8);
             let estimate_count = rng.below(8);
@@ -564,7 +495,7 @@ mod tests {
 
     #[test]
     fn gospa_of_a_set_with_itself_is_zero() {
-        let mut rng = SplitMix64(6);
+        let mut rng = Draws::new(6);
         for _ in 0..500 {
             let count = rng.below(10);
             let points = rng.points(count, 50.0);
@@ -577,7 +508,7 @@ mod tests {
 
     #[test]
     fn gospa_satisfies_triangle_inequality() {
-        let mut rng = SplitMix64(7);
+        let mut rng = Draws::new(7);
         for _ in 0..3000 {
             let sets: Vec<Vec<[f64; 2]>> = (0..3)
                 .map(|_| {
@@ -614,7 +545,7 @@ mod tests {
 
     #[test]
     fn ospa_is_symmetric_and_bounded() {
-        let mut rng = SplitMix64(8);
+        let mut rng = Draws::new(8);
         for _ in 0..2000 {
             let (truth, estimates, c, p) = random_case(&mut rng);
             let forward = ospa(&truth, &estimates, c, p);

@@ -12,8 +12,8 @@
 //!   required column it can, then maximises the log-weight. So every feasible association (all required
 //!   columns assigned) ranks before every infeasible one, with no big-M constant and no rounding; the
 //!   enumeration stops at the first infeasible one.
-//! - **Solver**: the shortest-augmenting-path Hungarian algorithm with dual potentials (the Jonker–Volgenant
-//!   scheme without its initialisation heuristics), O(r² c) for r free rows and c open columns; impossible
+//! - **Solver**: the host's one assignment solver ([`crate::assignment::assign`]: shortest augmenting
+//!   paths with dual potentials), O(r² c) for r free rows and c open columns; impossible
 //!   (`-inf`) entries, forbidden pairs and columns taken by forced rows are absent edges, and a row with no
 //!   augmenting path proves the subproblem infeasible.
 //! - **Murty's partition**: the best association of a subproblem (forced pairs F, forbidden pairs X) is
@@ -29,6 +29,7 @@
 //! The log-weights returned are exact: recomputed from the matrix ([`AssociationMatrix::score`]), as every
 //! child generator of tracker-core does.
 
+use crate::assignment::{AssignmentCost, assign};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use tracker_core::association::{AssociationMatrix, CLUTTER};
@@ -50,7 +51,7 @@ struct Cost {
     minor: f64,
 }
 
-impl Cost {
+impl AssignmentCost for Cost {
     const ZERO: Cost = Cost { major: 0.0, minor: 0.0 };
     const INFINITE: Cost = Cost { major: f64::INFINITY, minor: 0.0 };
 
@@ -71,79 +72,6 @@ impl std::ops::Sub for Cost {
     fn sub(self, other: Cost) -> Cost {
         Cost { major: self.major - other.major, minor: self.minor - other.minor }
     }
-}
-
-/// Minimum-cost assignment of every row of a dense `rows × columns` cost table (`None`: no edge),
-/// `rows <= columns`. Returns the column of each row and the total, or `None` when no assignment covers
-/// every row.
-fn assign(rows: usize, columns: usize, cost: &[Option<Cost>]) -> Option<(Vec<usize>, Cost)> {
-    debug_assert!(rows <= columns && cost.len() == rows * columns);
-    // 1-based internally; column 0 is the virtual column holding the row being inserted.
-    let mut row_potential = vec![Cost::ZERO; rows + 1];
-    let mut column_potential = vec![Cost::ZERO; columns + 1];
-    let mut row_of_column = vec![0usize; columns + 1];
-    let mut previous = vec![0usize; columns + 1];
-    let mut slack = vec![Cost::INFINITE; columns + 1];
-    let mut visited = vec![false; columns + 1];
-    for row in 1..=rows {
-        row_of_column[0] = row;
-        let mut column = 0usize;
-        slack.fill(Cost::INFINITE);
-        visited.fill(false);
-        loop {
-            visited[column] = true;
-            let current = row_of_column[column];
-            let costs = &cost[(current - 1) * columns..current * columns];
-            let mut delta = Cost::INFINITE;
-            let mut next = 0usize;
-            for j in 1..=columns {
-                if visited[j] {
-                    continue;
-                }
-                if let Some(c) = costs[j - 1] {
-                    let reduced = c - row_potential[current] - column_potential[j];
-                    if reduced < slack[j] {
-                        slack[j] = reduced;
-                        previous[j] = column;
-                    }
-                }
-                if !slack[j].is_infinite() && (next == 0 || slack[j] < delta) {
-                    delta = slack[j];
-                    next = j;
-                }
-            }
-            if next == 0 {
-                return None; // no augmenting path: this row cannot be covered
-            }
-            for j in 0..=columns {
-                if visited[j] {
-                    row_potential[row_of_column[j]] = row_potential[row_of_column[j]] + delta;
-                    column_potential[j] = column_potential[j] - delta;
-                } else if !slack[j].is_infinite() {
-                    slack[j] = slack[j] - delta;
-                }
-            }
-            column = next;
-            if row_of_column[column] == 0 {
-                break;
-            }
-        }
-        while column != 0 {
-            let back = previous[column];
-            row_of_column[column] = row_of_column[back];
-            column = back;
-        }
-    }
-    let mut assignment = vec![0usize; rows];
-    let mut total = Cost::ZERO;
-    for column in 1..=columns {
-        let row = row_of_column[column];
-        if row != 0 {
-            assignment[row - 1] = column - 1;
-            total = total + cost[(row - 1) * columns + column - 1].unwrap_or(Cost::INFINITE);
-        }
-    }
-    Some((assignment, total))
 }
 
 /// The augmented column of a row: a matrix column, or the row's private clutter column.
@@ -269,7 +197,16 @@ impl<'a, const N: usize, const Z: usize> Murty<'a, N, Z> {
                 }
             }
         }
-        let (assignment, free_cost) = assign(free.len(), width, &cost)?;
+        let assignment = assign(free.len(), width, |i, j| cost[i * width + j])?;
+        // The total summed in column order (the order that ranks the subproblems).
+        let mut row_of_column = vec![None; width];
+        for (i, &j) in assignment.iter().enumerate() {
+            row_of_column[j] = Some(i);
+        }
+        let free_cost = row_of_column.iter().enumerate().fold(Cost::ZERO, |total, (j, row)| match row {
+            Some(i) => total + cost[i * width + j].unwrap_or(Cost::INFINITE),
+            None => total,
+        });
         let mut solution: Vec<Column> = forced.iter().map(|c| c.unwrap_or(Column::Clutter)).collect();
         for (i, &row) in free.iter().enumerate() {
             let j = assignment[i];
@@ -326,6 +263,8 @@ pub fn k_best<const N: usize, const Z: usize>(matrix: &AssociationMatrix<f64, N,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand_core::{Rng, SeedableRng};
+    use rand_xoshiro::SplitMix64;
     use tracker_core::children::{ChildGenerator, ChildSink, ExhaustiveChildren};
 
     struct All(Vec<(f64, Vec<u16>)>);
@@ -343,17 +282,13 @@ mod tests {
         all.0
     }
 
-    fn next(state: &mut u64) -> f64 {
-        *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    fn next(rng: &mut SplitMix64) -> f64 {
+        (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
 
     #[test]
     fn k_best_equals_the_exhaustive_top_k_in_weight_order() {
-        let mut state = 17u64;
+        let mut state = SplitMix64::seed_from_u64(17);
         for case in 0..150 {
             let rows = 1 + (next(&mut state) * 5.0) as usize;
             let columns = 1 + (next(&mut state) * 6.0) as usize;

@@ -4,20 +4,72 @@
 //! It calls the core's model, EKF ([`tracker_core::ekf`]) and weight code ([`WeightModel`]); only the
 //! bookkeeping is its own: a recursive enumeration of associations (independent of the core's iterative
 //! enumerator, so the two check each other), hash maps for shared tracks, and merging of identical
-//! hypotheses. No child is dropped unless a memory budget is reached; then the lowest-weight children are
-//! dropped, and the scan's report and [`ReferenceTracker::budget_scans`] say so.
+//! hypotheses.
+//!
+//! **Memory budget.** Every allocation that grows with the hypotheses, the children or the measurements
+//! is charged to the budget given to [`ReferenceTracker::new`] (see [`Shares`]): a fifth for the
+//! posterior kept after a scan (with its snapshot and the copies `run` keeps for plots), two fifths for a
+//! scan's tables and children; the rest is headroom for the allocator and the caller. Nothing is dropped
+//! while everything fits. When it does not, the scan still finishes: the lowest-weight parents are left
+//! out when their tables do not fit, the children are pruned to the best half whenever their buffer is
+//! full (before it grows past its share), a branch of the enumeration whose best possible child cannot
+//! beat the worst kept one is not entered (so the work after pruning shrinks and the kept children are
+//! exactly the best ones), and children are materialised best first until the posterior's share is
+//! used. The scan's report and [`ReferenceTracker::budget_scans`] then say so.
 
 use crate::snapshot::{HypothesisOut, Snapshot, TrackOut};
 use nalgebra::SVector;
 use std::collections::HashMap;
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::mem::size_of;
 use tracker_core::ekf::{self, Gaussian, Innovation};
 use tracker_core::real::{LogSumExp, log_add};
 use tracker_core::weight::{Event, WeightModel};
 use tracker_core::{Config, MotionModel, PositionMeasurement, PriorObject, Region, StepError, TrackLabel};
 
-const CLUTTER: u16 = u16::MAX;
-/// Estimated bytes of one enumerated child before materialisation (weight, parent, event, assignment).
-const CHILD_BYTES: usize = 64;
+/// Row of a column left unassigned.
+const CLUTTER: u32 = u32::MAX;
+/// Slot of a track no kept parent holds.
+const NO_SLOT: u32 = u32::MAX;
+/// Header and rounding of one small heap allocation (glibc: 16-byte chunks, 8-byte header).
+const ALLOCATION: usize = 32;
+/// A hash map entry of `E` bytes: buckets at ≥ 1/8 free plus a control byte, twice over while it grows.
+const fn map_entry(bytes: usize) -> usize {
+    4 * (bytes + 1)
+}
+/// Bytes charged per hypothesis kept: its record and merge link, the hash of its tracks, its snapshot
+/// record and allocation, the four thinned copies `run` keeps for its plots, and sorting scratch.
+const HYPOTHESIS_BYTES: usize = size_of::<Hypothesis>()
+    + 4
+    + map_entry(size_of::<(u64, u32)>())
+    + size_of::<HypothesisOut>()
+    + ALLOCATION
+    + 4 * size_of::<HypothesisOut>()
+    + size_of::<Hypothesis>();
+/// Bytes charged per object of a hypothesis: its index here and in the snapshot.
+const OBJECT_BYTES: usize = size_of::<u32>() + size_of::<usize>();
+/// Bytes charged per track kept: the track, its snapshot record and its key in the sharing map.
+const TRACK_BYTES: usize = size_of::<Track>() + size_of::<TrackOut>() + map_entry(size_of::<(TrackKey, u32)>());
+/// Bytes charged per child besides its rows: its head, its weight while pruning, its place in the order.
+const CHILD_BYTES: usize = size_of::<Head>() + size_of::<f64>() + size_of::<u32>();
+
+/// How a budget of B bytes is shared.
+#[derive(Debug, Clone, Copy)]
+struct Shares {
+    /// B/5: the hypotheses and tracks kept after a scan, charged with their copies.
+    posterior: usize,
+    /// 2B/5: one scan's tables and children. With the posterior before and after the scan, 4B/5 at most.
+    working: usize,
+}
+
+impl Shares {
+    fn of(budget: usize) -> Self {
+        Self { posterior: budget / 5, working: budget / 5 * 2 }
+    }
+}
+
+/// Where a track comes from: (is a birth, old track index or birth cell, measurement row or [`CLUTTER`]).
+type TrackKey = (bool, u32, u32);
 
 #[derive(Debug, Clone)]
 struct Track {
@@ -25,19 +77,12 @@ struct Track {
     state: Gaussian<f64, 4>,
 }
 
-#[derive(Debug, Clone)]
+/// A hypothesis: its tracks are `objects[start..start + len]`, sorted by label.
+#[derive(Debug, Clone, Copy)]
 struct Hypothesis {
     log_weight: f64,
-    /// Track indices, sorted by label.
-    tracks: Vec<u32>,
-}
-
-#[derive(Debug, Clone)]
-struct Child {
-    log_weight: f64,
-    parent: u32,
-    event: Event,
-    assignment: Vec<u16>,
+    start: usize,
+    len: u32,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -50,15 +95,49 @@ struct Predicted {
 /// What one reference scan did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReferenceReport {
-    /// Children with non-zero weight.
+    /// Children enumerated: every child with non-zero weight unless the budget was reached, after which
+    /// branches that cannot beat the kept children are skipped uncounted.
     pub children: u64,
     /// Hypotheses after the scan.
     pub hypotheses: usize,
-    /// Whether the memory budget forced dropping children this scan.
+    /// Whether the memory budget forced dropping parents or children this scan.
     pub budget_reached: bool,
-    /// Fraction of the children's weight kept (1 unless the budget was reached).
+    /// Fraction of the enumerated children's weight kept: exactly 1 unless the budget was reached, then
+    /// an upper bound of the fraction of all children's weight (skipped branches are not in the total).
     pub captured_mass: f64,
 }
+
+/// Why a reference scan failed; the tracker is then unchanged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ReferenceError {
+    /// The core's error for the same bad input (time, measurement, numerical failure, child budget).
+    Step(StepError),
+    /// 1 − M_b α − M_d β ≤ 0 for a parent with M_d objects in view: "no event" has no probability.
+    EventProbabilities {
+        /// Objects of the parent in view.
+        in_view: usize,
+    },
+}
+
+impl From<StepError> for ReferenceError {
+    fn from(error: StepError) -> Self {
+        Self::Step(error)
+    }
+}
+
+impl core::fmt::Display for ReferenceError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Step(error) => error.fmt(f),
+            Self::EventProbabilities { in_view } => write!(
+                f,
+                "M_b alpha + M_d beta must be < 1 for every parent (M_d = {in_view} objects in view of a parent)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ReferenceError {}
 
 /// The unbounded exhaustive tracker.
 pub struct ReferenceTracker<M> {
@@ -69,39 +148,68 @@ pub struct ReferenceTracker<M> {
     births: Vec<(Gaussian<f64, 4>, Innovation<f64, 2>, bool)>,
     tracks: Vec<Track>,
     hypotheses: Vec<Hypothesis>,
+    objects: Vec<u32>,
     time: f64,
     next_label: u32,
-    budget_bytes: usize,
+    shares: Shares,
     max_children: u64,
     budget_scans: Vec<usize>,
     scans: usize,
 }
 
+/// One scan's predictions and association entries, for the tracks of the parents it processes.
+struct Tables {
+    rows: usize,
+    /// Parents processed (the best ones whose tables fit), in their order.
+    parents: Vec<u32>,
+    /// Old track → its slot below, or [`NO_SLOT`].
+    slot: Vec<u32>,
+    predicted: Vec<Predicted>,
+    /// `rows` entries per slot, then per birth cell.
+    entries: Vec<f64>,
+    /// `rows + 1` bounds per slot, then per birth cell: max(0, best entry from that row on).
+    bounds: Vec<f64>,
+    /// `rows` rows per slot, then per birth cell, by decreasing entry.
+    order: Vec<u32>,
+    /// `rows` impossible entries and `rows + 1` zero bounds: the column of a dying object.
+    dead: (Vec<f64>, Vec<f64>),
+    /// Columns of the widest child (objects in view plus a birth).
+    widest: usize,
+    bytes: usize,
+}
+
+impl Tables {
+    fn column(&self, slot: usize) -> (&[f64], &[f64], &[u32]) {
+        let (r, b) = (self.rows, self.rows + 1);
+        let span = slot * r..(slot + 1) * r;
+        (&self.entries[span.clone()], &self.bounds[slot * b..(slot + 1) * b], &self.order[span])
+    }
+
+    fn birth_column(&self, cell: usize) -> (&[f64], &[f64], &[u32]) {
+        self.column(self.predicted.len() + cell)
+    }
+}
+
 impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     /// A reference tracker for `config` (its capacities do not apply), the prior hypotheses and a memory
-    /// budget in bytes. The first-order event model needs M_b α + M_d β < 1 for every parent; like the
-    /// core, the reference checks it for up to `max_objects` objects in view (the compared profile's N)
-    /// when it is built, and again for every parent at every scan.
+    /// budget in bytes (see the module documentation). The first-order event model needs
+    /// M_b α + M_d β < 1 for every parent with M_d objects in view: the reference has no object capacity,
+    /// so it checks M_b α < 1 here and each parent's actual M_d at every scan.
     ///
     /// # Errors
-    /// A message when the event probabilities are impossible or a birth cell's innovation cannot be
-    /// factored.
+    /// A message when M_b α ≥ 1 or a birth cell's innovation cannot be factored.
     pub fn new<const B: usize>(
         config: &Config<f64, M, PositionMeasurement<f64>, 4, B>,
         prior: &[(f64, Vec<PriorObject<f64, 4>>)],
         time: f64,
         budget_bytes: usize,
-        max_objects: usize,
     ) -> Result<Self, String>
     where
         M: Clone,
     {
-        let cells = config.birth.cells.len() as f64;
-        if !(1.0 - cells * config.birth.probability - max_objects as f64 * config.death_probability > 0.0) {
-            return Err(format!(
-                "tracker configuration: {} (N = {max_objects})",
-                tracker_core::ConfigError::EventProbabilities
-            ));
+        let weights = WeightModel::from_config(config);
+        if !(weights.event_log_probability(Event::None, 0) > f64::NEG_INFINITY) {
+            return Err(format!("tracker configuration: {}", ReferenceError::EventProbabilities { in_view: 0 }));
         }
         let region = config.sensor.field_of_view;
         let mut births = vec![];
@@ -112,12 +220,12 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             births.push((*gaussian, innovation, in_view));
         }
         let mut tracks: Vec<Track> = vec![];
-        let mut hypotheses = vec![];
+        let (mut hypotheses, mut objects) = (vec![], vec![]);
         let total: f64 = prior.iter().map(|p| p.0).sum();
         let mut next_label = 0;
-        for (weight, objects) in prior {
-            let mut indices = vec![];
-            for object in objects {
+        for (weight, members) in prior {
+            let start = objects.len();
+            for object in members {
                 next_label = next_label.max(object.label.0 + 1);
                 let index = tracks
                     .iter()
@@ -126,24 +234,28 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                         tracks.push(Track { label: object.label.0, state: object.state });
                         tracks.len() - 1
                     });
-                indices.push(index as u32);
+                objects.push(index as u32);
             }
-            indices.sort_by_key(|&i| tracks[i as usize].label);
+            objects[start..].sort_by_key(|&i| tracks[i as usize].label);
             if *weight > 0.0 {
-                hypotheses.push(Hypothesis { log_weight: (weight / total).ln(), tracks: indices });
+                let len = members.len() as u32;
+                hypotheses.push(Hypothesis { log_weight: (weight / total).ln(), start, len });
+            } else {
+                objects.truncate(start);
             }
         }
         Ok(Self {
             motion: config.motion.clone(),
             measurement: config.measurement,
             region,
-            weights: WeightModel::from_config(config),
+            weights,
             births,
             tracks,
             hypotheses,
+            objects,
             time,
             next_label,
-            budget_bytes,
+            shares: Shares::of(budget_bytes),
             max_children: u64::MAX,
             budget_scans: vec![],
             scans: 0,
@@ -157,7 +269,7 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         self.max_children = max_children;
     }
 
-    /// Scans (1-based) at which the memory budget forced dropping children.
+    /// Scans (1-based) at which the memory budget forced dropping parents or children.
     pub fn budget_scans(&self) -> &[usize] {
         &self.budget_scans
     }
@@ -172,252 +284,267 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         self.hypotheses.is_empty()
     }
 
-    /// Processes one scan.
+    fn members(&self, hypothesis: &Hypothesis) -> &[u32] {
+        &self.objects[hypothesis.start..hypothesis.start + hypothesis.len as usize]
+    }
+
+    /// Processes one scan; on error the tracker is unchanged.
     ///
     /// # Errors
-    /// The core's [`StepError`] for the same bad inputs (non-finite values, time, numerical failure).
-    pub fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<ReferenceReport, StepError> {
-        if !time.is_finite() {
-            return Err(StepError::NonFiniteTime);
+    /// The core's [`StepError`] for the same bad inputs (non-finite values, time, numerical failure,
+    /// more children than [`ReferenceTracker::set_max_children`]), or
+    /// [`ReferenceError::EventProbabilities`].
+    pub fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<ReferenceReport, ReferenceError> {
+        validate_scan(self.time, &self.region, time, measurements)?;
+        let tables = self.tables(time - self.time, measurements)?;
+        let mut budget_reached = tables.parents.len() < self.hypotheses.len();
+        // The pruned search's candidate lists: at most every (row, column) pair at each depth.
+        let candidates = size_of::<(u32, u32)>().saturating_mul(tables.rows * tables.widest * (tables.widest + 1));
+        let children_bytes = self.shares.working.saturating_sub(tables.bytes).saturating_sub(candidates);
+        let mut children =
+            ChildBuffer::new(children_bytes / (CHILD_BYTES + 4 * tables.widest), tables.widest, self.max_children);
+        for &parent in &tables.parents {
+            self.enumerate_parent(&tables, parent, &mut children)?;
         }
-        if time <= self.time {
-            return Err(StepError::TimeNotAfterLastScan);
+        if children.heads.is_empty() {
+            return Err(StepError::NoViableChild.into());
         }
-        for (index, z) in measurements.iter().enumerate() {
-            if !z.iter().all(|v| v.is_finite()) {
-                return Err(StepError::NonFiniteMeasurement { index });
-            }
-            if !self.region.contains(z) {
-                return Err(StepError::MeasurementOutsideFieldOfView { index });
-            }
-        }
-        let dt = time - self.time;
-        let rows = measurements.len();
-
-        // Predict and score every track once.
-        let mut predicted = Vec::with_capacity(self.tracks.len());
-        let mut entries: Vec<Vec<f64>> = Vec::with_capacity(self.tracks.len());
-        for track in &self.tracks {
-            let numerical = |error| StepError::Numerical { label: TrackLabel(track.label), error };
-            let state = ekf::predict(&self.motion, &track.state, dt).map_err(numerical)?;
-            let innovation = ekf::innovation(&self.measurement, &state).map_err(numerical)?;
-            let in_view = self.region.contains(&innovation.predicted);
-            entries.push(
-                measurements
-                    .iter()
-                    .map(|z| if in_view { self.weights.entry(&innovation, z) } else { f64::NEG_INFINITY })
-                    .collect(),
-            );
-            predicted.push(Predicted { state, innovation, in_view });
-        }
-        let birth_entries: Vec<Vec<f64>> = self
-            .births
-            .iter()
-            .map(|(_, innovation, in_view)| {
-                measurements
-                    .iter()
-                    .map(|z| if *in_view { self.weights.entry(innovation, z) } else { f64::NEG_INFINITY })
-                    .collect()
-            })
-            .collect();
-
-        // Enumerate every child of every parent and event.
-        let max_children = (self.budget_bytes / CHILD_BYTES).max(1);
-        let mut children: Vec<Child> = vec![];
-        let mut total = LogSumExp::new();
-        let mut count = 0u64;
-        let mut budget_reached = false;
-        let detection_required = self.weights.detection_required();
-        for (parent_index, parent) in self.hypotheses.iter().enumerate() {
-            let columns: Vec<(usize, usize)> = parent
-                .tracks
-                .iter()
-                .enumerate()
-                .filter(|(_, t)| predicted[**t as usize].in_view)
-                .map(|(position, t)| (position, *t as usize))
-                .collect();
-            let in_view = columns.len();
-            if !(self.weights.event_log_probability(Event::None, in_view) > f64::NEG_INFINITY) {
-                // M_b α + M_d β ≥ 1 for this parent: the first-order event model does not apply.
-                return Err(StepError::NoViableChild);
-            }
-            let mut events = vec![(Event::None, in_view)];
-            if self.weights.births_possible() {
-                for (cell, (_, _, detectable)) in self.births.iter().enumerate() {
-                    if *detectable || !self.weights.birth_required() {
-                        events.push((Event::Birth { cell: cell as u16 }, in_view + usize::from(*detectable)));
-                    }
-                }
-            }
-            if self.weights.deaths_possible() {
-                for &(position, _) in &columns {
-                    events.push((Event::Death { object: position as u16 }, in_view - 1));
-                }
-            }
-            for (event, child_in_view) in events {
-                // The event's matrix: columns with entries and required flags.
-                let mut matrix: Vec<(Vec<f64>, bool)> = columns
-                    .iter()
-                    .map(|&(position, track)| {
-                        if event == (Event::Death { object: position as u16 }) {
-                            (vec![f64::NEG_INFINITY; rows], false)
-                        } else {
-                            (entries[track].clone(), detection_required)
-                        }
-                    })
-                    .collect();
-                if let Event::Birth { cell } = event
-                    && self.births[cell as usize].2
-                {
-                    matrix.push((birth_entries[cell as usize].clone(), self.weights.birth_required()));
-                }
-                let baseline = self.weights.baseline(
-                    parent.log_weight,
-                    self.weights.event_log_probability(event, in_view),
-                    child_in_view,
-                    rows,
-                );
-                let mut assignment = vec![CLUTTER; rows];
-                let mut used = vec![false; matrix.len()];
-                let limit = self.max_children;
-                let complete =
-                    enumerate(&matrix, 0, baseline, &mut assignment, &mut used, &mut |log_weight, assignment| {
-                        if count >= limit {
-                            return false;
-                        }
-                        total.add(log_weight);
-                        count += 1;
-                        children.push(Child {
-                            log_weight,
-                            parent: parent_index as u32,
-                            event,
-                            assignment: assignment.to_vec(),
-                        });
-                        if children.len() >= 2 * max_children {
-                            keep_best(&mut children, max_children);
-                            budget_reached = true;
-                        }
-                        true
-                    });
-                if !complete {
-                    return Err(StepError::ChildBudgetExceeded { budget: limit });
-                }
-            }
-        }
-        if children.is_empty() {
-            return Err(StepError::NoViableChild);
-        }
-        // The hypotheses themselves must fit the budget too.
-        let objects_per = self.hypotheses.iter().map(|h| h.tracks.len() + 1).max().unwrap_or(1);
-        let max_hypotheses = (self.budget_bytes / (48 + 4 * objects_per)).max(1);
-        if children.len() > max_children.min(max_hypotheses) {
-            keep_best(&mut children, max_children.min(max_hypotheses));
-            budget_reached = true;
-        }
-        // Best first; ties keep the enumeration order.
-        children.sort_by(|a, b| b.log_weight.total_cmp(&a.log_weight));
-
-        // Materialise: shared tracks keyed by (source, measurement), identical hypotheses merged.
-        let mut new_tracks: Vec<Track> = vec![];
-        let mut track_keys: HashMap<(bool, u32, u16), u32> = HashMap::new();
-        let mut hypothesis_keys: HashMap<Vec<u32>, usize> = HashMap::new();
-        let mut new_hypotheses: Vec<Hypothesis> = vec![];
-        let mut next_label = self.next_label;
-        // One label per new object: per measurement for detected births, per cell for undetected ones.
-        let mut birth_labels: HashMap<(bool, u16), u32> = HashMap::new();
-        for child in &children {
-            let parent = &self.hypotheses[child.parent as usize];
-            let mut row_of_column = vec![CLUTTER; parent.tracks.len() + 1];
-            for (row, &column) in child.assignment.iter().enumerate() {
-                if column != CLUTTER {
-                    row_of_column[column as usize] = row as u16;
-                }
-            }
-            let mut sources: Vec<(bool, u32, u16)> = vec![];
-            let mut column = 0;
-            for (position, &track) in parent.tracks.iter().enumerate() {
-                let row = if predicted[track as usize].in_view {
-                    column += 1;
-                    row_of_column[column - 1]
-                } else {
-                    CLUTTER
-                };
-                if child.event != (Event::Death { object: position as u16 }) {
-                    sources.push((false, track, row));
-                }
-            }
-            if let Event::Birth { cell } = child.event {
-                let row = if self.births[cell as usize].2 { row_of_column[column] } else { CLUTTER };
-                sources.push((true, u32::from(cell), row));
-            }
-            let mut indices = Vec::with_capacity(sources.len());
-            for key in sources {
-                let index = match track_keys.get(&key) {
-                    Some(&index) => index,
-                    None => {
-                        let (is_birth, source, row) = key;
-                        let (label, prior, innovation) = if is_birth {
-                            let birth_key = if row == CLUTTER { (false, source as u16) } else { (true, row) };
-                            let label = *birth_labels.entry(birth_key).or_insert_with(|| {
-                                next_label += 1;
-                                next_label - 1
-                            });
-                            let (gaussian, innovation, _) = self.births[source as usize];
-                            (label, gaussian, innovation)
-                        } else {
-                            let p = &predicted[source as usize];
-                            (self.tracks[source as usize].label, p.state, p.innovation)
-                        };
-                        let state = if row == CLUTTER {
-                            prior
-                        } else {
-                            ekf::update(&self.measurement, &prior, &innovation, &measurements[row as usize])
-                                .map_err(|error| StepError::Numerical { label: TrackLabel(label), error })?
-                        };
-                        new_tracks.push(Track { label, state });
-                        let index = (new_tracks.len() - 1) as u32;
-                        track_keys.insert(key, index);
-                        index
-                    }
-                };
-                indices.push(index);
-            }
-            indices.sort_by_key(|&i| new_tracks[i as usize].label);
-            match hypothesis_keys.get(&indices) {
-                Some(&existing) => {
-                    let h = &mut new_hypotheses[existing];
-                    h.log_weight = log_add(h.log_weight, child.log_weight);
-                }
-                None => {
-                    hypothesis_keys.insert(indices.clone(), new_hypotheses.len());
-                    new_hypotheses.push(Hypothesis { log_weight: child.log_weight, tracks: indices });
-                }
-            }
-        }
-        let mut kept = LogSumExp::new();
-        for h in &new_hypotheses {
-            kept.add(h.log_weight);
-        }
-        let log_kept = kept.value();
-        for h in &mut new_hypotheses {
-            h.log_weight -= log_kept;
-        }
-        new_hypotheses.sort_by(|a, b| b.log_weight.total_cmp(&a.log_weight));
-
-        self.tracks = new_tracks;
-        self.hypotheses = new_hypotheses;
+        budget_reached |= children.pruned;
+        let posterior = self.materialise(&tables, &children, measurements)?;
+        budget_reached |= posterior.truncated;
+        let log_kept = posterior.log_mass;
+        self.tracks = posterior.tracks;
+        self.hypotheses = posterior.hypotheses;
+        self.objects = posterior.objects;
         self.time = time;
-        self.next_label = next_label;
+        self.next_label = posterior.next_label;
         self.scans += 1;
         if budget_reached {
             self.budget_scans.push(self.scans);
         }
         Ok(ReferenceReport {
-            children: count,
+            children: children.count,
             hypotheses: self.hypotheses.len(),
             budget_reached,
-            captured_mass: (log_kept - total.value()).exp(),
+            captured_mass: if budget_reached { (log_kept - children.total.value()).exp().min(1.0) } else { 1.0 },
         })
+    }
+
+    /// Predicts and scores the tracks of the best parents whose tables fit half the working share (at
+    /// least the best parent).
+    fn tables(&self, dt: f64, measurements: &[SVector<f64, 2>]) -> Result<Tables, ReferenceError> {
+        let rows = measurements.len();
+        let per_track = size_of::<Predicted>() + size_of::<f64>() * (2 * rows + 1) + size_of::<u32>() * rows;
+        let cells = self.births.len();
+        let fixed = size_of::<u32>() * self.tracks.len()
+            + per_track * cells
+            + size_of::<f64>() * (2 * rows + 1)
+            + map_entry(size_of::<((bool, u32), u32)>()) * (rows + cells);
+        let mut order: Vec<u32> = (0..self.hypotheses.len() as u32).collect();
+        order.sort_by(|&a, &b| {
+            self.hypotheses[b as usize].log_weight.total_cmp(&self.hypotheses[a as usize].log_weight)
+        });
+        let mut slot = vec![NO_SLOT; self.tracks.len()];
+        let (mut used, mut kept) = (0usize, 0usize);
+        for &parent in &order {
+            let members = self.members(&self.hypotheses[parent as usize]);
+            let new = members.iter().filter(|&&t| slot[t as usize] == NO_SLOT).count();
+            if kept > 0 && fixed + per_track * (used + new) > self.shares.working / 2 {
+                break;
+            }
+            for &t in members {
+                if slot[t as usize] == NO_SLOT {
+                    slot[t as usize] = used as u32;
+                    used += 1;
+                }
+            }
+            kept += 1;
+        }
+        let mut parents = order[..kept].to_vec();
+        parents.sort_unstable();
+        // Slots in track order, so the tables do not depend on the parents' weights.
+        for (next, s) in slot.iter_mut().filter(|s| **s != NO_SLOT).enumerate() {
+            *s = next as u32;
+        }
+        self.score(dt, measurements, parents, slot, fixed + per_track * used)
+    }
+
+    /// Fills the tables for the tracks that have a slot and the birth cells.
+    fn score(
+        &self,
+        dt: f64,
+        measurements: &[SVector<f64, 2>],
+        parents: Vec<u32>,
+        slot: Vec<u32>,
+        bytes: usize,
+    ) -> Result<Tables, ReferenceError> {
+        let rows = measurements.len();
+        let mut predicted = vec![];
+        let (mut entries, mut bounds, mut order) = (vec![], vec![], vec![]);
+        let mut column = |innovation: &Innovation<f64, 2>, in_view: bool| {
+            let (start, first) = (bounds.len(), entries.len());
+            for z in measurements {
+                let entry = if in_view { self.weights.entry(innovation, z) } else { f64::NEG_INFINITY };
+                entries.push(entry);
+                bounds.push(entry.max(0.0));
+            }
+            bounds.push(0.0);
+            for r in (start..start + rows).rev() {
+                bounds[r] = bounds[r].max(bounds[r + 1]);
+            }
+            let column: &[f64] = &entries[first..];
+            let mut rows_by_entry: Vec<u32> = (0..rows as u32).collect();
+            rows_by_entry.sort_by(|&a, &b| column[b as usize].total_cmp(&column[a as usize]));
+            order.extend_from_slice(&rows_by_entry);
+        };
+        for (track, _) in self.tracks.iter().zip(&slot).filter(|(_, s)| **s != NO_SLOT) {
+            let numerical = |error| StepError::Numerical { label: TrackLabel(track.label), error };
+            let state = ekf::predict(&self.motion, &track.state, dt).map_err(numerical)?;
+            let innovation = ekf::innovation(&self.measurement, &state).map_err(numerical)?;
+            let in_view = self.region.contains(&innovation.predicted);
+            column(&innovation, in_view);
+            predicted.push(Predicted { state, innovation, in_view });
+        }
+        for (_, innovation, in_view) in &self.births {
+            column(innovation, *in_view);
+        }
+        let births = usize::from(self.weights.births_possible() && self.births.iter().any(|b| b.2));
+        let widest = parents
+            .iter()
+            .map(|&p| {
+                let members = self.members(&self.hypotheses[p as usize]);
+                members.iter().filter(|&&t| predicted[slot[t as usize] as usize].in_view).count()
+            })
+            .max()
+            .unwrap_or(0)
+            + births;
+        let dead = (vec![f64::NEG_INFINITY; rows], vec![0.0; rows + 1]);
+        Ok(Tables { rows, parents, slot, predicted, entries, bounds, order, dead, widest, bytes })
+    }
+
+    /// Offers every child of `parent` (each event, each association) to `children`.
+    fn enumerate_parent(&self, tables: &Tables, parent: u32, children: &mut ChildBuffer) -> Result<(), ReferenceError> {
+        let hypothesis = &self.hypotheses[parent as usize];
+        // (position in the parent, slot) of the objects in view.
+        let columns: Vec<(usize, usize)> = self
+            .members(hypothesis)
+            .iter()
+            .enumerate()
+            .map(|(position, &t)| (position, tables.slot[t as usize] as usize))
+            .filter(|&(_, s)| tables.predicted[s].in_view)
+            .collect();
+        let in_view = columns.len();
+        if !(self.weights.event_log_probability(Event::None, in_view) > f64::NEG_INFINITY) {
+            return Err(ReferenceError::EventProbabilities { in_view });
+        }
+        let detection_required = self.weights.detection_required();
+        for (event, child_in_view) in self.events(in_view, &columns) {
+            let mut matrix: Vec<Column<'_>> = columns
+                .iter()
+                .map(|&(position, s)| {
+                    if event == (Event::Death { object: position as u16 }) {
+                        Column { entries: &tables.dead.0, bounds: &tables.dead.1, order: &[], required: false }
+                    } else {
+                        let (entries, bounds, order) = tables.column(s);
+                        Column { entries, bounds, order, required: detection_required }
+                    }
+                })
+                .collect();
+            if let Event::Birth { cell } = event
+                && self.births[cell as usize].2
+            {
+                let (entries, bounds, order) = tables.birth_column(cell as usize);
+                matrix.push(Column { entries, bounds, order, required: self.weights.birth_required() });
+            }
+            let baseline = self.weights.baseline(
+                hypothesis.log_weight,
+                self.weights.event_log_probability(event, in_view),
+                child_in_view,
+                tables.rows,
+            );
+            let mut search = Search {
+                columns: &matrix,
+                row_of: vec![CLUTTER; matrix.len()],
+                rows: tables.rows,
+                parent,
+                event,
+                children: &mut *children,
+                candidates: vec![],
+            };
+            if !search.visit(0, baseline, 0) {
+                return Err(StepError::ChildBudgetExceeded { budget: self.max_children }.into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The events of a parent with `in_view` objects in view, each with its child's objects in view.
+    fn events(&self, in_view: usize, columns: &[(usize, usize)]) -> Vec<(Event, usize)> {
+        let mut events = vec![(Event::None, in_view)];
+        if self.weights.births_possible() {
+            for (cell, (_, _, detectable)) in self.births.iter().enumerate() {
+                if *detectable || !self.weights.birth_required() {
+                    events.push((Event::Birth { cell: cell as u16 }, in_view + usize::from(*detectable)));
+                }
+            }
+        }
+        if self.weights.deaths_possible() {
+            for &(position, _) in columns {
+                events.push((Event::Death { object: position as u16 }, in_view - 1));
+            }
+        }
+        events
+    }
+
+    /// Turns the kept children, best first, into hypotheses over shared tracks, merging identical ones,
+    /// until the posterior's share is used.
+    fn materialise(
+        &self,
+        tables: &Tables,
+        children: &ChildBuffer,
+        measurements: &[SVector<f64, 2>],
+    ) -> Result<Posterior, ReferenceError> {
+        let mut order: Vec<u32> = (0..children.heads.len() as u32).collect();
+        // Best first; ties keep the enumeration order.
+        order.sort_unstable_by(|&a, &b| {
+            let (x, y) = (&children.heads[a as usize], &children.heads[b as usize]);
+            y.log_weight.total_cmp(&x.log_weight).then(a.cmp(&b))
+        });
+        let mut posterior = Posterior::new(self.next_label, self.shares.posterior);
+        let mut sources: Vec<TrackKey> = vec![];
+        for index in order {
+            self.sources(tables, children, index as usize, &mut sources);
+            let head = &children.heads[index as usize];
+            if !posterior.add(self, tables, measurements, head.log_weight, &sources)? {
+                posterior.truncated = true;
+                break;
+            }
+        }
+        posterior.normalise();
+        Ok(posterior)
+    }
+
+    /// The track keys of child `index`: its parent's surviving objects and its birth, with their rows.
+    fn sources(&self, tables: &Tables, children: &ChildBuffer, index: usize, sources: &mut Vec<TrackKey>) {
+        let head = &children.heads[index];
+        let row_of = children.rows_of(index);
+        sources.clear();
+        let mut column = 0;
+        for (position, &track) in self.members(&self.hypotheses[head.parent as usize]).iter().enumerate() {
+            let row = if tables.predicted[tables.slot[track as usize] as usize].in_view {
+                column += 1;
+                row_of[column - 1]
+            } else {
+                CLUTTER
+            };
+            if head.event != (Event::Death { object: position as u16 }) {
+                sources.push((false, track, row));
+            }
+        }
+        if let Event::Birth { cell } = head.event {
+            let row = if self.births[cell as usize].2 { row_of[column] } else { CLUTTER };
+            sources.push((true, u32::from(cell), row));
+        }
     }
 
     /// The hypotheses and tracks, best first, with existence per track.
@@ -437,13 +564,13 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             .iter()
             .map(|h| {
                 let weight = h.log_weight.exp();
-                for &t in &h.tracks {
+                for &t in self.members(h) {
                     tracks[t as usize].existence += weight;
                 }
                 HypothesisOut {
                     weight,
                     log_weight: h.log_weight,
-                    tracks: h.tracks.iter().map(|&t| t as usize).collect(),
+                    tracks: self.members(h).iter().map(|&t| t as usize).collect(),
                 }
             })
             .collect();
@@ -451,57 +578,387 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     }
 }
 
-/// Calls `offer` with every association of rows `row..` (clutter first, then each unused column with a
-/// finite entry), skipping children that leave a required column unassigned. Stops, returning `false`,
-/// as soon as `offer` returns `false`.
-fn enumerate(
-    matrix: &[(Vec<f64>, bool)],
-    row: usize,
-    value: f64,
-    assignment: &mut Vec<u16>,
-    used: &mut Vec<bool>,
-    offer: &mut dyn FnMut(f64, &[u16]) -> bool,
-) -> bool {
-    if row == assignment.len() {
-        let complete = matrix.iter().zip(used.iter()).all(|((_, required), used)| !required || *used);
-        return !complete || offer(value, assignment);
+/// The one check of a scan's inputs: finite time after the last scan, finite measurements in the field
+/// of view. (If tracker-core exposes its own validator, this is the one place to call it.)
+fn validate_scan(
+    last_time: f64,
+    region: &Region<f64>,
+    time: f64,
+    measurements: &[SVector<f64, 2>],
+) -> Result<(), StepError> {
+    if !time.is_finite() {
+        return Err(StepError::NonFiniteTime);
     }
-    assignment[row] = CLUTTER;
-    if !enumerate(matrix, row + 1, value, assignment, used, offer) {
-        return false;
+    if time <= last_time {
+        return Err(StepError::TimeNotAfterLastScan);
     }
-    for (column, (entries, _)) in matrix.iter().enumerate() {
-        if !used[column] && entries[row] > f64::NEG_INFINITY {
-            used[column] = true;
-            assignment[row] = column as u16;
-            let go_on = enumerate(matrix, row + 1, value + entries[row], assignment, used, offer);
-            used[column] = false;
-            if !go_on {
-                return false;
-            }
+    for (index, z) in measurements.iter().enumerate() {
+        if !z.iter().all(|v| v.is_finite()) {
+            return Err(StepError::NonFiniteMeasurement { index });
+        }
+        if !region.contains(z) {
+            return Err(StepError::MeasurementOutsideFieldOfView { index });
         }
     }
-    assignment[row] = CLUTTER;
-    true
+    Ok(())
 }
 
-/// Keeps the `keep` children of largest weight (ties: earlier first), in enumeration order.
-fn keep_best(children: &mut Vec<Child>, keep: usize) {
-    if children.len() <= keep {
-        return;
+/// One column of an event's association matrix.
+struct Column<'a> {
+    entries: &'a [f64],
+    /// `bounds[r]` ≥ every entry of rows `r..`, and ≥ 0 (clutter).
+    bounds: &'a [f64],
+    /// The rows by decreasing entry (ties: lower row first).
+    order: &'a [u32],
+    required: bool,
+}
+
+/// A child in the buffer; its rows per column are `rows[start..next start]`.
+#[derive(Debug, Clone, Copy)]
+struct Head {
+    log_weight: f64,
+    start: usize,
+    parent: u32,
+    event: Event,
+}
+
+/// The children kept so far, within a byte capacity: when full, the best half is kept and every later
+/// child or branch that cannot beat the worst kept one is skipped.
+struct ChildBuffer {
+    heads: Vec<Head>,
+    rows: Vec<u32>,
+    /// At most this many heads (and `capacity × widest` rows).
+    capacity: usize,
+    widest: usize,
+    /// The worst kept weight once pruned, else −∞.
+    threshold: f64,
+    pruned: bool,
+    count: u64,
+    limit: u64,
+    total: LogSumExp<f64>,
+}
+
+impl ChildBuffer {
+    fn new(capacity: usize, widest: usize, limit: u64) -> Self {
+        Self {
+            heads: vec![],
+            rows: vec![],
+            capacity: capacity.max(2),
+            widest,
+            threshold: f64::NEG_INFINITY,
+            pruned: false,
+            count: 0,
+            limit,
+            total: LogSumExp::new(),
+        }
     }
-    let mut order: Vec<usize> = (0..children.len()).collect();
-    order.select_nth_unstable_by(keep - 1, |&a, &b| {
-        children[b].log_weight.total_cmp(&children[a].log_weight).then(a.cmp(&b))
-    });
-    let mut chosen: Vec<usize> = order[..keep].to_vec();
-    chosen.sort_unstable();
-    let mut next = Vec::with_capacity(keep);
-    for index in chosen {
-        next.push(std::mem::replace(
-            &mut children[index],
-            Child { log_weight: 0.0, parent: 0, event: Event::None, assignment: vec![] },
-        ));
+
+    fn rows_of(&self, index: usize) -> &[u32] {
+        let end = self.heads.get(index + 1).map_or(self.rows.len(), |h| h.start);
+        &self.rows[self.heads[index].start..end]
     }
-    *children = next;
+
+    /// Whether no child of weight ≤ `bound` can be kept. `tolerance` covers the rounding of a bound
+    /// summed in another order than the child's weight.
+    fn cannot_beat(&self, bound: f64, tolerance: f64) -> bool {
+        self.pruned && bound + tolerance <= self.threshold
+    }
+
+    /// Counts and keeps a child; `false` when the children limit is reached.
+    fn offer(&mut self, log_weight: f64, parent: u32, event: Event, row_of: &[u32]) -> bool {
+        if self.count >= self.limit {
+            return false;
+        }
+        self.count += 1;
+        self.total.add(log_weight);
+        if self.heads.len() == self.capacity {
+            self.prune();
+        }
+        if self.pruned && log_weight.total_cmp(&self.threshold).is_le() {
+            return true;
+        }
+        let start = self.rows.len();
+        grow_within(&mut self.rows, row_of.len(), self.capacity * self.widest);
+        self.rows.extend_from_slice(row_of);
+        grow_within(&mut self.heads, 1, self.capacity);
+        self.heads.push(Head { log_weight, start, parent, event });
+        true
+    }
+
+    /// Keeps the best `capacity / 2` children (ties: earlier first), in enumeration order.
+    fn prune(&mut self) {
+        let keep = self.capacity / 2;
+        let mut weights: Vec<f64> = self.heads.iter().map(|h| h.log_weight).collect();
+        let cut = *weights.select_nth_unstable_by(keep - 1, |a, b| b.total_cmp(a)).1;
+        drop(weights);
+        let mut ties = keep - self.heads.iter().filter(|h| h.log_weight.total_cmp(&cut).is_gt()).count();
+        let (mut kept, mut end) = (0, 0);
+        for index in 0..self.heads.len() {
+            let head = self.heads[index];
+            let keep_it = match head.log_weight.total_cmp(&cut) {
+                std::cmp::Ordering::Greater => true,
+                std::cmp::Ordering::Equal if ties > 0 => {
+                    ties -= 1;
+                    true
+                }
+                _ => false,
+            };
+            if keep_it {
+                let next = self.heads.get(index + 1).map_or(self.rows.len(), |h| h.start);
+                self.rows.copy_within(head.start..next, end);
+                self.heads[kept] = Head { start: end, ..head };
+                kept += 1;
+                end += next - head.start;
+            }
+        }
+        self.heads.truncate(kept);
+        self.rows.truncate(end);
+        self.threshold = cut;
+        self.pruned = true;
+    }
+}
+
+/// Makes room for `more` elements, never past `max` (doubling below it).
+fn grow_within<T>(v: &mut Vec<T>, more: usize, max: usize) {
+    if v.len() + more > v.capacity() {
+        let target = (2 * v.capacity()).max(v.len() + more).max(64).min(max.max(v.len() + more));
+        v.reserve_exact(target - v.len());
+    }
+}
+
+/// The recursive enumeration of one parent-event's associations. A node is a partial association whose
+/// rows before `row` are decided; it offers its own child (every later row clutter) first, then assigns
+/// an unused column to a later row, last row first. That is the lexicographic order of the rows'
+/// choices (clutter first, then columns in order), and each node is one child, so skipping the rows
+/// left to clutter costs nothing.
+struct Search<'a, 'b> {
+    columns: &'a [Column<'a>],
+    /// Per column its row, or [`CLUTTER`].
+    row_of: Vec<u32>,
+    rows: usize,
+    parent: u32,
+    event: Event,
+    children: &'b mut ChildBuffer,
+    /// Per depth, the (row, column) candidates of a pruned node.
+    candidates: Vec<Vec<(u32, u32)>>,
+}
+
+impl Search<'_, '_> {
+    /// Offers the node's child and every child below it, skipping children that leave a required column
+    /// unassigned and, once the buffer was pruned, branches that cannot beat it. `false` as soon as the
+    /// children limit is reached.
+    fn visit(&mut self, row: usize, value: f64, depth: usize) -> bool {
+        if self.children.pruned && self.cannot_beat(row, value, None) {
+            return true;
+        }
+        let complete = self.columns.iter().zip(&self.row_of).all(|(c, &r)| !c.required || r != CLUTTER);
+        if complete && !self.children.offer(value, self.parent, self.event, &self.row_of) {
+            return false;
+        }
+        for r in (row..self.rows).rev() {
+            if self.children.pruned {
+                return self.visit_candidates(row, r + 1, value, depth);
+            }
+            for column in 0..self.columns.len() {
+                if self.row_of[column] == CLUTTER
+                    && self.columns[column].entries[r] > f64::NEG_INFINITY
+                    && !self.assign(column, r, value, depth)
+                {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Visits the node with `column` assigned to `row`.
+    fn assign(&mut self, column: usize, row: usize, value: f64, depth: usize) -> bool {
+        self.row_of[column] = row as u32;
+        let go_on = self.visit(row + 1, value + self.columns[column].entries[row], depth + 1);
+        self.row_of[column] = CLUTTER;
+        go_on
+    }
+
+    /// Whether no child below the node (with `column` also assigned, if given) can be kept: its value
+    /// plus every unused column's best entry from `row` on does not beat the worst kept child.
+    fn cannot_beat(&self, row: usize, value: f64, except: Option<usize>) -> bool {
+        let (mut bound, mut magnitude) = (value, value.abs() + 1.0);
+        for (column, (c, &r)) in self.columns.iter().zip(&self.row_of).enumerate() {
+            if r == CLUTTER && Some(column) != except {
+                bound += c.bounds[row];
+                magnitude += c.bounds[row];
+            }
+        }
+        // The tolerance covers the rounding of a bound summed in another order than a child's weight.
+        self.children.cannot_beat(bound, 1e-9 * magnitude)
+    }
+
+    /// Once pruned: the assignments of rows `row..end` that may beat the kept children, found from each
+    /// column's rows by decreasing entry, visited in the enumeration order.
+    fn visit_candidates(&mut self, row: usize, end: usize, value: f64, depth: usize) -> bool {
+        if self.candidates.len() <= depth {
+            self.candidates.resize_with(depth + 1, Vec::new);
+        }
+        let mut list = std::mem::take(&mut self.candidates[depth]);
+        list.clear();
+        for column in 0..self.columns.len() {
+            if self.row_of[column] != CLUTTER {
+                continue;
+            }
+            let c = &self.columns[column];
+            for &r in c.order {
+                let entry = c.entries[r as usize];
+                if !(entry > f64::NEG_INFINITY) || self.cannot_beat(row, value + entry, Some(column)) {
+                    break;
+                }
+                if (row..end).contains(&(r as usize)) {
+                    list.push((r, column as u32));
+                }
+            }
+        }
+        list.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        let mut go_on = true;
+        for &(r, column) in &list {
+            if !self.assign(column as usize, r as usize, value, depth) {
+                go_on = false;
+                break;
+            }
+        }
+        self.candidates[depth] = list;
+        go_on
+    }
+}
+
+/// The posterior being built from the kept children.
+struct Posterior {
+    tracks: Vec<Track>,
+    hypotheses: Vec<Hypothesis>,
+    objects: Vec<u32>,
+    next_label: u32,
+    /// Shared tracks by origin.
+    keys: HashMap<TrackKey, u32>,
+    /// One label per new object: per measurement for detected births, per cell for undetected ones.
+    birth_labels: HashMap<(bool, u32), u32>,
+    /// First hypothesis by hash of its tracks, and the next one with the same hash.
+    by_hash: HashMap<u64, u32>,
+    same_hash: Vec<u32>,
+    bytes: usize,
+    share: usize,
+    truncated: bool,
+    log_mass: f64,
+}
+
+impl Posterior {
+    fn new(next_label: u32, share: usize) -> Self {
+        Self {
+            tracks: vec![],
+            hypotheses: vec![],
+            objects: vec![],
+            next_label,
+            keys: HashMap::new(),
+            birth_labels: HashMap::new(),
+            by_hash: HashMap::new(),
+            same_hash: vec![],
+            bytes: 0,
+            share,
+            truncated: false,
+            log_mass: f64::NEG_INFINITY,
+        }
+    }
+
+    /// Adds a child of weight `log_weight` with tracks from `sources`; `false` (nothing added) when its
+    /// new tracks and hypothesis would not fit the share.
+    fn add<M: MotionModel<f64, 4>>(
+        &mut self,
+        tracker: &ReferenceTracker<M>,
+        tables: &Tables,
+        measurements: &[SVector<f64, 2>],
+        log_weight: f64,
+        sources: &[TrackKey],
+    ) -> Result<bool, ReferenceError> {
+        let new = sources.iter().filter(|k| !self.keys.contains_key(k)).count();
+        let cost = new * TRACK_BYTES + HYPOTHESIS_BYTES + sources.len() * OBJECT_BYTES;
+        if self.bytes + cost > self.share && !self.hypotheses.is_empty() {
+            return Ok(false);
+        }
+        let start = self.objects.len();
+        for &key in sources {
+            let index = match self.keys.get(&key) {
+                Some(&index) => index,
+                None => self.new_track(tracker, tables, measurements, key)?,
+            };
+            self.objects.push(index);
+        }
+        self.objects[start..].sort_by_key(|&i| self.tracks[i as usize].label);
+        let mut hasher = DefaultHasher::new();
+        self.objects[start..].hash(&mut hasher);
+        let hash = hasher.finish();
+        let mut candidate = self.by_hash.get(&hash).copied();
+        while let Some(existing) = candidate {
+            let h = self.hypotheses[existing as usize];
+            if self.objects[h.start..h.start + h.len as usize] == self.objects[start..] {
+                self.objects.truncate(start);
+                let h = &mut self.hypotheses[existing as usize];
+                h.log_weight = log_add(h.log_weight, log_weight);
+                self.bytes += new * TRACK_BYTES;
+                return Ok(true);
+            }
+            candidate = Some(self.same_hash[existing as usize]).filter(|&n| n != u32::MAX);
+        }
+        let index = self.hypotheses.len() as u32;
+        self.same_hash.push(self.by_hash.insert(hash, index).unwrap_or(u32::MAX));
+        self.hypotheses.push(Hypothesis { log_weight, start, len: sources.len() as u32 });
+        self.bytes += cost;
+        Ok(true)
+    }
+
+    /// Makes the track of `key`: the old track predicted, or the birth cell's, updated with its row.
+    fn new_track<M: MotionModel<f64, 4>>(
+        &mut self,
+        tracker: &ReferenceTracker<M>,
+        tables: &Tables,
+        measurements: &[SVector<f64, 2>],
+        key: TrackKey,
+    ) -> Result<u32, ReferenceError> {
+        let (is_birth, source, row) = key;
+        let (label, prior, innovation) = if is_birth {
+            let birth_key = if row == CLUTTER { (false, source) } else { (true, row) };
+            let next_label = &mut self.next_label;
+            let label = *self.birth_labels.entry(birth_key).or_insert_with(|| {
+                *next_label += 1;
+                *next_label - 1
+            });
+            let (gaussian, innovation, _) = tracker.births[source as usize];
+            (label, gaussian, innovation)
+        } else {
+            let p = &tables.predicted[tables.slot[source as usize] as usize];
+            (tracker.tracks[source as usize].label, p.state, p.innovation)
+        };
+        let state = if row == CLUTTER {
+            prior
+        } else {
+            ekf::update(&tracker.measurement, &prior, &innovation, &measurements[row as usize])
+                .map_err(|error| StepError::Numerical { label: TrackLabel(label), error })?
+        };
+        self.tracks.push(Track { label, state });
+        let index = (self.tracks.len() - 1) as u32;
+        self.keys.insert(key, index);
+        Ok(index)
+    }
+
+    /// Normalises the weights and sorts the hypotheses best first (ties: first made first).
+    fn normalise(&mut self) {
+        self.keys = HashMap::new();
+        self.by_hash = HashMap::new();
+        self.same_hash = vec![];
+        let mut kept = LogSumExp::new();
+        for h in &self.hypotheses {
+            kept.add(h.log_weight);
+        }
+        self.log_mass = kept.value();
+        for h in &mut self.hypotheses {
+            h.log_weight -= self.log_mass;
+        }
+        self.hypotheses.sort_by(|a, b| b.log_weight.total_cmp(&a.log_weight));
+    }
 }

@@ -64,6 +64,8 @@ pub struct RunSummary {
     pub rejected_scans: Vec<RejectedScan>,
     /// Scans at which the reference's memory budget forced pruning.
     pub reference_budget_reached_scans: Vec<usize>,
+    /// The process's peak resident memory (VmHWM, KiB) when the summary was written, where the OS tells it.
+    pub peak_resident_kib: Option<u64>,
 }
 
 /// A born object and the scan at which it was confirmed (`null`: never).

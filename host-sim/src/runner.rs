@@ -168,7 +168,7 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
 /// children enumerated per scan (beyond it the scan fails: the reference is broken there).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ReferenceBudget {
-    /// Bytes of children and hypotheses.
+    /// Bytes of everything that grows with the hypotheses, children and measurements.
     pub bytes: usize,
     /// Children enumerated per scan.
     pub children: u64,
@@ -190,13 +190,11 @@ fn reference_runner<M>(
 where
     M: MotionModel<f64, 4> + Clone + Send + 'static,
 {
-    let max_objects = scenario.prior.hypotheses.iter().map(|h| h.objects.len()).max().unwrap_or(0);
     // The reference has no capacities: allow as many birth cells as the scenario has.
     let config: Config<f64, M, PositionMeasurement<f64>, 4, 1024> =
         setup::config(scenario, motion, setup::exhaustive(scenario))?;
-    let mut tracker =
-        ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes, max_objects)
-            .map_err(ScenarioError)?;
+    let mut tracker = ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes)
+        .map_err(ScenarioError)?;
     tracker.set_max_children(budget.children);
     Ok(Box::new(ReferenceRunner { tracker }))
 }

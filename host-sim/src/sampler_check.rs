@@ -175,7 +175,7 @@ pub fn run(cases: usize, seed: u64) -> Result<SamplerCheckReport, Error> {
     let mut children = vec![];
     for index in 0..cases as u64 {
         let case = random_case(seed, index);
-        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2, 16)
+        let mut reference = ReferenceTracker::new(&case.config, &case.prior, 0.0, usize::MAX / 2)
             .map_err(|e| Error::internal(format!("case {index}: {e}")))?;
         let report =
             reference.step(1.0, &case.measurements).map_err(|e| Error::internal(format!("case {index}: {e}")))?;

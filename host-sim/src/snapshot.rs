@@ -126,21 +126,26 @@ pub struct PosteriorMatch {
 
 /// Compares `approx` with `exact` (see [`PosteriorMatch`]).
 pub fn match_posteriors(exact: &Snapshot, approx: &Snapshot) -> PosteriorMatch {
-    let exact_keys: Vec<Vec<u64>> = (0..exact.hypotheses.len()).map(|i| exact.hypothesis_key(i)).collect();
+    // Only the approximation's keys are stored: the exact posterior (the reference's) may be large, and
+    // its keys are made one at a time.
     let approx_keys: Vec<Vec<u64>> = (0..approx.hypotheses.len()).map(|i| approx.hypothesis_key(i)).collect();
-    let exact_weight: HashMap<&[u64], f64> =
-        exact_keys.iter().zip(&exact.hypotheses).map(|(k, h)| (k.as_slice(), h.weight)).collect();
     let in_approx: HashSet<&[u64]> = approx_keys.iter().map(Vec::as_slice).collect();
+    let mut exact_weight: HashMap<&[u64], f64> = HashMap::new();
+    let mut exact_only = -0.0; // the neutral element of `f64::sum`
+    for (i, h) in exact.hypotheses.iter().enumerate() {
+        let key = exact.hypothesis_key(i);
+        match in_approx.get(key.as_slice()) {
+            Some(&k) => {
+                exact_weight.insert(k, h.weight);
+            }
+            None => exact_only += h.weight,
+        }
+    }
     let found = |k: &Vec<u64>| exact_weight.get(k.as_slice()).copied();
     let captured_mass = approx_keys.iter().filter_map(found).sum();
     let mut weight_l1: f64 =
         approx_keys.iter().zip(&approx.hypotheses).map(|(k, h)| (h.weight - found(k).unwrap_or(0.0)).abs()).sum();
-    weight_l1 += exact_keys
-        .iter()
-        .zip(&exact.hypotheses)
-        .filter(|(k, _)| !in_approx.contains(k.as_slice()))
-        .map(|(_, h)| h.weight)
-        .sum::<f64>();
+    weight_l1 += exact_only;
     PosteriorMatch {
         captured_mass,
         weight_l1,

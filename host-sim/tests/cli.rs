@@ -747,25 +747,139 @@ fn trailing_characters_exit_2() {
 }
 
 #[test]
-fn reference_rejects_impossible_event_probabilities() {
+fn reference_rejects_a_parent_whose_events_are_impossible() {
     let dir = TempDir::new("reference-beta");
     let mut scenario = fixture();
-    // 1 × 0.01 + 2 × 0.6 > 1 even for the two objects actually in view.
+    // 1 × 0.01 + 2 × 0.6 > 1 for the two objects in view: every scan is rejected, naming the rule.
     scenario["death_probability"] = json!(0.6);
     let file = dir.join("beta.json");
     write_json(&file, &scenario);
-    let output = host_sim(&[
-        "run".as_ref(),
-        file.as_os_str(),
-        "--tracker".as_ref(),
-        "reference".as_ref(),
-        "--quiet".as_ref(),
-        "--out".as_ref(),
-        dir.join("out").as_os_str(),
-    ]);
+    let out = dir.join("out");
+    let output = run_reference(&file, &out, &[]);
+    assert_eq!(output.status.code(), Some(3), "{}", describe(&output));
+    let summary = read_json(&out.join("summary.json"));
+    let rejected = summary["rejected_scans"].as_array().expect("rejected_scans");
+    assert_eq!(rejected.len(), 3, "{summary}");
+    assert!(rejected[0]["error"].as_str().is_some_and(|e| e.contains("M_b alpha")), "{summary}");
+    // M_b α ≥ 1 leaves no parent a "no event" probability: rejected when the tracker is built.
+    scenario["death_probability"] = json!(0.0);
+    scenario["birth"]["probability"] = json!(1.0);
+    write_json(&file, &scenario);
+    let output = run_reference(&file, &out, &[]);
     if let Err(why) = check_malformed(&output, "M_b alpha") {
         panic!("{why}\n{}", describe(&output));
     }
+}
+
+#[test]
+fn reference_has_no_object_capacity() {
+    // β = 0.03: M_b α + N β = 0.01 + 64 × 0.03 ≥ 1 for the embedded profile's N, but the reference uses
+    // each parent's objects in view (here 2): 0.01 + 2 × 0.03 < 1.
+    let dir = TempDir::new("reference-no-n");
+    let mut scenario = fixture();
+    scenario["death_probability"] = json!(0.03);
+    let file = dir.join("beta.json");
+    write_json(&file, &scenario);
+    let output = run_reference(&file, &dir.join("reference"), &[]);
+    assert_success(&output);
+    let output = host_sim(&[
+        "run".as_ref(),
+        file.as_os_str(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        dir.join("homht").as_os_str(),
+    ]);
+    if let Err(why) = check_malformed(&output, "M_b alpha + N beta") {
+        panic!("{why}\n{}", describe(&output));
+    }
+}
+
+/// `host-sim run FILE --tracker reference --quiet --out OUT` with `extra` arguments.
+fn run_reference(file: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args: Vec<&std::ffi::OsStr> = vec!["run".as_ref(), file.as_os_str(), "--tracker".as_ref()];
+    args.extend(["reference", "--quiet", "--out"].map(std::ffi::OsStr::new));
+    args.push(out.as_os_str());
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    host_sim(&args)
+}
+
+/// Three constant-velocity objects in three scans of five measurements (p_D 0.7, clutter 1.8, one birth
+/// cell, β 0.012, no gate): hundreds of thousands of children at the second scan, ~10⁸ at the third.
+fn three_objects_three_scans() -> Value {
+    let covariance =
+        |p: f64, v: f64| json!([[p, 0.0, 0.0, 0.0], [0.0, p, 0.0, 0.0], [0.0, 0.0, v, 0.0], [0.0, 0.0, 0.0, v]]);
+    let starts = [[0.0, 0.0, 1.0, 0.0], [20.0, 5.0, 0.0, -1.0], [-15.0, -10.0, 0.5, 0.5]];
+    let objects: Vec<Value> = starts
+        .iter()
+        .enumerate()
+        .map(|(label, mean)| json!({"label": label, "mean": mean, "covariance": covariance(1.0, 0.25)}))
+        .collect();
+    let scans: Vec<Value> = (1..=3)
+        .map(|k| {
+            let t = f64::from(k);
+            let zs: Vec<[f64; 2]> = vec![
+                [t + 0.3, -0.2],
+                [20.4, 5.0 - t - 0.1],
+                [-15.0 + 0.5 * t, -10.0 + 0.5 * t],
+                [-31.0 + 7.0 * t, 12.5 - 5.0 * t],
+                [40.0 - 9.0 * t, -44.0 + 11.0 * t],
+            ];
+            json!({"time": t, "measurements": zs})
+        })
+        .collect();
+    json!({
+        "format": "rfisst-scenario/1",
+        "name": "three-objects-three-scans",
+        "motion": {"type": "constant-velocity", "acceleration_noise": 0.01},
+        "measurement": {"type": "position", "noise_covariance": [[0.25, 0.0], [0.0, 0.25]]},
+        "sensor": {
+            "detection_probability": 0.7,
+            "clutter_rate": 1.8,
+            "field_of_view": {"type": "rectangle", "min": [-50.0, -50.0], "max": [50.0, 50.0]}
+        },
+        "birth": {"probability": 0.01, "cells": [{"mean": [0.0, 0.0, 0.0, 0.0], "covariance": covariance(400.0, 4.0)}]},
+        "death_probability": 0.012,
+        "tracker": {"gate": null, "max_children_per_scan": 100000, "seed": 1},
+        "prior": {"time": 0.0, "hypotheses": [{"weight": 1.0, "objects": objects}]},
+        "scans": scans
+    })
+}
+
+#[test]
+fn reference_over_its_memory_budget_reports_the_scans_and_finishes() {
+    const BUDGET_MIB: u64 = 16;
+    let dir = TempDir::new("reference-budget");
+    let file = dir.join("three.json");
+    write_json(&file, &three_objects_three_scans());
+    let out = dir.join("out");
+    let output = run_reference(&file, &out, &["--reference-budget-mib", &BUDGET_MIB.to_string()]);
+    assert_success(&output);
+    let summary = read_json(&out.join("summary.json"));
+    assert_eq!(summary["rejected_scans"], json!([]), "{summary}");
+    // The second and third scans (0-based 1 and 2) need far more than 16 MiB.
+    assert_eq!(summary["reference_budget_reached_scans"], json!([1, 2]), "{summary}");
+    // Peak resident memory (VmHWM, Linux only): within 1.25 × the budget plus the baseline of the same
+    // binary on a scenario far below the budget (code, the parsed scenario, the plots).
+    if let Some(peak) = summary["peak_resident_kib"].as_u64() {
+        let baseline_out = dir.join("baseline");
+        assert_success(&run_reference(Path::new(FIXTURE), &baseline_out, &[]));
+        let baseline = read_json(&baseline_out.join("summary.json"))["peak_resident_kib"].as_u64().expect("VmHWM");
+        let limit = BUDGET_MIB * 1024 * 5 / 4 + baseline;
+        assert!(peak <= limit, "peak {peak} KiB > 1.25 × {BUDGET_MIB} MiB + baseline {baseline} KiB");
+    }
+    // compare runs the reference with the same budget, and finishes too.
+    let output = host_sim(&[
+        "compare".as_ref(),
+        file.as_os_str(),
+        "--quiet".as_ref(),
+        "--reference-budget-mib".as_ref(),
+        BUDGET_MIB.to_string().as_ref(),
+        "--out".as_ref(),
+        dir.join("compare").as_os_str(),
+    ]);
+    assert!(matches!(output.status.code(), Some(0 | 3)), "{}", describe(&output));
+    let compare = read_json(&dir.join("compare").join("compare.json"));
+    assert_eq!(compare["reference"]["budget_reached_scans"], json!([1, 2]), "{compare}");
 }
 
 #[test]
