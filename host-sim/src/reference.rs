@@ -226,7 +226,7 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         for (weight, members) in prior {
             let start = objects.len();
             for object in members {
-                next_label = next_label.max(object.label.0 + 1);
+                next_label = next_label.max(object.label.0.saturating_add(1));
                 let index = tracks
                     .iter()
                     .position(|t| t.label == object.label.0 && t.state == object.state)
@@ -295,7 +295,8 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     /// more children than [`ReferenceTracker::set_max_children`]), or
     /// [`ReferenceError::EventProbabilities`].
     pub fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<ReferenceReport, ReferenceError> {
-        validate_scan(self.time, &self.region, time, measurements)?;
+        // The core's scan check, without a measurement capacity.
+        tracker_core::tracker::check_scan(&self.region, self.time, time, measurements, usize::MAX)?;
         let tables = self.tables(time - self.time, measurements)?;
         let mut budget_reached = tables.parents.len() < self.hypotheses.len();
         // The pruned search's candidate lists: at most every (row, column) pair at each depth.
@@ -576,31 +577,6 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             .collect();
         Snapshot { hypotheses, tracks }
     }
-}
-
-/// The one check of a scan's inputs: finite time after the last scan, finite measurements in the field
-/// of view. (If tracker-core exposes its own validator, this is the one place to call it.)
-fn validate_scan(
-    last_time: f64,
-    region: &Region<f64>,
-    time: f64,
-    measurements: &[SVector<f64, 2>],
-) -> Result<(), StepError> {
-    if !time.is_finite() {
-        return Err(StepError::NonFiniteTime);
-    }
-    if time <= last_time {
-        return Err(StepError::TimeNotAfterLastScan);
-    }
-    for (index, z) in measurements.iter().enumerate() {
-        if !z.iter().all(|v| v.is_finite()) {
-            return Err(StepError::NonFiniteMeasurement { index });
-        }
-        if !region.contains(z) {
-            return Err(StepError::MeasurementOutsideFieldOfView { index });
-        }
-    }
-    Ok(())
 }
 
 /// One column of an event's association matrix.

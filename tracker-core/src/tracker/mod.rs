@@ -733,7 +733,7 @@ where
         if !self.initialised {
             return Err(StepError::NotInitialised);
         }
-        check_scan(&self.config.sensor, self.time, time, measurements, Z)?;
+        check_scan(&self.config.sensor.field_of_view, self.time, time, measurements, Z)?;
         let live = self.live();
         let dt = T::of_f64(time - self.time);
         let (store, next_store) = split_pair(&mut self.stores, self.active);

@@ -2,12 +2,12 @@
 
 use crate::error::StepError;
 use crate::real::Real;
-use crate::sensor::Sensor;
+use crate::sensor::Region;
 use nalgebra::SVector;
 
 /// Checks a scan taken at `time` after a last scan (or prior) at `last_time`: at most `capacity`
-/// measurements, a finite time after the last one, every measurement finite and inside the sensor's field
-/// of view.
+/// measurements, a finite time after the last one, every measurement finite and inside the sensor's
+/// `field_of_view`.
 ///
 /// # Errors
 /// The first [`StepError`] found, in the order above.
@@ -15,14 +15,17 @@ use nalgebra::SVector;
 /// # Examples
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::{Region, Sensor, StepError, tracker::check_scan};
-/// let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 100.0 } };
+/// use tracker_core::{Region, StepError, tracker::check_scan};
+/// let view = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
 /// let z = [SVector::from([1.0, 2.0])];
-/// assert_eq!(check_scan(&sensor, 0.0, 1.0, &z, 4), Ok(()));
-/// assert_eq!(check_scan(&sensor, 1.0, 1.0, &z, 4), Err(StepError::TimeNotAfterLastScan));
+/// assert_eq!(check_scan(&view, 0.0, 1.0, &z, 4), Ok(()));
+/// assert_eq!(check_scan(&view, 1.0, 1.0, &z, 4), Err(StepError::TimeNotAfterLastScan));
+/// assert_eq!(check_scan(&view, 0.0, 1.0, &z, 0), Err(StepError::TooManyMeasurements { received: 1, capacity: 0 }));
+/// let far = [SVector::from([11.0, 2.0])];
+/// assert_eq!(check_scan(&view, 0.0, 1.0, &far, 4), Err(StepError::MeasurementOutsideFieldOfView { index: 0 }));
 /// ```
 pub fn check_scan<T: Real, const D: usize>(
-    sensor: &Sensor<T>,
+    field_of_view: &Region<T>,
     last_time: f64,
     time: f64,
     measurements: &[SVector<T, D>],
@@ -41,7 +44,7 @@ pub fn check_scan<T: Real, const D: usize>(
         if !z.iter().all(|v| v.is_finite_value()) {
             return Err(StepError::NonFiniteMeasurement { index });
         }
-        if !sensor.field_of_view.contains(z) {
+        if !field_of_view.contains(z) {
             return Err(StepError::MeasurementOutsideFieldOfView { index });
         }
     }
