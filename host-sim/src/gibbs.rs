@@ -23,9 +23,9 @@
 //! `exp` (a row whose free options all underflow falls back to weights relative to their own maximum).
 
 use crate::murty::Child;
+use crate::report::PerfGibbsCase;
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use serde_json::{Value, json};
 use std::collections::HashSet;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Instant;
@@ -323,26 +323,26 @@ impl Bench {
 
     /// Per matrix, Gibbs's time over the sampler's (`sampler_seconds`, one per matrix in the same order);
     /// a matrix not reached counts as +∞. Returns the ratios and the per-matrix details.
-    pub fn ratios(&self, sampler_seconds: &[f64], median: impl Fn(&[f64]) -> f64) -> (Vec<f64>, Vec<Value>) {
+    pub fn ratios(&self, sampler_seconds: &[f64], median: impl Fn(&[f64]) -> f64) -> (Vec<f64>, Vec<PerfGibbsCase>) {
         self.cases
             .iter()
             .zip(sampler_seconds)
             .map(|(case, &sampler)| {
                 let gibbs = median(&case.seconds);
                 let ratio = if case.reach.reached { gibbs / sampler } else { f64::INFINITY };
-                let detail = json!({
-                    "matrix": case.label,
-                    "seed": case.seed,
-                    "target_mass_over_map": case.target,
-                    "reached": case.reach.reached,
-                    "gibbs_sweeps": case.reach.sweeps,
-                    "gibbs_distinct_samples": case.reach.distinct,
-                    "gibbs_best_32_mass_over_target": case.kept_share,
-                    "gibbs_us": gibbs * 1e6,
-                    "sampler_us": sampler * 1e6,
+                let detail = PerfGibbsCase {
+                    matrix: case.label.clone(),
+                    seed: case.seed,
+                    target_mass_over_map: case.target,
+                    reached: case.reach.reached,
+                    gibbs_sweeps: case.reach.sweeps,
+                    gibbs_distinct_samples: case.reach.distinct,
+                    gibbs_best_32_mass_over_target: case.kept_share,
+                    gibbs_us: gibbs * 1e6,
+                    sampler_us: sampler * 1e6,
                     // JSON has no infinity: a matrix not reached has no ratio.
-                    "ratio": if ratio.is_finite() { Some(ratio) } else { None },
-                });
+                    ratio: ratio.is_finite().then_some(ratio),
+                };
                 (ratio, detail)
             })
             .unzip()

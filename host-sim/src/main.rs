@@ -231,7 +231,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             Ok(host_sim::experiment::run(experiment, &out, seed, runs, quiet)?)
         }
         Command::Perf { out } => {
-            let report = host_sim::perf::run().map_err(Error::internal)?;
+            let report = host_sim::perf::run()?;
             write_report(&out, &report)
         }
         Command::Soak { scans, seed, out, quiet } => {

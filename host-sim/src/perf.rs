@@ -5,7 +5,8 @@
 //! alternately, the EKF, the exhaustive-vs-sampler and Murty-vs-sampler comparisons) and one pass of the
 //! fifty-object scenario, so a burst of load from other processes spreads over all of them instead of
 //! biasing one. Samples are short (about a millisecond or less), so most run undisturbed by the scheduler
-//! even on a loaded machine and the median ignores the others. The keys written:
+//! even on a loaded machine and the median ignores the others. The report is a
+//! [`PerfReport`](crate::report::PerfReport); the keys written:
 //!
 //! - `mcmc_ns_per_step`: one Metropolis chain of 20,000 steps with the default (informed) proposal on the
 //!   32 × 64 crossing matrix ([`crossing_matrix`] seed 1, 8 objects in each gate), including the tables,
@@ -33,12 +34,16 @@
 //!   `TopChildren<_, 32, _>` sink.
 //! - `tracker_bytes_default`, `tracker_bytes_f32`: `size_of::<SsaTracker<f64>>()` and `<f32>`.
 
+use crate::error::Error;
 use crate::murty::Murty;
+use crate::report::{
+    PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsShape, PerfMachine, PerfMurty, PerfMurtyCase,
+    PerfMurtyShape, PerfReport,
+};
 use crate::setup;
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::{SplitMix64, Xoshiro256PlusPlus};
-use serde_json::{Value, json};
 use std::hint::black_box;
 use std::time::Instant;
 use tracker_core::association::{AssociationMatrix, association_count};
@@ -209,7 +214,7 @@ impl EkfBench {
     /// Calls per sample (about 0.1 ms).
     const CALLS: u32 = 2_000;
 
-    fn new() -> Result<Self, String> {
+    fn new() -> Result<Self, Error> {
         let look = 15f64.to_radians();
         let (r, v) = (7_000.0, (crate::sim::EARTH_MU / 7_000.0f64).sqrt());
         let prior = Gaussian {
@@ -224,8 +229,10 @@ impl EkfBench {
             min_radius: TwoBody::DEFAULT_MIN_RADIUS,
         };
         let measurement = PositionMeasurement::isotropic(0.5);
-        let predicted = ekf::predict(&two_body, &prior, 60.0).map_err(|e| e.to_string())?;
-        let innovation = ekf::innovation(&measurement, &predicted).map_err(|e| e.to_string())?;
+        let predicted =
+            ekf::predict(&two_body, &prior, 60.0).map_err(|e| Error::internal(format!("ekf bench: {e}")))?;
+        let innovation =
+            ekf::innovation(&measurement, &predicted).map_err(|e| Error::internal(format!("ekf bench: {e}")))?;
         let z = innovation.predicted + SVector::from([0.4, -0.3]);
         Ok(Self {
             two_body,
@@ -307,10 +314,10 @@ impl ExhaustiveBench {
         }
     }
 
-    fn sample(&mut self) -> Result<(), String> {
+    fn sample(&mut self) -> Result<(), Error> {
         let mut top = Box::new(TopChildren::<f64, 32, 8>::new());
         let (seconds, result) = time(|| ExhaustiveChildren::new(u64::MAX).generate(&self.matrix, &mut *top));
-        result.map_err(|e| format!("exhaustive: {e:?}"))?;
+        result.map_err(|e| Error::internal(format!("exhaustive: {e:?}")))?;
         self.exhaustive.push(seconds);
         let best_exhaustive = top.kept().iter().map(|c| c.log_weight).fold(f64::NEG_INFINITY, f64::max);
         let mut top = Box::new(TopChildren::<f64, 32, 8>::new());
@@ -445,19 +452,21 @@ impl FiftyBench {
     }
 
     /// The default embedded R-FISST tracker on the scenario, built as `runner`'s core runner builds it.
-    fn tracker(&self) -> Result<Box<SsaTracker<f64>>, String> {
+    fn tracker(&self) -> Result<Box<SsaTracker<f64>>, Error> {
         let scenario = &self.scenario;
-        let motion = setup::two_body(&scenario.motion).ok_or("fifty-birth-death: not two-body")?;
-        let config = setup::config(scenario, motion, setup::sampled(scenario)).map_err(|e| e.to_string())?;
+        let motion =
+            setup::two_body(&scenario.motion).ok_or_else(|| Error::internal("fifty-birth-death: not two-body"))?;
+        let config = setup::config(scenario, motion, setup::sampled(scenario))
+            .map_err(|e| Error::internal(format!("fifty-birth-death: {e}")))?;
         let prior = setup::prior(scenario);
         let hypotheses: Vec<PriorHypothesis<'_, f64, 4>> =
             prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
         Tracker::new(config, &hypotheses, scenario.prior.time)
             .map(Box::new)
-            .map_err(|e| format!("fifty-birth-death: tracker configuration: {e}"))
+            .map_err(|e| Error::internal(format!("fifty-birth-death: tracker configuration: {e}")))
     }
 
-    fn pass(&mut self) -> Result<(), String> {
+    fn pass(&mut self) -> Result<(), Error> {
         let mut tracker = self.tracker()?;
         self.rejected = 0;
         for (index, (scan_time, measurements)) in self.scans.iter().enumerate() {
@@ -469,6 +478,11 @@ impl FiftyBench {
         }
         Ok(())
     }
+}
+
+/// A crossing shape (rows, columns, objects per gate) in words, as `perf.json` names it.
+fn label(shape: (usize, usize, usize)) -> String {
+    format!("{} x {}, {} per gate", shape.0, shape.1, shape.2)
 }
 
 /// A line of `lscpu` (`Model name`, ...), if available.
@@ -489,17 +503,17 @@ fn rustc_version() -> Option<String> {
 /// Runs every measurement (about a minute in release) and returns the report.
 ///
 /// # Errors
-/// A message when a benchmark input cannot be built or the scenario run fails.
-pub fn run() -> Result<Value, String> {
+/// [`Error::Internal`] when a benchmark input cannot be built or the scenario's tracker cannot be
+/// configured (the inputs are built in, so either is a bug).
+pub fn run() -> Result<PerfReport, Error> {
     let started = Instant::now();
     let mut chains = ChainBench::new();
     let mut ekf_bench = EkfBench::new()?;
     let mut exhaustive = ExhaustiveBench::new();
     let mut murty = MurtyBench::new();
-    let mut gibbs = crate::gibbs::Bench::new(murty.cases.iter().map(|c| {
-        let label = format!("{} x {}, {} per gate", c.shape.0, c.shape.1, c.shape.2);
-        (label, c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)
-    }));
+    let mut gibbs = crate::gibbs::Bench::new(
+        murty.cases.iter().map(|c| (label(c.shape), c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)),
+    );
     let mut fifty = FiftyBench::new();
     // Warm-up (caches, frequency), not recorded.
     chains.sample();
@@ -529,98 +543,341 @@ pub fn run() -> Result<Value, String> {
     };
     let ratios: Vec<f64> =
         murty.cases.iter().map(|case| median(&case.murty_seconds) / median(&case.sampler_seconds)).collect();
-    let murty_cases: Vec<Value> = murty
+    let murty_cases: Vec<PerfMurtyCase> = murty
         .cases
         .iter()
         .zip(&ratios)
-        .map(|(case, ratio)| {
-            json!({
-                "matrix": format!("{} x {}, {} per gate", case.shape.0, case.shape.1, case.shape.2),
-                "seed": case.seed,
-                "sampler_best_minus_map_nats": case.sampler_best_minus_map,
-                "sampler_children": case.sampler_children,
-                "sampler_captured_mass_of_best_32": case.sampler_mass,
-                "murty_children_for_equal_mass": case.k,
-                "sampler_us": median(&case.sampler_seconds) * 1e6,
-                "murty_us": median(&case.murty_seconds) * 1e6,
-                "ratio": ratio,
-            })
+        .map(|(case, &ratio)| PerfMurtyCase {
+            matrix: label(case.shape),
+            seed: case.seed,
+            sampler_best_minus_map_nats: case.sampler_best_minus_map,
+            sampler_children: case.sampler_children,
+            sampler_captured_mass_of_best_32: case.sampler_mass,
+            murty_children_for_equal_mass: case.k,
+            sampler_us: median(&case.sampler_seconds) * 1e6,
+            murty_us: median(&case.murty_seconds) * 1e6,
+            ratio,
+        })
+        .collect();
+    let murty_by_shape = MurtyBench::SHAPES
+        .iter()
+        .map(|&shape| {
+            let by_shape: Vec<f64> =
+                murty.cases.iter().zip(&ratios).filter(|(c, _)| c.shape == shape).map(|(_, r)| *r).collect();
+            PerfMurtyShape { matrix: label(shape), ratio: median(&by_shape) }
         })
         .collect();
     let exhaustive_ratio = median(&exhaustive.exhaustive) / median(&exhaustive.sampled);
     let sampler_seconds: Vec<f64> = murty.cases.iter().map(|case| median(&case.sampler_seconds)).collect();
     let (gibbs_ratios, gibbs_cases) = gibbs.ratios(&sampler_seconds, median);
+    let gibbs_by_shape = MurtyBench::SHAPES
+        .iter()
+        .map(|&shape| {
+            let matrix = label(shape);
+            let by_shape: Vec<f64> =
+                gibbs.labels().zip(&gibbs_ratios).filter(|(l, _)| *l == matrix).map(|(_, r)| *r).collect();
+            let m = median(&by_shape);
+            PerfGibbsShape { matrix, ratio: m.is_finite().then_some(m) }
+        })
+        .collect();
 
-    Ok(json!({
-        "mcmc_ns_per_step": mcmc,
-        "floor_ns_per_step": floor,
-        "mcmc_over_floor": mcmc / floor,
-        "ekf_update_ns": median(&ekf_bench.samples[0]),
-        "step_ms_fifty": median(&per_scan_ms),
-        "murty_over_mcmc_time_at_equal_mass": median(&ratios),
-        "gibbs_over_mcmc_time_at_equal_mass": median(&gibbs_ratios),
-        "exhaustive_over_mcmc_at_1e6_children": exhaustive_ratio,
-        "tracker_bytes_default": std::mem::size_of::<SsaTracker<f64>>(),
-        "tracker_bytes_f32": std::mem::size_of::<SsaTracker<f32>>(),
-        "details": {
-            "mcmc_ns_per_step_informed": mcmc,
-            "mcmc_ns_per_step_paper": median(&chains.samples[1]),
-            "mcmc_ns_per_step_move_or_swap": median(&chains.samples[2]),
-            "mcmc_samples": chains.samples[0].len(),
-            "mcmc_ns_per_step_min": minimum(&chains.samples[0]),
-            "floor_ns_per_step_min": minimum(&chains.samples[3]),
-            "mcmc_over_floor_of_minima": minimum(&chains.samples[0]) / minimum(&chains.samples[3]),
-            "ekf_update_ns_min": minimum(&ekf_bench.samples[0]),
-            "ekf_predict_two_body_ns": median(&ekf_bench.samples[1]),
-            "ekf_predict_cv_ns": median(&ekf_bench.samples[2]),
-            "ekf_innovation_ns": median(&ekf_bench.samples[3]),
-            "fifty": {
-                "scans": per_scan_ms.len(),
-                "passes": FIFTY_PASSES,
-                "rejected_scans_last_pass": fifty.rejected,
-                "mean_ms": per_scan_ms.iter().sum::<f64>() / per_scan_ms.len().max(1) as f64,
-                "p90_ms": percentile(0.9),
-                "max_ms": percentile(1.0),
+    Ok(PerfReport {
+        mcmc_ns_per_step: mcmc,
+        floor_ns_per_step: floor,
+        mcmc_over_floor: mcmc / floor,
+        ekf_update_ns: median(&ekf_bench.samples[0]),
+        step_ms_fifty: median(&per_scan_ms),
+        murty_over_mcmc_time_at_equal_mass: median(&ratios),
+        gibbs_over_mcmc_time_at_equal_mass: median(&gibbs_ratios),
+        exhaustive_over_mcmc_at_1e6_children: exhaustive_ratio,
+        tracker_bytes_default: std::mem::size_of::<SsaTracker<f64>>(),
+        tracker_bytes_f32: std::mem::size_of::<SsaTracker<f32>>(),
+        details: PerfDetails {
+            mcmc_ns_per_step_informed: mcmc,
+            mcmc_ns_per_step_paper: median(&chains.samples[1]),
+            mcmc_ns_per_step_move_or_swap: median(&chains.samples[2]),
+            mcmc_samples: chains.samples[0].len(),
+            mcmc_ns_per_step_min: minimum(&chains.samples[0]),
+            floor_ns_per_step_min: minimum(&chains.samples[3]),
+            mcmc_over_floor_of_minima: minimum(&chains.samples[0]) / minimum(&chains.samples[3]),
+            ekf_update_ns_min: minimum(&ekf_bench.samples[0]),
+            ekf_predict_two_body_ns: median(&ekf_bench.samples[1]),
+            ekf_predict_cv_ns: median(&ekf_bench.samples[2]),
+            ekf_innovation_ns: median(&ekf_bench.samples[3]),
+            fifty: PerfFifty {
+                scans: per_scan_ms.len(),
+                passes: FIFTY_PASSES,
+                rejected_scans_last_pass: fifty.rejected,
+                mean_ms: per_scan_ms.iter().sum::<f64>() / per_scan_ms.len().max(1) as f64,
+                p90_ms: percentile(0.9),
+                max_ms: percentile(1.0),
             },
-            "murty": {
-                "matrices": "crossings 16 x 32 (4 per gate), 16 x 64 (8), 32 x 64 (8), seeds 1..=4; sampler = ClusteredChildren, default SamplerConfig, C = 32; Murty lazy, cold-started subproblems",
-                "ratio_median_by_shape": MurtyBench::SHAPES.iter().map(|&shape| {
-                    let by_shape: Vec<f64> = murty.cases.iter().zip(&ratios).filter(|(c, _)| c.shape == shape).map(|(_, r)| *r).collect();
-                    json!({"matrix": format!("{} x {}, {} per gate", shape.0, shape.1, shape.2), "ratio": median(&by_shape)})
-                }).collect::<Vec<_>>(),
-                "ratio_min": ratios.iter().copied().fold(f64::INFINITY, f64::min),
-                "ratio_max": ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                "cases": murty_cases,
+            murty: PerfMurty {
+                matrices: "crossings 16 x 32 (4 per gate), 16 x 64 (8), 32 x 64 (8), seeds 1..=4; sampler = ClusteredChildren, default SamplerConfig, C = 32; Murty lazy, cold-started subproblems".to_string(),
+                ratio_median_by_shape: murty_by_shape,
+                ratio_min: ratios.iter().copied().fold(f64::INFINITY, f64::min),
+                ratio_max: ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                cases: murty_cases,
             },
-            "gibbs": {
-                "matrices": "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)",
-                "not_reached": gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
-                "ratio_median_by_shape": MurtyBench::SHAPES.iter().map(|&shape| {
-                    let label = format!("{} x {}, {} per gate", shape.0, shape.1, shape.2);
-                    let by_shape: Vec<f64> = gibbs.labels().zip(&gibbs_ratios).filter(|(l, _)| *l == label).map(|(_, r)| *r).collect();
-                    let m = median(&by_shape);
-                    json!({"matrix": label, "ratio": if m.is_finite() { Some(m) } else { None }})
-                }).collect::<Vec<_>>(),
-                "cases": gibbs_cases,
+            gibbs: PerfGibbs {
+                matrices: "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
+                not_reached: gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
+                ratio_median_by_shape: gibbs_by_shape,
+                cases: gibbs_cases,
             },
-            "exhaustive": {
-                "matrix": "dense 7 x 9",
-                "children": exhaustive.children.to_string(),
-                "exhaustive_ms": median(&exhaustive.exhaustive) * 1e3,
-                "sampler_us": median(&exhaustive.sampled) * 1e6,
-                "best_log_weight_exhaustive": exhaustive.best.0,
-                "best_log_weight_sampler": exhaustive.best.1,
+            exhaustive: PerfExhaustive {
+                matrix: "dense 7 x 9".to_string(),
+                children: exhaustive.children.to_string(),
+                exhaustive_ms: median(&exhaustive.exhaustive) * 1e3,
+                sampler_us: median(&exhaustive.sampled) * 1e6,
+                best_log_weight_exhaustive: exhaustive.best.0,
+                best_log_weight_sampler: exhaustive.best.1,
             },
-            "rounds": ROUNDS,
-            "seconds": started.elapsed().as_secs_f64(),
+            rounds: ROUNDS,
+            seconds: started.elapsed().as_secs_f64(),
         },
-        "machine": {
-            "cpu": lscpu("Model name").unwrap_or_default(),
-            "cpus": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
-            "os": std::env::consts::OS,
-            "arch": std::env::consts::ARCH,
-            "rustc": rustc_version().unwrap_or_default(),
-            "debug_assertions": cfg!(debug_assertions),
+        machine: PerfMachine {
+            cpu: lscpu("Model name").unwrap_or_default(),
+            cpus: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
+            os: std::env::consts::OS.to_string(),
+            arch: std::env::consts::ARCH.to_string(),
+            rustc: rustc_version().unwrap_or_default(),
+            debug_assertions: cfg!(debug_assertions),
         },
-    }))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::PerfGibbsCase;
+    use serde_json::Value;
+    use std::collections::BTreeSet;
+
+    /// Every key path of `value`: objects' keys joined by `.`, array elements as `[]`.
+    fn key_paths(value: &Value, prefix: &str, paths: &mut BTreeSet<String>) {
+        match value {
+            Value::Object(map) => {
+                for (key, child) in map {
+                    let path = if prefix.is_empty() { key.clone() } else { format!("{prefix}.{key}") };
+                    paths.insert(path.clone());
+                    key_paths(child, &path, paths);
+                }
+            }
+            Value::Array(items) => items.iter().for_each(|item| key_paths(item, &format!("{prefix}[]"), paths)),
+            _ => {}
+        }
+    }
+
+    /// The key paths of `perf.json` as the untyped `json!` of `run` wrote them before the typed report.
+    const KEY_PATHS: &[&str] = &[
+        "mcmc_ns_per_step",
+        "floor_ns_per_step",
+        "mcmc_over_floor",
+        "ekf_update_ns",
+        "step_ms_fifty",
+        "murty_over_mcmc_time_at_equal_mass",
+        "gibbs_over_mcmc_time_at_equal_mass",
+        "exhaustive_over_mcmc_at_1e6_children",
+        "tracker_bytes_default",
+        "tracker_bytes_f32",
+        "details",
+        "details.mcmc_ns_per_step_informed",
+        "details.mcmc_ns_per_step_paper",
+        "details.mcmc_ns_per_step_move_or_swap",
+        "details.mcmc_samples",
+        "details.mcmc_ns_per_step_min",
+        "details.floor_ns_per_step_min",
+        "details.mcmc_over_floor_of_minima",
+        "details.ekf_update_ns_min",
+        "details.ekf_predict_two_body_ns",
+        "details.ekf_predict_cv_ns",
+        "details.ekf_innovation_ns",
+        "details.fifty",
+        "details.fifty.scans",
+        "details.fifty.passes",
+        "details.fifty.rejected_scans_last_pass",
+        "details.fifty.mean_ms",
+        "details.fifty.p90_ms",
+        "details.fifty.max_ms",
+        "details.murty",
+        "details.murty.matrices",
+        "details.murty.ratio_median_by_shape",
+        "details.murty.ratio_median_by_shape[].matrix",
+        "details.murty.ratio_median_by_shape[].ratio",
+        "details.murty.ratio_min",
+        "details.murty.ratio_max",
+        "details.murty.cases",
+        "details.murty.cases[].matrix",
+        "details.murty.cases[].seed",
+        "details.murty.cases[].sampler_best_minus_map_nats",
+        "details.murty.cases[].sampler_children",
+        "details.murty.cases[].sampler_captured_mass_of_best_32",
+        "details.murty.cases[].murty_children_for_equal_mass",
+        "details.murty.cases[].sampler_us",
+        "details.murty.cases[].murty_us",
+        "details.murty.cases[].ratio",
+        "details.gibbs",
+        "details.gibbs.matrices",
+        "details.gibbs.not_reached",
+        "details.gibbs.ratio_median_by_shape",
+        "details.gibbs.ratio_median_by_shape[].matrix",
+        "details.gibbs.ratio_median_by_shape[].ratio",
+        "details.gibbs.cases",
+        "details.gibbs.cases[].matrix",
+        "details.gibbs.cases[].seed",
+        "details.gibbs.cases[].target_mass_over_map",
+        "details.gibbs.cases[].reached",
+        "details.gibbs.cases[].gibbs_sweeps",
+        "details.gibbs.cases[].gibbs_distinct_samples",
+        "details.gibbs.cases[].gibbs_best_32_mass_over_target",
+        "details.gibbs.cases[].gibbs_us",
+        "details.gibbs.cases[].sampler_us",
+        "details.gibbs.cases[].ratio",
+        "details.exhaustive",
+        "details.exhaustive.matrix",
+        "details.exhaustive.children",
+        "details.exhaustive.exhaustive_ms",
+        "details.exhaustive.sampler_us",
+        "details.exhaustive.best_log_weight_exhaustive",
+        "details.exhaustive.best_log_weight_sampler",
+        "details.rounds",
+        "details.seconds",
+        "machine",
+        "machine.cpu",
+        "machine.cpus",
+        "machine.os",
+        "machine.arch",
+        "machine.rustc",
+        "machine.debug_assertions",
+    ];
+
+    /// A report of dummy values, every number distinct, one case per list.
+    fn dummy() -> PerfReport {
+        let mut x = 0.0;
+        let mut next = || {
+            x += 1.25;
+            x
+        };
+        PerfReport {
+            details: PerfDetails {
+                ekf_innovation_ns: next(),
+                ekf_predict_cv_ns: next(),
+                ekf_predict_two_body_ns: next(),
+                ekf_update_ns_min: next(),
+                exhaustive: PerfExhaustive {
+                    best_log_weight_exhaustive: next(),
+                    best_log_weight_sampler: next(),
+                    children: "1047376".to_string(),
+                    exhaustive_ms: next(),
+                    matrix: "dense 7 x 9".to_string(),
+                    sampler_us: next(),
+                },
+                fifty: PerfFifty {
+                    max_ms: next(),
+                    mean_ms: next(),
+                    p90_ms: next(),
+                    passes: 5,
+                    rejected_scans_last_pass: 0,
+                    scans: 785,
+                },
+                floor_ns_per_step_min: next(),
+                gibbs: PerfGibbs {
+                    cases: vec![PerfGibbsCase {
+                        gibbs_best_32_mass_over_target: next(),
+                        gibbs_distinct_samples: 12,
+                        gibbs_sweeps: 34,
+                        gibbs_us: next(),
+                        matrix: label((16, 32, 4)),
+                        ratio: None,
+                        reached: false,
+                        sampler_us: next(),
+                        seed: 1,
+                        target_mass_over_map: next(),
+                    }],
+                    matrices: "gibbs".to_string(),
+                    not_reached: 1,
+                    ratio_median_by_shape: vec![PerfGibbsShape { matrix: label((16, 32, 4)), ratio: Some(next()) }],
+                },
+                mcmc_ns_per_step_informed: next(),
+                mcmc_ns_per_step_min: next(),
+                mcmc_ns_per_step_move_or_swap: next(),
+                mcmc_ns_per_step_paper: next(),
+                mcmc_over_floor_of_minima: next(),
+                mcmc_samples: 280,
+                murty: PerfMurty {
+                    cases: vec![PerfMurtyCase {
+                        matrix: label((16, 32, 4)),
+                        murty_children_for_equal_mass: 9,
+                        murty_us: next(),
+                        ratio: next(),
+                        sampler_best_minus_map_nats: next(),
+                        sampler_captured_mass_of_best_32: next(),
+                        sampler_children: 32,
+                        sampler_us: next(),
+                        seed: 1,
+                    }],
+                    matrices: "murty".to_string(),
+                    ratio_max: next(),
+                    ratio_median_by_shape: vec![PerfMurtyShape { matrix: label((16, 32, 4)), ratio: next() }],
+                    ratio_min: next(),
+                },
+                rounds: ROUNDS,
+                seconds: next(),
+            },
+            ekf_update_ns: next(),
+            exhaustive_over_mcmc_at_1e6_children: next(),
+            floor_ns_per_step: next(),
+            gibbs_over_mcmc_time_at_equal_mass: next(),
+            machine: PerfMachine {
+                arch: "x86_64".to_string(),
+                cpu: "cpu".to_string(),
+                cpus: 2,
+                debug_assertions: false,
+                os: "linux".to_string(),
+                rustc: "rustc".to_string(),
+            },
+            mcmc_ns_per_step: next(),
+            mcmc_over_floor: next(),
+            murty_over_mcmc_time_at_equal_mass: next(),
+            step_ms_fifty: next(),
+            tracker_bytes_default: 344_848,
+            tracker_bytes_f32: 197_808,
+        }
+    }
+
+    #[test]
+    fn perf_report_has_the_keys_of_the_untyped_report() {
+        let value = serde_json::to_value(dummy()).expect("serialises");
+        let mut paths = BTreeSet::new();
+        key_paths(&value, "", &mut paths);
+        let expected: BTreeSet<String> = KEY_PATHS.iter().map(|k| k.to_string()).collect();
+        assert_eq!(expected.len(), KEY_PATHS.len(), "duplicate in KEY_PATHS");
+        let missing: Vec<_> = expected.difference(&paths).collect();
+        let extra: Vec<_> = paths.difference(&expected).collect();
+        assert!(missing.is_empty() && extra.is_empty(), "missing {missing:?}, extra {extra:?}");
+    }
+
+    #[test]
+    fn perf_report_keys_are_written_in_the_untyped_order() {
+        // The untyped report was a `serde_json::Value`, whose maps (without `preserve_order`) are sorted
+        // by key: the typed report must write the same text, keys in the same order.
+        let report = dummy();
+        let typed = serde_json::to_string_pretty(&report).expect("serialises");
+        let untyped = serde_json::to_string_pretty(&serde_json::to_value(&report).expect("serialises")).expect("ok");
+        assert_eq!(typed, untyped);
+    }
+
+    #[test]
+    fn perf_report_reads_back_and_writes_null_ratios() {
+        let report = dummy();
+        let text = serde_json::to_string(&report).expect("serialises");
+        let value: Value = serde_json::from_str(&text).expect("parses");
+        assert_eq!(value["details"]["gibbs"]["cases"][0]["ratio"], Value::Null);
+        assert_eq!(
+            value["details"]["gibbs"]["ratio_median_by_shape"][0]["ratio"],
+            serde_json::json!(report.details.gibbs.ratio_median_by_shape[0].ratio)
+        );
+        assert_eq!(serde_json::from_str::<PerfReport>(&text).expect("reads back"), report);
+    }
 }
