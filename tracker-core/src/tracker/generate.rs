@@ -61,6 +61,172 @@ struct Parent<T> {
     rows: usize,
 }
 
+/// What every parent's children need to know about the scan (read-only).
+struct ScanInputs<'a, T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, const B: usize> {
+    weight_model: &'a WeightModel<T>,
+    birth_cells: &'a BirthCells<T, D, B>,
+    scores: &'a Scores<T, S, D, Z, K, B>,
+    rows: usize,
+    scan_seed: u64,
+    /// Whether death children are derived from the no-event children (sampled, p_D < 1).
+    derive_deaths: bool,
+    /// Birth cells in use (0 when births are impossible).
+    birth_cell_count: usize,
+}
+
+impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, const B: usize>
+    ScanInputs<'_, T, S, D, Z, K, B>
+{
+    /// The seed of the chain of (`parent`, `event`).
+    fn seed(&self, parent: &Parent<T>, event: Event) -> u64 {
+        chain_seed(self.scan_seed, parent.index, event_code::<B>(event))
+    }
+}
+
+/// The scratch one parent's children are generated in.
+struct ParentScratch<'a, T, const H: usize, const N: usize, const Z: usize> {
+    objects: &'a mut AssociationMatrix<T, N, Z>,
+    event: &'a mut AssociationMatrix<T, N, Z>,
+    columns: &'a mut ParentColumns<N>,
+    top: &'a mut TopChildren<T, H, Z>,
+    no_event_children: &'a mut OfferedChildren<T, H, Z>,
+}
+
+impl<T: Real> Parent<T> {
+    /// Builds the no-event matrix and column layout of parent `index` into `scratch`.
+    fn new<
+        const S: usize,
+        const D: usize,
+        const H: usize,
+        const N: usize,
+        const Z: usize,
+        const K: usize,
+        const B: usize,
+    >(
+        scratch: &mut ParentScratch<'_, T, H, N, Z>,
+        scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+        index: usize,
+        hypothesis: &Hypothesis<T, N>,
+    ) -> Self {
+        build_no_event_matrix(scratch.objects, scratch.columns, hypothesis, scan.scores, scan.rows, scan.weight_model);
+        Parent {
+            index: index as u16,
+            log_weight: hypothesis.log_weight,
+            in_view: scratch.objects.columns(),
+            rows: scan.rows,
+        }
+    }
+
+    /// The number of the parent's events that get a matrix (no event, births, deaths not derived).
+    fn events<const S: usize, const D: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+        &self,
+        scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+        hypothesis: &Hypothesis<T, N>,
+    ) -> usize {
+        let births = if hypothesis.len() >= N {
+            0
+        } else {
+            let cells = scan.birth_cells.in_field_of_view.iter().take(scan.birth_cell_count);
+            cells.filter(|&&detectable| detectable || !scan.weight_model.birth_required()).count()
+        };
+        let deaths = if scan.weight_model.deaths_possible() && !scan.derive_deaths { self.in_view } else { 0 };
+        1 + births + deaths
+    }
+}
+
+/// The children of the parent's no-event matrix, and the death children derived from them.
+fn offer_no_event<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    scratch: &mut ParentScratch<'_, T, H, N, Z>,
+    generator: &mut Generator<'_, T, N, Z, H>,
+    scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+    parent: &Parent<T>,
+    moves: &mut ParentMoves,
+) -> Result<(), StepError> {
+    set_baseline(scratch.objects, scan.weight_model, parent, Event::None, parent.in_view);
+    generator.prepare(scan.seed(parent, Event::None), moves);
+    let mut sink = scratch.top.for_event(parent.index, Event::None);
+    if !scan.derive_deaths {
+        return generator.generate(scratch.objects, &mut sink, moves);
+    }
+    scratch.no_event_children.clear();
+    let mut recording = Recording { inner: &mut sink, record: scratch.no_event_children };
+    generator.generate(scratch.objects, &mut recording, moves)?;
+    derive_death_children(scratch.top, scan.weight_model, parent, scratch.columns, scratch.no_event_children);
+    Ok(())
+}
+
+/// One birth in a cell (α each): the no-event matrix with the cell's column when the sensor can see it.
+fn offer_births<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    scratch: &mut ParentScratch<'_, T, H, N, Z>,
+    generator: &mut Generator<'_, T, N, Z, H>,
+    scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+    parent: &Parent<T>,
+    moves: &mut ParentMoves,
+) -> Result<(), StepError> {
+    let required = scan.weight_model.birth_required();
+    for cell in 0..scan.birth_cell_count {
+        let Some(detectable) = scan.birth_cells.in_field_of_view(cell) else { break };
+        if !detectable && required {
+            continue; // a birth that must be detected where it cannot be
+        }
+        scratch.event.copy_from(scratch.objects, None);
+        if let (true, Some(entries)) = (detectable, scan.scores.birth_entries(cell, scan.rows)) {
+            // The parent holds fewer than N objects, so the matrix has room.
+            let _ = scratch.event.push_column(entries, required);
+        }
+        let birth = Event::Birth { cell: cell as u16 };
+        set_baseline(scratch.event, scan.weight_model, parent, birth, parent.in_view + usize::from(detectable));
+        generator.prepare(scan.seed(parent, birth), moves);
+        generator.generate(scratch.event, &mut scratch.top.for_event(parent.index, birth), moves)?;
+    }
+    Ok(())
+}
+
+/// One death among the objects in the field of view (β each), each by its own matrix.
+fn offer_deaths<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    scratch: &mut ParentScratch<'_, T, H, N, Z>,
+    generator: &mut Generator<'_, T, N, Z, H>,
+    scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+    parent: &Parent<T>,
+    moves: &mut ParentMoves,
+) -> Result<(), StepError> {
+    for (column, &position) in scratch.columns.positions().iter().enumerate() {
+        scratch.event.copy_from(scratch.objects, Some(column));
+        let death = Event::Death { object: position };
+        set_baseline(scratch.event, scan.weight_model, parent, death, parent.in_view - 1);
+        generator.prepare(scan.seed(parent, death), moves);
+        generator.generate(scratch.event, &mut scratch.top.for_event(parent.index, death), moves)?;
+    }
+    Ok(())
+}
+
 impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N, Z> {
     pub(super) const fn new(sampler: SamplerConfig) -> Self {
         Self {
@@ -108,68 +274,21 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
             Selection::TopWeight => top.clear(),
             Selection::SampledByWeight => top.clear_sampling(selection_seed(scan_seed)),
         }
+        let scan = ScanInputs { weight_model, birth_cells, scores, rows, scan_seed, derive_deaths, birth_cell_count };
         let mut births_skipped = 0u64;
         let mut scan_moves = MoveBudget::new(max_moves);
-        for ((index, hypothesis), parent_columns) in parents.iter().enumerate().zip(columns.iter_mut()) {
-            build_no_event_matrix(objects, parent_columns, hypothesis, scores, rows, weight_model);
-            let parent =
-                Parent { index: index as u16, log_weight: hypothesis.log_weight, in_view: objects.columns(), rows };
-            let seed = |event| chain_seed(scan_seed, parent.index, event_code::<B>(event));
-            let births = if hypothesis.len() >= N {
-                0
-            } else {
-                let cells = birth_cells.in_field_of_view.iter().take(birth_cell_count);
-                cells.filter(|&&detectable| detectable || !weight_model.birth_required()).count()
-            };
-            let deaths = if weight_model.deaths_possible() && !derive_deaths { parent.in_view } else { 0 };
-            let mut moves = scan_moves.parent_share(hypothesis.log_weight, 1 + births + deaths);
-
-            // No event, and the deaths derived from its children.
-            set_baseline(objects, weight_model, &parent, Event::None, parent.in_view);
-            generator.prepare(seed(Event::None), &mut moves);
-            let mut sink = top.for_event(parent.index, Event::None);
-            if derive_deaths {
-                no_event_children.clear();
-                generator.generate(
-                    objects,
-                    &mut Recording { inner: &mut sink, record: no_event_children },
-                    &mut moves,
-                )?;
-                derive_death_children(top, weight_model, &parent, parent_columns, no_event_children);
-            } else {
-                generator.generate(objects, &mut sink, &mut moves)?;
-            }
-
-            // One birth in a cell (α each), if the child can hold one more object.
+        for ((index, hypothesis), columns) in parents.iter().enumerate().zip(columns.iter_mut()) {
+            let mut scratch = ParentScratch { objects, event, columns, top, no_event_children };
+            let parent = Parent::new(&mut scratch, &scan, index, hypothesis);
+            let mut moves = scan_moves.parent_share(hypothesis.log_weight, parent.events(&scan, hypothesis));
+            offer_no_event(&mut scratch, &mut generator, &scan, &parent, &mut moves)?;
             if hypothesis.len() >= N {
                 births_skipped += birth_cell_count as u64;
             } else {
-                for cell in 0..birth_cell_count {
-                    let Some(detectable) = birth_cells.in_field_of_view(cell) else { break };
-                    if !detectable && weight_model.birth_required() {
-                        continue; // a birth that must be detected where it cannot be
-                    }
-                    event.copy_from(objects, None);
-                    if let (true, Some(entries)) = (detectable, scores.birth_entries(cell, rows)) {
-                        // The parent holds fewer than N objects, so the matrix has room.
-                        let _ = event.push_column(entries, weight_model.birth_required());
-                    }
-                    let birth = Event::Birth { cell: cell as u16 };
-                    set_baseline(event, weight_model, &parent, birth, parent.in_view + usize::from(detectable));
-                    generator.prepare(seed(birth), &mut moves);
-                    generator.generate(event, &mut top.for_event(parent.index, birth), &mut moves)?;
-                }
+                offer_births(&mut scratch, &mut generator, &scan, &parent, &mut moves)?;
             }
-
-            // One death among the objects in the field of view (β each), each by its own matrix.
             if weight_model.deaths_possible() && !derive_deaths {
-                for (column, &position) in parent_columns.positions().iter().enumerate() {
-                    event.copy_from(objects, Some(column));
-                    let death = Event::Death { object: position };
-                    set_baseline(event, weight_model, &parent, death, parent.in_view - 1);
-                    generator.prepare(seed(death), &mut moves);
-                    generator.generate(event, &mut top.for_event(parent.index, death), &mut moves)?;
-                }
+                offer_deaths(&mut scratch, &mut generator, &scan, &parent, &mut moves)?;
             }
             scan_moves.spend(moves.used());
         }
@@ -450,5 +569,75 @@ impl ParentMoves {
 
     fn used(&self) -> u64 {
         self.used
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::BirthDetection;
+    use crate::sensor::{Region, Sensor};
+
+    #[test]
+    fn move_budget_shares_never_exceed_the_scan_budget() {
+        for total in [0u64, 1, 7, 999, 1_000_000] {
+            let mut budget = MoveBudget::new(total);
+            let mut spent = 0;
+            // Weights that sum to a little more than 1 in floating point.
+            for weight in [0.5f64, 0.3, 0.2 + 1e-15] {
+                let mut moves = budget.parent_share(weight.ln(), 3);
+                for _ in 0..3 {
+                    let share = moves.next_share();
+                    moves.charge(share); // every event uses all it is given
+                }
+                assert!(moves.used() <= (total as f64 * weight) as u64 + 1);
+                spent += moves.used();
+                budget.spend(moves.used());
+            }
+            assert!(spent <= total, "{spent} > {total}");
+        }
+        let unlimited = MoveBudget::new(u64::MAX).parent_share(0.5f64.ln(), 4);
+        assert_eq!(unlimited.next_share(), u64::MAX);
+    }
+
+    #[test]
+    fn event_codes_are_distinct() {
+        let mut codes = std::vec![event_code::<4>(Event::None)];
+        codes.extend((0..4).map(|cell| event_code::<4>(Event::Birth { cell })));
+        codes.extend((0..64).map(|object| event_code::<4>(Event::Death { object })));
+        let distinct: std::collections::BTreeSet<_> = codes.iter().collect();
+        assert_eq!(distinct.len(), codes.len());
+    }
+
+    #[test]
+    fn death_children_are_derived_with_the_exact_ratio_for_each_free_object() {
+        let sensor = Sensor {
+            detection_probability: 0.8,
+            clutter_rate: 2.0,
+            field_of_view: Region::Everywhere { volume: 100.0 },
+        };
+        let model = WeightModel::new(&sensor, None, 0.0, 0, BirthDetection::AllDetected, 0.05);
+        let mut columns = ParentColumns::<4>::new();
+        for position in [0, 2, 3] {
+            columns.push(position).unwrap();
+        }
+        let parent = Parent { index: 1, log_weight: 0.0, in_view: 3, rows: 2 };
+        let mut recorded = OfferedChildren::<f64, 8, 2>::new();
+        recorded.push(-3.0, &[1, CLUTTER]); // takes column 1 (position 2): positions 0 and 3 may die
+        let mut top = TopChildren::<f64, 8, 2>::new();
+        derive_death_children(&mut top, &model, &parent, &columns, &recorded);
+        // ln r = ln β − ln P(no event) − ln(1 − p_D), P(no event) = 1 − 3 β.
+        let ratio = 0.05f64.ln() - (1.0 - 3.0 * 0.05f64).ln() - 0.2f64.ln();
+        let mut deaths: std::vec::Vec<_> = top.kept().iter().map(|c| (c.event, c.parent, c.log_weight)).collect();
+        deaths.sort_by_key(|d| match d.0 {
+            Event::Death { object } => object,
+            _ => u16::MAX,
+        });
+        assert_eq!(deaths.len(), 2);
+        for ((event, parent_index, weight), object) in deaths.into_iter().zip([0, 3]) {
+            assert_eq!(event, Event::Death { object });
+            assert_eq!(parent_index, 1);
+            assert!((weight - (-3.0 + ratio)).abs() < 1e-12);
+        }
     }
 }

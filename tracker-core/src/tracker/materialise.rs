@@ -342,3 +342,50 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::association::{CLUTTER, ParentColumns};
+
+    fn candidate(event: Event, assignment: [u16; 2]) -> Candidate<f64, 2> {
+        Candidate { log_weight: 0.0, key: 0.0, sequence: 0, parent: 0, event, assignment }
+    }
+
+    #[test]
+    fn a_child_is_read_back_through_its_layout() {
+        // The parent holds tracks 5, 7, 9; the object at position 1 (track 7) is out of view.
+        let parent = Hypothesis::<f64, 4>::new(0.0, &[5, 7, 9]);
+        let mut columns = ParentColumns::<4>::new();
+        for position in [0, 2] {
+            columns.push(position).unwrap();
+        }
+        let mut work = Materialisation::<2, 4, 2, 16, 4>::new();
+        let not_dropped = |_: u16| false;
+
+        // A birth in cell 3 the sensor sees: row 0 takes column 1 (position 2), row 1 the birth column.
+        let birth = Event::Birth { cell: 3 };
+        let count =
+            work.child_sources(&candidate(birth, [1, 2]), &parent, &columns.layout(birth, Some(3)), 2, not_dropped);
+        assert_eq!(
+            &work.child_sources[..count],
+            &[(Source::Track(5), NONE), (Source::Track(7), NONE), (Source::Track(9), 0), (Source::Birth(3), 1)]
+        );
+
+        // The death of the object at position 0: its column takes nothing and it is in no child.
+        let death = Event::Death { object: 0 };
+        let count =
+            work.child_sources(&candidate(death, [CLUTTER, 1]), &parent, &columns.layout(death, None), 2, not_dropped);
+        assert_eq!(&work.child_sources[..count], &[(Source::Track(7), NONE), (Source::Track(9), 1)]);
+
+        // A track dropped for a numerical failure is in no child either.
+        let count = work.child_sources(
+            &candidate(Event::None, [0, CLUTTER]),
+            &parent,
+            &columns.layout(Event::None, None),
+            2,
+            |slot| slot == 9,
+        );
+        assert_eq!(&work.child_sources[..count], &[(Source::Track(5), 0), (Source::Track(7), NONE)]);
+    }
+}

@@ -152,3 +152,51 @@ fn prior_weight_total<T: Real, const S: usize, const H: usize>(
     }
     Ok(total)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ekf::Gaussian;
+    use crate::store::TrackLabel;
+    use crate::tracker::PriorObject;
+    use nalgebra::{SMatrix, SVector};
+
+    fn object(label: u32, x: f64) -> PriorObject<f64, 4> {
+        PriorObject {
+            label: TrackLabel(label),
+            state: Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() },
+        }
+    }
+
+    #[test]
+    fn identical_prior_tracks_are_stored_once_and_weights_normalised() {
+        let (a, b) = (object(4, 0.0), object(9, 5.0));
+        let prior = [PriorHypothesis { weight: 3.0, objects: &[a] }, PriorHypothesis { weight: 1.0, objects: &[b, a] }];
+        let mut store = TrackStore::<f64, 4, 8>::new();
+        let mut set = HypothesisSet::<f64, 4, 4>::new();
+        assert_eq!(load_prior(&prior, &mut store, &mut set), Ok(10));
+        assert_eq!(store.len(), 2, "object 4 is one track in both hypotheses");
+        let weights: std::vec::Vec<f64> = set.as_slice().iter().map(|h| h.log_weight.exp()).collect();
+        assert!((weights[0] - 0.75).abs() < 1e-15 && (weights[1] - 0.25).abs() < 1e-15);
+        // Slots in label order: track of label 4 before label 9.
+        let labels: std::vec::Vec<u32> =
+            set.as_slice()[1].slots().iter().map(|&s| store.as_slice()[usize::from(s)].label.0).collect();
+        assert_eq!(labels, [4, 9]);
+        assert!((store.as_slice()[0].existence - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_priors_are_typed_errors() {
+        let a = object(1, 0.0);
+        let mut store = TrackStore::<f64, 4, 8>::new();
+        let mut set = HypothesisSet::<f64, 4, 1>::new();
+        let twice = [PriorHypothesis { weight: 1.0, objects: &[a, a] }];
+        assert_eq!(load_prior(&twice, &mut store, &mut set), Err(ConfigError::PriorDuplicateLabel { hypothesis: 0 }));
+        let two = [PriorHypothesis { weight: 1.0, objects: &[a] }, PriorHypothesis { weight: 1.0, objects: &[a] }];
+        assert_eq!(load_prior(&two, &mut store, &mut set), Err(ConfigError::PriorTooManyHypotheses));
+        let overflow = [PriorHypothesis { weight: f64::MAX, objects: &[a] }];
+        let mut set2 = HypothesisSet::<f64, 4, 2>::new();
+        let both = [overflow[0], overflow[0]];
+        assert_eq!(load_prior(&both, &mut store, &mut set2), Err(ConfigError::PriorWeightTotal));
+    }
+}

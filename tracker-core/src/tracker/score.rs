@@ -165,3 +165,73 @@ fn score_row<T: Real, const D: usize>(
         *entry = if in_field_of_view { weight_model.entry(innovation, z) } else { T::NEG_INFINITY };
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{BirthModel, ChildGeneration, Selection, StoreOverflow};
+    use crate::model::{ConstantVelocity, PositionMeasurement};
+    use crate::sensor::{Region, Sensor};
+    use crate::store::TrackLabel;
+    use nalgebra::SMatrix;
+
+    type Cv = Config<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 1>;
+
+    fn config(numerical_failure: NumericalFailure) -> Cv {
+        Config {
+            motion: ConstantVelocity { acceleration_noise: 0.01 },
+            measurement: PositionMeasurement::isotropic(0.5),
+            sensor: Sensor {
+                detection_probability: 0.9,
+                clutter_rate: 1.0,
+                field_of_view: Region::Rectangle { min: [-10.0, -10.0], max: [10.0, 10.0] },
+            },
+            birth: BirthModel::none(),
+            death_probability: 0.0,
+            gate: Some(16.0),
+            children: ChildGeneration::default(),
+            selection: Selection::default(),
+            store_overflow: StoreOverflow::default(),
+            numerical_failure,
+            seed: 1,
+        }
+    }
+
+    fn track(label: u32, x: f64, variance: f64) -> Track<f64, 4> {
+        let state = Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() * variance };
+        Track { label: TrackLabel(label), state, existence: 1.0 }
+    }
+
+    #[test]
+    fn entries_are_scored_in_view_and_impossible_out_of_view_or_outside_the_gate() {
+        let config = config(NumericalFailure::Error);
+        let model = WeightModel::from_config(&config);
+        let mut scores = Scores::<f64, 4, 2, 2, 4, 1>::new();
+        let tracks = [track(0, 0.0, 1.0), track(1, 50.0, 1.0)];
+        let zs = [SVector::from([1.0, 0.0]), SVector::from([-9.0, 9.0])];
+        let drops = scores.run(&config, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        assert_eq!(drops.count, 0);
+        assert!(scores.predicted(0).in_field_of_view && !scores.predicted(1).in_field_of_view);
+        let near = scores.entries(0, 2);
+        assert!(near[0].is_finite() && near[1] == f64::NEG_INFINITY, "{near:?}: the second is outside the gate");
+        assert!(scores.entries(1, 2).iter().all(|&e| e == f64::NEG_INFINITY));
+    }
+
+    #[test]
+    fn a_failing_track_is_dropped_or_fails_the_scan_as_configured() {
+        let tracks = [track(0, 0.0, 1.0), track(7, 3.0, 1e308)];
+        let zs = [SVector::from([1.0, 0.0])];
+        let strict = config(NumericalFailure::Error);
+        let mut scores = Scores::<f64, 4, 2, 1, 4, 1>::new();
+        let result = scores.run(&strict, &WeightModel::from_config(&strict), &BirthCells::EMPTY, &tracks, 1.0, &zs);
+        assert!(matches!(result, Err(StepError::Numerical { label: TrackLabel(7), .. })), "{result:?}");
+
+        let lenient = config(NumericalFailure::DropTrack);
+        let model = WeightModel::from_config(&lenient);
+        let drops = scores.run(&lenient, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        assert_eq!(drops.count, 1);
+        assert_eq!(drops.first.map(|(label, _)| label), Some(TrackLabel(7)));
+        assert!(scores.predicted(1).dropped && !scores.predicted(1).in_field_of_view);
+        assert!(!scores.predicted(0).dropped && scores.entries(0, 1)[0].is_finite());
+    }
+}
