@@ -1113,6 +1113,7 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
         "min_captured_mass",
         "out_of_view_red_stars",
         "peak_hypotheses",
+        "peak_resident_kib",
         "profile",
         "reference_budget_reached_scans",
         "rejected_scans",
