@@ -178,3 +178,22 @@ pub(crate) fn white_acceleration_noise<T: Real>(q: T, dt: T) -> SMatrix<T, 4, 4>
     }
     noise
 }
+
+/// The fixed-step RK4 split of a step `dt`: n = ⌈dt / `max_step`⌉ equal sub-steps (at least one) and their
+/// length h = dt / n.
+///
+/// # Errors
+/// [`ModelError::NonFinite`] for a negative or non-finite ratio, [`ModelError::TimeStepTooLarge`] when n
+/// exceeds `max_substeps` (which bounds the cost of one prediction).
+pub(crate) fn rk4_substeps<T: Real>(dt: T, max_step: T, max_substeps: u32) -> Result<(u32, T), ModelError> {
+    let ratio = dt / max_step;
+    if !ratio.is_finite_value() || ratio < T::zero() {
+        return Err(ModelError::NonFinite);
+    }
+    let steps_real = -crate::real::floor(-ratio);
+    if steps_real > T::of_f64(f64::from(max_substeps)) {
+        return Err(ModelError::TimeStepTooLarge);
+    }
+    let steps = (steps_real.as_f64() as u32).max(1);
+    Ok((steps, dt / T::of_f64(f64::from(steps))))
+}

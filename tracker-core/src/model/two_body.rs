@@ -20,7 +20,7 @@
 //! The guards only reject: an accepted propagation is the same bits as without them.
 
 use super::{ModelError, MotionModel, Propagation, white_acceleration_noise};
-use crate::real::{Real, c, floor, sqrt};
+use crate::real::{Real, c, sqrt};
 use nalgebra::{SMatrix, SVector};
 
 /// The planar two-body motion model.
@@ -115,17 +115,7 @@ impl<T: Real> TwoBody<T> {
 
 impl<T: Real> MotionModel<T, 4> for TwoBody<T> {
     fn propagate(&self, state: &SVector<T, 4>, dt: T) -> Result<Propagation<T, 4>, ModelError> {
-        let ratio = dt / self.max_step;
-        if !ratio.is_finite_value() || ratio < T::zero() {
-            return Err(ModelError::NonFinite);
-        }
-        // n = ceil(dt / max_step), at least one sub-step.
-        let steps_real = -floor(-ratio);
-        if steps_real > T::of_f64(f64::from(self.max_substeps)) {
-            return Err(ModelError::TimeStepTooLarge);
-        }
-        let steps = (steps_real.as_f64() as u32).max(1);
-        let h = dt / T::of_f64(f64::from(steps));
+        let (steps, h) = super::rk4_substeps(dt, self.max_step, self.max_substeps)?;
         let half = c::<T>(0.5);
         let sixth = T::one() / c(6.0);
         let two = c::<T>(2.0);

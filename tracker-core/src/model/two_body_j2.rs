@@ -25,7 +25,7 @@
 //! ([`ProcessNoise`]).
 
 use super::{ModelError, MotionModel, Propagation};
-use crate::real::{Real, c, floor, sqrt};
+use crate::real::{Real, c, sqrt};
 use nalgebra::{SMatrix, SVector};
 
 /// The Earth's gravitational parameter μ (km³/s²): the WGS-84 value (EGM-96's own, 398600.4415, differs by
@@ -244,17 +244,10 @@ impl<T: Real> TwoBodyJ2<T> {
 
 impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
     fn propagate(&self, state: &SVector<T, 6>, dt: T) -> Result<Propagation<T, 6>, ModelError> {
-        let ratio = dt / self.max_step;
-        if !ratio.is_finite_value() || ratio < T::zero() || !state.iter().all(|v| v.is_finite_value()) {
+        if !state.iter().all(|v| v.is_finite_value()) {
             return Err(ModelError::NonFinite);
         }
-        // n = ceil(dt / max_step), at least one sub-step.
-        let steps_real = -floor(-ratio);
-        if steps_real > T::of_f64(f64::from(self.max_substeps)) {
-            return Err(ModelError::TimeStepTooLarge);
-        }
-        let steps = (steps_real.as_f64() as u32).max(1);
-        let h = dt / T::of_f64(f64::from(steps));
+        let (steps, h) = super::rk4_substeps(dt, self.max_step, self.max_substeps)?;
         let half = c::<T>(0.5);
         let sixth = T::one() / c(6.0);
         let two = c::<T>(2.0);
