@@ -163,6 +163,8 @@ impl ExhaustiveChildren {
 }
 
 impl<T: Real, const N: usize, const Z: usize> ChildGenerator<T, N, Z> for ExhaustiveChildren {
+    // The enumeration is one iterative depth-first loop (no recursion: the stack is bounded by Z rows
+    // of fixed-size state), which is why it is longer than the other functions.
     fn generate<Sink: ChildSink<T>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,

@@ -46,6 +46,8 @@ const ROOT: usize = usize::MAX - 1;
 /// assert!(best_association(&required, 0.0, &mut one) && one == [CLUTTER]);
 /// assert!(best_association(&required, 64.0, &mut one) && one == [0]);
 /// ```
+// One function: the shortest augmenting path of every row shares its potentials, labels and scan state; a
+// split would pass all of them around in the solver's inner loop.
 pub fn best_association<T: Real, const N: usize, const Z: usize>(
     matrix: &AssociationMatrix<T, N, Z>,
     required_bonus: T,
