@@ -731,13 +731,18 @@ fn invalid_configuration_is_a_typed_error() {
         assert_eq!(build(&config), None);
         config.motion.max_substeps = 0;
         assert!(matches!(build(&config), Some(ConfigError::Motion(_))));
+        // A sub-step limit that would make one prediction endless (issue 17), and the limit itself.
+        config.motion.max_substeps = u32::MAX;
+        assert!(matches!(build(&config), Some(ConfigError::Motion(_))));
+        config.motion.max_substeps = tracker_core::model::MAX_RK4_SUBSTEPS;
+        assert_eq!(build(&config), None);
         config.motion.max_substeps = 100;
         config.motion.mu = -1.0;
         assert!(matches!(build(&config), Some(ConfigError::Motion(_))));
     });
 }
 
-/// Zero capacities do not compile (`CAPACITY_CHECK` in tracker.rs; the compile-fail doc test is in
+/// Zero capacities do not compile (`CAPACITY_CHECK` in tracker/mod.rs; the compile-fail doc test is in
 /// host-sim/src/soak.rs). The smallest non-zero capacities work: one hypothesis, one object, one
 /// measurement, one track, no birth cell.
 #[test]

@@ -179,6 +179,10 @@ pub(crate) fn white_acceleration_noise<T: Real>(q: T, dt: T) -> SMatrix<T, 4, 4>
     noise
 }
 
+/// The largest accepted `max_substeps` of the integrated models: 10⁶ RK4 sub-steps per prediction, so that
+/// no configuration makes one prediction (and so one scan) endless (issue 17).
+pub const MAX_RK4_SUBSTEPS: u32 = 1_000_000;
+
 /// The fixed-step RK4 split of a step `dt`: n = ⌈dt / `max_step`⌉ equal sub-steps (at least one) and their
 /// length h = dt / n.
 ///

@@ -163,8 +163,8 @@ impl<T: Real> MotionModel<T, 4> for TwoBody<T> {
         if !(self.max_step.is_finite_value() && self.max_step > T::zero()) {
             return Err("two-body: max_step must be finite and > 0");
         }
-        if self.max_substeps == 0 {
-            return Err("two-body: max_substeps must be > 0");
+        if self.max_substeps == 0 || self.max_substeps > super::MAX_RK4_SUBSTEPS {
+            return Err("two-body: max_substeps must be in 1..=1,000,000");
         }
         if !(self.min_radius.is_finite_value() && self.min_radius >= T::zero()) {
             return Err("two-body: min_radius must be finite and >= 0");

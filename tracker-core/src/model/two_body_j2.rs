@@ -315,8 +315,8 @@ impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
         if !positive(self.max_step) {
             return Err("two-body J2: max_step must be finite and > 0");
         }
-        if self.max_substeps == 0 {
-            return Err("two-body J2: max_substeps must be > 0");
+        if self.max_substeps == 0 || self.max_substeps > super::MAX_RK4_SUBSTEPS {
+            return Err("two-body J2: max_substeps must be in 1..=1,000,000");
         }
         Ok(())
     }
