@@ -13,14 +13,24 @@
 //! - [`TwoBodyJ2`]: 3-D two-body + J2 (Earth oblateness) in an Earth-centred inertial frame, with
 //!   the analytic gravity gradient in the variational equations and RIC-frame process noise.
 //! - [`PositionMeasurement`]: the position (x, y) of a planar state with Gaussian noise.
+//! - [`RadarRangeAzEl`], [`RadarRangeRate`], [`OpticalRaDec`]: range, azimuth, elevation (and range-rate)
+//!   from a ground site, topocentric right ascension and declination, of a 3-D inertial state; with the
+//!   site geometry of `frames.rs` ([`GroundSite`], [`EarthRotation`]). Not yet used by the tracker
+//!   (issue 13): their angle residuals need [`wrap_angle`].
 
 mod constant_velocity;
+mod frames;
+mod optical;
 mod position;
+mod radar;
 mod two_body;
 mod two_body_j2;
 
 pub use constant_velocity::ConstantVelocity;
+pub use frames::{EARTH_ROTATION_RATE, EarthRotation, GroundSite, WGS84_FLATTENING, gmst_iau82, wrap_angle};
+pub use optical::OpticalRaDec;
 pub use position::PositionMeasurement;
+pub use radar::{RadarRangeAzEl, RadarRangeRate};
 pub use two_body::TwoBody;
 pub use two_body_j2::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, ProcessNoise, TwoBodyJ2};
 
