@@ -458,13 +458,12 @@ impl<T: Real, const N: usize, const Z: usize, const H: usize> Generator<'_, T, N
 struct OfferedChildren<T, const C: usize, const Z: usize> {
     scores: [T; C],
     assignments: [[u16; Z]; C],
-    rows: [u16; C],
     len: usize,
 }
 
 impl<T: Real, const C: usize, const Z: usize> OfferedChildren<T, C, Z> {
     const fn new() -> Self {
-        Self { scores: [T::NEG_INFINITY; C], assignments: [[CLUTTER; Z]; C], rows: [0; C], len: 0 }
+        Self { scores: [T::NEG_INFINITY; C], assignments: [[CLUTTER; Z]; C], len: 0 }
     }
 
     fn clear(&mut self) {
@@ -477,7 +476,6 @@ impl<T: Real, const C: usize, const Z: usize> OfferedChildren<T, C, Z> {
         if self.len < C {
             *self.scores.at_mut(self.len) = score;
             copy_prefix(self.assignments.at_mut(self.len), assignment);
-            *self.rows.at_mut(self.len) = assignment.len().min(Z) as u16;
             self.len += 1;
         }
     }
