@@ -23,8 +23,8 @@ use nalgebra::SVector;
 use std::fmt::Write as _;
 use tracker_core::digest::Fnv1a;
 use tracker_core::{
-    BirthModel, Config, Gaussian, PositionMeasurement, PriorHypothesis, PriorObject, Real, Region, Sensor, SsaConfig,
-    SsaTracker, TwoBody, ssa_caps,
+    BirthModel, Config, Gaussian, LookShape, PositionMeasurement, PriorHypothesis, PriorObject, Real, Region, Sensor,
+    SsaConfig, SsaTracker, TwoBody, ssa_caps,
 };
 
 /// Replays the first `scans` scans of `scenario` (all when `None`) through `SsaTracker<f32>` and returns the
@@ -134,6 +134,19 @@ pub fn region<T: Real>(region: &Region<f64>) -> Region<T> {
             look_direction: of(look_direction),
             half_angle: of(half_angle),
             max_range: of(max_range),
+        },
+        Region::Look { shape, min_elevation, range, range_rate } => Region::Look {
+            shape: match shape {
+                LookShape::Cone { azimuth, elevation, half_angle } => {
+                    LookShape::Cone { azimuth: of(azimuth), elevation: of(elevation), half_angle: of(half_angle) }
+                }
+                LookShape::Box { azimuth, half_width, elevation } => {
+                    LookShape::Box { azimuth: of(azimuth), half_width: of(half_width), elevation: elevation.map(of) }
+                }
+            },
+            min_elevation: of(min_elevation),
+            range: range.map(|window| window.map(of)),
+            range_rate: range_rate.map(|window| window.map(of)),
         },
     }
 }

@@ -296,7 +296,7 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     /// [`ReferenceError::EventProbabilities`].
     pub fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<ReferenceReport, ReferenceError> {
         // The core's scan check, without a measurement capacity.
-        tracker_core::tracker::check_scan(&self.region, self.time, time, measurements, usize::MAX)?;
+        tracker_core::tracker::check_scan(&self.measurement, &self.region, self.time, time, measurements, usize::MAX)?;
         let tables = self.tables(time - self.time, measurements)?;
         let mut budget_reached = tables.parents.len() < self.hypotheses.len();
         // The pruned search's candidate lists: at most every (row, column) pair at each depth.

@@ -216,7 +216,12 @@ impl<T: Real, const D: usize> Innovation<T, D> {
     /// # Ok::<(), tracker_core::NumericalError>(())
     /// ```
     pub fn score(&self, z: &SVector<T, D>) -> (T, T) {
-        let whitened = self.solve_lower(&(z - self.predicted));
+        self.score_residual(&(z - self.predicted))
+    }
+
+    /// [`Innovation::score`] from the residual ν = z − ẑ (as the measurement model forms it).
+    pub fn score_residual(&self, residual: &SVector<T, D>) -> (T, T) {
+        let whitened = self.solve_lower(residual);
         let distance_squared = whitened.norm_squared();
         (distance_squared, self.log_normaliser - c::<T>(0.5) * distance_squared)
     }
@@ -329,8 +334,19 @@ impl<T: Real, const S: usize, const D: usize> Correction<T, S, D> {
         innovation: &Innovation<T, D>,
         z: &SVector<T, D>,
     ) -> Result<Gaussian<T, S>, NumericalError> {
-        let nu = z - innovation.predicted;
-        let mean = predicted.mean + self.gain * nu;
+        self.apply_residual(predicted, &(z - innovation.predicted))
+    }
+
+    /// [`Correction::apply`] from the residual ν = z − ẑ (as the measurement model forms it).
+    ///
+    /// # Errors
+    /// [`NumericalError::NonFinite`] when the mean is not finite.
+    pub fn apply_residual(
+        &self,
+        predicted: &Gaussian<T, S>,
+        residual: &SVector<T, D>,
+    ) -> Result<Gaussian<T, S>, NumericalError> {
+        let mean = predicted.mean + self.gain * residual;
         if mean.iter().all(|v| v.is_finite_value()) {
             Ok(Gaussian { mean, covariance: self.covariance })
         } else {
@@ -351,7 +367,7 @@ pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: us
     innovation: &Innovation<T, D>,
     z: &SVector<T, D>,
 ) -> Result<Gaussian<T, S>, NumericalError> {
-    correction(model, predicted, innovation)?.apply(predicted, innovation, z)
+    correction(model, predicted, innovation)?.apply_residual(predicted, &model.residual(z, &innovation.predicted))
 }
 
 /// `gaussian` when it is finite and its covariance factors (after [`positive_definite`]).

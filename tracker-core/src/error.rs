@@ -4,6 +4,7 @@
 //! which the tracker is exactly as it was before the call.
 
 use crate::ekf::NumericalError;
+use crate::model::PlacementError;
 use crate::store::TrackLabel;
 
 /// A configuration or prior that cannot be used.
@@ -249,6 +250,20 @@ pub enum StepError {
     /// The tracker was made with [`crate::Tracker::empty`] and has no prior yet: call
     /// [`crate::Tracker::reset`].
     NotInitialised,
+    /// The scan is further after the last one than the motion model can predict
+    /// ([`crate::MotionModel::max_time_step`]).
+    TimeStepTooLong {
+        /// The longest step, in whole seconds.
+        limit_seconds: u64,
+    },
+    /// The scan's sensor or observer cannot be placed (an unknown sensor, a missing, unexpected,
+    /// non-finite or underground observer).
+    Placement(PlacementError),
+    /// A birth cell's innovation cannot be formed for the sensor of this scan.
+    BirthCell {
+        /// The cell's index.
+        cell: usize,
+    },
 }
 
 impl core::fmt::Display for StepError {
@@ -269,6 +284,11 @@ impl core::fmt::Display for StepError {
             StepError::NoViableChild => f.write_str("every child has zero weight"),
             StepError::LabelsExhausted => f.write_str("track labels exhausted"),
             StepError::NotInitialised => f.write_str("no prior loaded: call reset first"),
+            StepError::TimeStepTooLong { limit_seconds } => {
+                write!(f, "scan is more than {limit_seconds} s after the last one, beyond the motion model's bound")
+            }
+            StepError::Placement(error) => write!(f, "scan geometry: {error}"),
+            StepError::BirthCell { cell } => write!(f, "birth cell {cell}: no innovation for this scan's sensor"),
         }
     }
 }

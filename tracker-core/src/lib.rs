@@ -70,7 +70,7 @@ pub use error::{ConfigError, StepError};
 pub use model::{ConstantVelocity, MeasurementModel, MotionModel, PositionMeasurement, TwoBody, TwoBodyJ2};
 pub use real::Real;
 pub use report::StepReport;
-pub use sensor::{Region, Sensor};
+pub use sensor::{Look, LookShape, Region, Sensor};
 pub use store::{Track, TrackLabel};
 pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, Tracker};
 

@@ -6,7 +6,7 @@
 //! scan, uniform over the field of view, so its intensity is λ_C = clutter_rate / V with V the area of
 //! the field of view in measurement space.
 
-use crate::real::{Real, atan2, cos, sin};
+use crate::real::{Real, atan2, c, cos, sin, sqrt};
 use nalgebra::SVector;
 
 /// The region of measurement space the sensor sees.
@@ -29,6 +29,20 @@ pub enum Region<T> {
         /// Upper corner.
         max: [T; 2],
     },
+    /// A field of view in the sensor's own frame (East, North, Up of a ground site; the inertial axes for a
+    /// spacecraft), read through the measurement model's [`look`](crate::MeasurementModel::look): a cone or
+    /// an azimuth/elevation box, above an elevation mask, and for a radar inside a range window (and a
+    /// range-rate window when it measures range-rate). Angles in radians, azimuth from North towards East.
+    Look {
+        /// The cone or box of look directions.
+        shape: LookShape<T>,
+        /// The elevation mask: nothing lower is seen.
+        min_elevation: T,
+        /// `[min, max]` range (km) seen; required exactly when the model measures range.
+        range: Option<[T; 2]>,
+        /// `[min, max]` range-rate (km/s) seen; required exactly when the model measures range-rate.
+        range_rate: Option<[T; 2]>,
+    },
     /// A circular sector: the sensor at `origin` looking along `look_direction` (radians from +x),
     /// seeing `half_angle` radians either side, out to `max_range`.
     Sector {
@@ -43,7 +57,194 @@ pub enum Region<T> {
     },
 }
 
+/// The look directions of a [`Region::Look`] field of view.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum LookShape<T> {
+    /// Every direction within `half_angle` of the boresight (`azimuth`, `elevation`).
+    Cone {
+        /// Boresight azimuth.
+        azimuth: T,
+        /// Boresight elevation.
+        elevation: T,
+        /// Half of the cone's opening angle, in (0, π].
+        half_angle: T,
+    },
+    /// Azimuths within `half_width` of `azimuth` (across ±π too) and elevations in `elevation`.
+    Box {
+        /// Centre azimuth.
+        azimuth: T,
+        /// Half of the azimuth extent, in (0, π].
+        half_width: T,
+        /// `[min, max]` elevation.
+        elevation: [T; 2],
+    },
+}
+
+/// Which coordinates besides azimuth and elevation a model's measurements carry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct LookAxes {
+    /// Range.
+    pub range: bool,
+    /// Range-rate.
+    pub range_rate: bool,
+}
+
+/// A measurement as a look direction in the sensor's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Look<T> {
+    /// Azimuth from North towards East, (−π, π].
+    pub azimuth: T,
+    /// Elevation above the horizontal plane, [−π/2, π/2].
+    pub elevation: T,
+    /// Range (km), when measured.
+    pub range: Option<T>,
+    /// Range-rate (km/s), when measured.
+    pub range_rate: Option<T>,
+}
+
+/// Rows of the elevation quadrature of [`LookShape::area`]: a midpoint rule in φ with elevation
+/// E = centre + half·sin φ, which removes the square-root behaviour of a cone's width at its top and bottom.
+const LOOK_ROWS: usize = 256;
+
+impl<T: Real> LookShape<T> {
+    /// Whether the direction (`azimuth`, `elevation`) lies in the shape (boundary included).
+    pub fn contains(&self, azimuth: T, elevation: T) -> bool {
+        match *self {
+            LookShape::Cone { azimuth: a0, elevation: e0, half_angle } => {
+                // cos γ = sin E sin E₀ + cos E cos E₀ cos(A − A₀), γ the angle from the boresight.
+                let cos_gamma = sin(elevation) * sin(e0) + cos(elevation) * cos(e0) * cos(azimuth - a0);
+                cos_gamma >= cos(half_angle)
+            }
+            LookShape::Box { azimuth: a0, half_width, elevation: [low, high] } => {
+                let offset = crate::model::wrap_angle(azimuth - a0);
+                elevation >= low && elevation <= high && offset >= -half_width && offset <= half_width
+            }
+        }
+    }
+
+    /// The elevation span `[low, high]` of the shape above `mask`; `None` when empty.
+    fn elevation_span(&self, mask: T) -> Option<(T, T)> {
+        let half_pi = T::frac_pi_2();
+        let (low, high) = match *self {
+            LookShape::Cone { elevation, half_angle, .. } => (elevation - half_angle, elevation + half_angle),
+            LookShape::Box { elevation: [low, high], .. } => (low, high),
+        };
+        let (low, high) = (max(max(low, mask), -half_pi), min(high, half_pi));
+        if high > low { Some((low, high)) } else { None }
+    }
+
+    /// The azimuth half-width of the shape's row at `elevation` (its centre is the shape's azimuth).
+    fn row_half_width(&self, elevation: T) -> T {
+        match *self {
+            LookShape::Box { half_width, .. } => half_width,
+            LookShape::Cone { elevation: e0, half_angle, .. } => {
+                // cos ΔA ≥ q = (cos θ − sin E sin E₀) / (cos E cos E₀).
+                let denominator = cos(elevation) * cos(e0);
+                let numerator = cos(half_angle) - sin(elevation) * sin(e0);
+                if !(denominator > T::zero()) {
+                    return if numerator <= T::zero() { T::pi() } else { T::zero() };
+                }
+                let q = numerator / denominator;
+                if q <= -T::one() {
+                    T::pi()
+                } else if q >= T::one() {
+                    T::zero()
+                } else {
+                    atan2(sqrt(T::one() - q * q), q)
+                }
+            }
+        }
+    }
+
+    /// The centre azimuth of every row.
+    fn azimuth(&self) -> T {
+        match *self {
+            LookShape::Cone { azimuth, .. } | LookShape::Box { azimuth, .. } => azimuth,
+        }
+    }
+
+    /// ∫∫ density(A, E) dA dE over the shape above the elevation `mask`, by a fixed quadrature:
+    /// [`LOOK_ROWS`] elevation rows, `azimuth_points` midpoints across each row's azimuth interval
+    /// (one is exact when the density does not depend on the azimuth).
+    pub fn area<F: Fn(T, T) -> T>(&self, mask: T, azimuth_points: usize, density: F) -> T {
+        let Some((low, high)) = self.elevation_span(mask) else {
+            return T::zero();
+        };
+        let (centre, half) = ((low + high) * c(0.5), (high - low) * c(0.5));
+        let rows = T::of_f64(LOOK_ROWS as f64);
+        let columns = azimuth_points.clamp(1, 1024);
+        let mut total = T::zero();
+        for row in 0..LOOK_ROWS {
+            // φ ∈ (−π/2, π/2) at the midpoints; dE = half cos φ dφ.
+            let phi = (T::of_f64(row as f64) + c(0.5)) / rows * T::pi() - T::frac_pi_2();
+            let elevation = centre + half * sin(phi);
+            let weight = half * cos(phi) * T::pi() / rows;
+            let width = self.row_half_width(elevation);
+            let step = c::<T>(2.0) * width / T::of_f64(columns as f64);
+            let mut row_sum = T::zero();
+            for column in 0..columns {
+                let azimuth = self.azimuth() - width + (T::of_f64(column as f64) + c(0.5)) * step;
+                row_sum += density(azimuth, elevation);
+            }
+            total += weight * row_sum * step;
+        }
+        total
+    }
+}
+
+fn max<T: Real>(a: T, b: T) -> T {
+    if a >= b { a } else { b }
+}
+
+fn min<T: Real>(a: T, b: T) -> T {
+    if a <= b { a } else { b }
+}
+
+/// Whether `value` is in the closed window `[low, high]` (an absent window admits everything).
+fn in_window<T: Real>(window: Option<[T; 2]>, value: Option<T>) -> bool {
+    match (window, value) {
+        (Some([low, high]), Some(v)) => v >= low && v <= high,
+        (Some(_), None) => false,
+        (None, _) => true,
+    }
+}
+
+fn window_extent<T: Real>(window: Option<[T; 2]>) -> T {
+    window.map_or(T::one(), |[low, high]| high - low)
+}
+
 impl<T: Real> Region<T> {
+    /// Whether the look direction `look` lies in a [`Region::Look`] field of view (`false` for the planar
+    /// regions, which are not in look coordinates).
+    pub fn contains_look(&self, look: &Look<T>) -> bool {
+        match *self {
+            Region::Look { shape, min_elevation, range, range_rate } => {
+                look.elevation >= min_elevation
+                    && shape.contains(look.azimuth, look.elevation)
+                    && in_window(range, look.range)
+                    && in_window(range_rate, look.range_rate)
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether `model`'s measurement `z` lies in the region: planar regions read `z` directly, a
+    /// [`Region::Look`] reads it through the model's [`look`](crate::MeasurementModel::look).
+    pub fn sees<G: crate::MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+        &self,
+        model: &G,
+        z: &SVector<T, D>,
+    ) -> bool {
+        match self {
+            Region::Look { .. } => model.look(z).is_some_and(|look| self.contains_look(&look)),
+            _ => self.contains(z),
+        }
+    }
+
     /// The measurement-space volume V (an area for planar regions).
     ///
     /// # Examples
@@ -59,6 +260,10 @@ impl<T: Real> Region<T> {
             Region::Rectangle { min, max } => (max[0] - min[0]) * (max[1] - min[1]),
             // Area of a sector of angle 2θ: θ R².
             Region::Sector { half_angle, max_range, .. } => half_angle * max_range * max_range,
+            // Look coordinates: ∫∫ dA dE over the angles, times the range and range-rate extents.
+            Region::Look { shape, min_elevation, range, range_rate } => {
+                shape.area(min_elevation, 1, |_, _| T::one()) * window_extent(range) * window_extent(range_rate)
+            }
         }
     }
 
@@ -86,6 +291,8 @@ impl<T: Real> Region<T> {
     pub fn contains<const D: usize>(&self, z: &SVector<T, D>) -> bool {
         match *self {
             Region::Everywhere { .. } => true,
+            // Look coordinates need the measurement model: see `sees`.
+            Region::Look { .. } => false,
             Region::Rectangle { min, max } => {
                 D >= 2 && z[0] >= min[0] && z[0] <= max[0] && z[1] >= min[1] && z[1] <= max[1]
             }
@@ -122,6 +329,47 @@ impl<T: Real> Region<T> {
                 }
                 if !(min.iter().chain(max.iter()).all(|&v| finite(v)) && max[0] > min[0] && max[1] > min[1]) {
                     return Err("field of view: rectangle corners must be finite with max > min");
+                }
+            }
+            Region::Look { shape, min_elevation, range, range_rate } => {
+                let half_pi = T::frac_pi_2();
+                let angle = |v: T| finite(v) && v >= -half_pi && v <= half_pi;
+                if !angle(min_elevation) {
+                    return Err("field of view: elevation mask must be in [-pi/2, pi/2]");
+                }
+                match shape {
+                    LookShape::Cone { azimuth, elevation, half_angle } => {
+                        if !(finite(azimuth) && angle(elevation)) {
+                            return Err("field of view: cone boresight must be finite with elevation in [-pi/2, pi/2]");
+                        }
+                        if !(finite(half_angle) && half_angle > T::zero() && half_angle <= T::pi()) {
+                            return Err("field of view: cone half angle must be in (0, pi]");
+                        }
+                    }
+                    LookShape::Box { azimuth, half_width, elevation: [low, high] } => {
+                        if !finite(azimuth) {
+                            return Err("field of view: box azimuth must be finite");
+                        }
+                        if !(finite(half_width) && half_width > T::zero() && half_width <= T::pi()) {
+                            return Err("field of view: box azimuth half width must be in (0, pi]");
+                        }
+                        if !(angle(low) && angle(high) && high > low) {
+                            return Err("field of view: box elevations must be in [-pi/2, pi/2] with max > min");
+                        }
+                    }
+                }
+                for window in [range, range_rate].into_iter().flatten() {
+                    if !(finite(window[0]) && finite(window[1]) && window[1] > window[0]) {
+                        return Err("field of view: range and range-rate windows must be finite with max > min");
+                    }
+                }
+                if let Some([low, _]) = range
+                    && low < T::zero()
+                {
+                    return Err("field of view: the range window must start at >= 0");
+                }
+                if shape.elevation_span(min_elevation).is_none() {
+                    return Err("field of view: nothing of the look shape is above the elevation mask");
                 }
             }
             Region::Sector { origin, look_direction, half_angle, max_range } => {
@@ -197,7 +445,12 @@ pub struct Sensor<T> {
 }
 
 impl<T: Real> Sensor<T> {
-    pub(crate) fn validate(&self, measurement_dimension: usize) -> Result<(), &'static str> {
+    /// Checks the sensor for measurements of `model` (`D` components): p_D, the clutter rate, the field
+    /// of view and its clutter volume in the model's measurement coordinates.
+    pub(crate) fn validate<G: crate::MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+        &self,
+        model: &G,
+    ) -> Result<(), &'static str> {
         let pd = self.detection_probability;
         if !(pd.is_finite_value() && pd > T::zero() && pd <= T::one()) {
             return Err("sensor: detection probability must be in (0, 1]");
@@ -205,11 +458,24 @@ impl<T: Real> Sensor<T> {
         if !(self.clutter_rate.is_finite_value() && self.clutter_rate > T::zero()) {
             return Err("sensor: clutter rate must be finite and > 0");
         }
-        self.field_of_view.validate(measurement_dimension)?;
-        // The region's volume and the clutter intensity must be representable: a region whose area
+        self.field_of_view.validate(D)?;
+        if let Region::Look { range, range_rate, .. } = self.field_of_view {
+            let Some(axes) = model.look_axes() else {
+                return Err("field of view: a look-angle field of view needs a measurement model with a sensor frame");
+            };
+            if axes.range != range.is_some() {
+                return Err("field of view: a range window is required exactly when the sensor measures range");
+            }
+            if axes.range_rate != range_rate.is_some() {
+                return Err(
+                    "field of view: a range-rate window is required exactly when the sensor measures range-rate",
+                );
+            }
+        }
+        // The region's volume and the clutter intensity must be representable: a region whose volume
         // overflows or underflows the scalar type would make λ_C infinite or zero.
-        let volume = self.field_of_view.volume();
-        let intensity = self.clutter_intensity();
+        let volume = model.clutter_volume(&self.field_of_view);
+        let intensity = self.clutter_rate / volume;
         if !(volume.is_finite_value() && volume > T::zero()) {
             return Err("field of view: its volume is not a finite positive number in this scalar type");
         }
@@ -221,7 +487,8 @@ impl<T: Real> Sensor<T> {
         Ok(())
     }
 
-    /// Clutter intensity λ_C = Λ_C / V per unit measurement volume.
+    /// Clutter intensity λ_C = Λ_C / V per unit measurement volume, with V the region's own
+    /// [`Region::volume`] (planar regions, radar look coordinates).
     ///
     /// # Examples
     /// ```

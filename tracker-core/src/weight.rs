@@ -15,6 +15,7 @@
 
 use crate::config::{BirthDetection, Config};
 use crate::ekf::Innovation;
+use crate::model::MeasurementModel;
 use crate::real::{Real, ln};
 use crate::sensor::Sensor;
 use nalgebra::SVector;
@@ -75,18 +76,6 @@ pub struct WeightModel<T> {
 }
 
 impl<T: Real> WeightModel<T> {
-    /// A placeholder until a configuration is checked (no births, no deaths, neutral terms).
-    pub(crate) const EMPTY: Self = Self {
-        log_detect: T::ZERO,
-        log_miss: T::ZERO,
-        log_clutter: T::ZERO,
-        gate: None,
-        birth_probability: T::ZERO,
-        birth_cells: 0,
-        birth_detection: BirthDetection::AllDetected,
-        death_probability: T::ZERO,
-    };
-
     /// The weight model of a configuration.
     ///
     /// # Examples
@@ -126,6 +115,23 @@ impl<T: Real> WeightModel<T> {
             config.birth.detection,
             config.death_probability,
         )
+    }
+
+    /// The weight model of a scan whose sensor is `model` placed at the scan, with `detection` its p_D,
+    /// clutter and field of view: λ_C is the clutter rate over the field of view's volume in the model's
+    /// measurement coordinates ([`MeasurementModel::clutter_volume`]).
+    pub fn placed<M, G: MeasurementModel<T, S, D>, const S: usize, const D: usize, const B: usize>(
+        config: &Config<T, M, G, S, B>,
+        model: &G,
+        detection: &Sensor<T>,
+    ) -> Self {
+        let volume = model.clutter_volume(&detection.field_of_view);
+        let mut weights = Self::from_config(config);
+        let pd = detection.detection_probability;
+        weights.log_detect = ln(pd);
+        weights.log_miss = ln(T::one() - pd);
+        weights.log_clutter = ln(detection.clutter_rate / volume);
+        weights
     }
 
     /// A weight model from its parts.
@@ -186,7 +192,13 @@ impl<T: Real> WeightModel<T> {
     /// # Ok::<(), tracker_core::NumericalError>(())
     /// ```
     pub fn entry<const D: usize>(&self, innovation: &Innovation<T, D>, z: &SVector<T, D>) -> T {
-        let (distance_squared, log_likelihood) = innovation.score(z);
+        self.entry_of_residual(innovation, &(z - innovation.predicted))
+    }
+
+    /// [`WeightModel::entry`] from the residual ν = z − ẑ (as the measurement model forms it, angles
+    /// wrapped).
+    pub fn entry_of_residual<const D: usize>(&self, innovation: &Innovation<T, D>, residual: &SVector<T, D>) -> T {
+        let (distance_squared, log_likelihood) = innovation.score_residual(residual);
         if self.gate.is_some_and(|gate| distance_squared > gate) {
             return T::NEG_INFINITY;
         }

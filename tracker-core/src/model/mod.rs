@@ -15,11 +15,14 @@
 //! - [`PositionMeasurement`]: the position (x, y) of a planar state with Gaussian noise.
 //! - [`RadarRangeAzEl`], [`RadarRangeRate`], [`OpticalRaDec`]: range, azimuth, elevation (and range-rate)
 //!   from a ground site, topocentric right ascension and declination, of a 3-D inertial state; with the
-//!   site geometry of `frames.rs` ([`GroundSite`], [`EarthRotation`]). Not yet used by the tracker
-//!   (issue 13): their angle residuals need [`wrap_angle`].
+//!   site geometry of `frames.rs` ([`GroundSite`], [`EarthRotation`]); their residuals wrap angles
+//!   ([`wrap_angle`]).
+//! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each with
+//!   its own noise, field of view, p_D and clutter, placed at every scan ([`ScanGeometry`]).
 
 mod constant_velocity;
 mod frames;
+mod network;
 mod optical;
 mod position;
 mod radar;
@@ -28,6 +31,7 @@ mod two_body_j2;
 
 pub use constant_velocity::ConstantVelocity;
 pub use frames::{EARTH_ROTATION_RATE, EarthRotation, GroundSite, WGS84_FLATTENING, gmst_iau82, wrap_angle};
+pub use network::{Placeable, PlacementError, Platform, ScanGeometry, SensorNetwork, SiteSensor};
 pub use optical::OpticalRaDec;
 pub use position::PositionMeasurement;
 pub use radar::{RadarRangeAzEl, RadarRangeRate};
@@ -35,6 +39,7 @@ pub use two_body::TwoBody;
 pub use two_body_j2::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, ProcessNoise, TwoBodyJ2};
 
 use crate::real::Real;
+use crate::sensor::{Look, LookAxes};
 use nalgebra::{SMatrix, SVector};
 
 /// Why a model could not produce a prediction.
@@ -129,6 +134,13 @@ pub trait MotionModel<T: Real, const S: usize> {
     /// # Errors
     /// A static description of the first invalid parameter.
     fn validate(&self) -> Result<(), &'static str>;
+
+    /// The longest time step (s) one prediction can bridge, `None` when any finite step can. A scan
+    /// further than this after the last one is refused before anything changes
+    /// ([`StepError::TimeStepTooLong`](crate::StepError::TimeStepTooLong)).
+    fn max_time_step(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// How the sensor measures one object.
@@ -169,6 +181,61 @@ pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
 
     /// The measurement noise covariance R (symmetric positive definite).
     fn noise_covariance(&self) -> SMatrix<T, D, D>;
+
+    /// The residual ν = z − ẑ that every innovation, gate and score uses; models with angles wrap them
+    /// into (−π, π] ([`wrap_angle`]). The default is the plain difference.
+    fn residual(&self, z: &SVector<T, D>, predicted: &SVector<T, D>) -> SVector<T, D> {
+        z - predicted
+    }
+
+    /// Which look coordinates a measurement of this model gives: `None` for models without a sensor
+    /// frame (planar positions), which cannot use a [`Region::Look`](crate::Region::Look) field of view.
+    fn look_axes(&self) -> Option<LookAxes> {
+        None
+    }
+
+    /// The look direction (azimuth, elevation, and range and range-rate when measured) of measurement `z`
+    /// in the sensor's frame at the current placement; `None` for models without a sensor frame.
+    fn look(&self, _z: &SVector<T, D>) -> Option<Look<T>> {
+        None
+    }
+
+    /// The clutter volume of `region` in this model's measurement coordinates. The default is the
+    /// region's own volume ([`Region::volume`](crate::Region::volume)), right when the measurement
+    /// coordinates are the look coordinates (planar positions, radar).
+    fn clutter_volume(&self, region: &crate::sensor::Region<T>) -> T {
+        region.volume()
+    }
+
+    /// How many sensors this model describes; every scan names one of `0..sensor_count()`.
+    fn sensor_count(&self) -> usize {
+        1
+    }
+
+    /// This model placed for one scan: the sensor the scan names, seen from where it was at the scan's
+    /// time. The default describes one sensor without an observer and returns a copy of itself.
+    ///
+    /// # Errors
+    /// [`PlacementError`] for an unknown sensor or an observer that is missing, unexpected, non-finite or
+    /// inside the Earth.
+    fn place(&self, scan: &ScanGeometry<T>) -> Result<Self, PlacementError>
+    where
+        Self: Sized + Clone,
+    {
+        if scan.sensor != 0 {
+            return Err(PlacementError::UnknownSensor { sensor: scan.sensor, sensors: 1 });
+        }
+        if scan.observer.is_some() {
+            return Err(PlacementError::UnexpectedObserver);
+        }
+        Ok(self.clone())
+    }
+
+    /// The detection model of the sensor this model is placed at, when the sensor has its own; `None`
+    /// uses the configuration's [`Sensor`](crate::Sensor).
+    fn detection(&self) -> Option<crate::sensor::Sensor<T>> {
+        None
+    }
 }
 
 /// The covariance of white acceleration noise of spectral density `q` over `dt` for a planar

@@ -9,9 +9,8 @@
 //! **Celestial pole.** At d_x = d_y = 0 exactly α is undefined: it is returned as 0 with a zero Jacobian
 //! row, and δ's row (a cone point) is zero in its equatorial part. Off the pole α's row grows as 1 / (ρ cos δ).
 //!
-//! **Residual.** α of z − ẑ must be wrapped into (−π, π] ([`OpticalRaDec::residual`]); the EKF will use
-//! it once `MeasurementModel` gains a `residual` method (issue 13). Until then this model is not wired
-//! into the tracker.
+//! **Residual.** α of z − ẑ is wrapped into (−π, π] ([`OpticalRaDec::residual`], the model's
+//! `MeasurementModel::residual`); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (0.12 s at GEO range, ≈ 0.37 km of motion, ≈ 2″ seen from the ground),
 //! annual and diurnal aberration (≲ 20.5″ and 0.3″: the catalogue reduction is the caller's), atmospheric
@@ -96,6 +95,10 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
     fn noise_covariance(&self) -> SMatrix<T, 2, 2> {
         let [a, b] = self.sigma;
         SMatrix::from_diagonal(&SVector::from([a * a, b * b]))
+    }
+
+    fn residual(&self, z: &SVector<T, 2>, predicted: &SVector<T, 2>) -> SVector<T, 2> {
+        OpticalRaDec::residual(self, z, predicted)
     }
 }
 

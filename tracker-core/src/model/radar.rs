@@ -12,9 +12,8 @@
 //! horizontal part. Off the zenith the azimuth row grows as 1 / (ρ cos E): a pass close to the zenith
 //! (the radar's keyhole) needs its azimuth σ inflated or the azimuth dropped, which is the caller's choice.
 //!
-//! **Residual.** The azimuth of z − ẑ must be wrapped into (−π, π] ([`RadarRangeAzEl::residual`]); the
-//! EKF will use it once `MeasurementModel` gains a `residual` method (issue 13). Until then these models
-//! are not wired into the tracker.
+//! **Residual.** The azimuth of z − ẑ is wrapped into (−π, π] ([`RadarRangeAzEl::residual`], the
+//! model's [`MeasurementModel::residual`]); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (ρ / c: 3.3 ms at 1000 km, ≈ 25 m along track in LEO), atmospheric
 //! refraction and the Earth-model terms of [`GroundSite`] (docs/maths.md §6.8).
@@ -22,6 +21,7 @@
 use super::MeasurementModel;
 use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
 use crate::real::Real;
+use crate::sensor::{Look, LookAxes};
 use nalgebra::{SMatrix, SVector};
 
 /// Line of sight d = r − r_s and relative velocity w = v − v_s (inertial), the local components of d in
@@ -126,6 +126,18 @@ impl<T: Real> MeasurementModel<T, 6, 3> for RadarRangeAzEl<T> {
         let [a, b, c] = self.sigma;
         SMatrix::from_diagonal(&SVector::from([a * a, b * b, c * c]))
     }
+
+    fn residual(&self, z: &SVector<T, 3>, predicted: &SVector<T, 3>) -> SVector<T, 3> {
+        RadarRangeAzEl::residual(self, z, predicted)
+    }
+
+    fn look_axes(&self) -> Option<LookAxes> {
+        Some(LookAxes { range: true, range_rate: false })
+    }
+
+    fn look(&self, z: &SVector<T, 3>) -> Option<Look<T>> {
+        Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None })
+    }
 }
 
 /// Range (km), azimuth, elevation (rad) and range-rate (km/s, positive receding) of a 3-D inertial state
@@ -190,6 +202,18 @@ impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
     fn noise_covariance(&self) -> SMatrix<T, 4, 4> {
         let [a, b, c, d] = self.sigma;
         SMatrix::from_diagonal(&SVector::from([a * a, b * b, c * c, d * d]))
+    }
+
+    fn residual(&self, z: &SVector<T, 4>, predicted: &SVector<T, 4>) -> SVector<T, 4> {
+        RadarRangeRate::residual(self, z, predicted)
+    }
+
+    fn look_axes(&self) -> Option<LookAxes> {
+        Some(LookAxes { range: true, range_rate: true })
+    }
+
+    fn look(&self, z: &SVector<T, 4>) -> Option<Look<T>> {
+        Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) })
     }
 }
 

@@ -171,6 +171,11 @@ impl<T: Real> MotionModel<T, 4> for TwoBody<T> {
         }
         Ok(())
     }
+
+    /// `max_step × max_substeps`: the longest gap one prediction bridges.
+    fn max_time_step(&self) -> Option<f64> {
+        Some(self.max_step.as_f64() * f64::from(self.max_substeps))
+    }
 }
 
 #[cfg(test)]

@@ -320,6 +320,11 @@ impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
         }
         Ok(())
     }
+
+    /// `max_step × max_substeps`: the longest gap one prediction bridges.
+    fn max_time_step(&self) -> Option<f64> {
+        Some(self.max_step.as_f64() * f64::from(self.max_substeps))
+    }
 }
 
 #[cfg(test)]

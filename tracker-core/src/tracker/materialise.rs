@@ -79,6 +79,8 @@ pub(super) struct Inputs<
     const B: usize,
 > {
     pub(super) config: &'a Config<T, M, G, S, B>,
+    /// The measurement model placed at this scan.
+    pub(super) model: &'a G,
     pub(super) birth_cells: &'a BirthCells<T, D, B>,
     pub(super) scores: &'a Scores<T, S, D, Z, K, B>,
     pub(super) generation: &'a Generation<T, H, N, Z>,
@@ -244,7 +246,7 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         // Missed: the prediction; else the update with the measurement.
         let state = match inputs.measurements.get(usize::from(row)) {
             None => prior,
-            Some(z) => ekf::update(&inputs.config.measurement, &prior, &innovation, z)
+            Some(z) => ekf::update(inputs.model, &prior, &innovation, z)
                 .map_err(|error| StepError::Numerical { label, error })?,
         };
         // Room was checked before; the error path is unreachable but kept panic-free.

@@ -36,7 +36,7 @@ mod prior;
 mod scan;
 mod score;
 
-pub use scan::check_scan;
+pub use scan::{PlacedScan, check_scan, place_scan};
 
 use crate::config::Config;
 use crate::digest::Fnv1a;
@@ -44,17 +44,16 @@ use crate::ekf::Gaussian;
 use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::index::{At, insertion_sort_by};
-use crate::model::{MeasurementModel, MotionModel};
+use crate::model::{MeasurementModel, MotionModel, ScanGeometry};
 use crate::random::scan_seed;
 use crate::real::{Real, exp};
 use crate::report::StepReport;
 use crate::sampler::SamplerConfig;
 use crate::store::{Track, TrackLabel, TrackStore};
-use crate::weight::WeightModel;
 use generate::Generation;
 use materialise::{Inputs, Materialisation};
 use nalgebra::SVector;
-use score::{BirthCells, Scores};
+use score::Scores;
 
 /// One object of a prior hypothesis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,8 +121,6 @@ pub struct Tracker<
     const B: usize,
 > {
     config: Config<T, M, G, S, B>,
-    weight_model: WeightModel<T>,
-    birth_cells: BirthCells<T, D, B>,
     stores: [TrackStore<T, S, K>; 2],
     hypotheses: [HypothesisSet<T, N, H>; 2],
     /// Which half of `stores` and `hypotheses` is live (`false`: index 0).
@@ -512,8 +509,6 @@ where
         };
         Self {
             config,
-            weight_model: WeightModel::EMPTY,
-            birth_cells: BirthCells::EMPTY,
             stores: [TrackStore::new(), TrackStore::new()],
             hypotheses: [HypothesisSet::new(), HypothesisSet::new()],
             active: false,
@@ -569,7 +564,7 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn reset(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<(), ConfigError> {
-        let birth_cells = prior::check_config::<T, M, G, S, D, N, B>(&self.config)?;
+        prior::check_config::<T, M, G, S, D, N, B>(&self.config)?;
         if !time.is_finite() {
             return Err(ConfigError::PriorTime);
         }
@@ -577,8 +572,6 @@ where
         let inactive = usize::from(!self.active);
         let next_label = prior::load_prior(prior, self.stores.at_mut(inactive), self.hypotheses.at_mut(inactive))?;
         self.active = !self.active;
-        self.weight_model = WeightModel::from_config(&self.config);
-        self.birth_cells = birth_cells;
         self.time = time;
         self.scans = 0;
         self.next_label = next_label;
@@ -684,7 +677,10 @@ where
     /// assert_eq!(tracker.digest(), before);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError> {
+    pub fn step(&mut self, time: f64, measurements: &[SVector<T, D>]) -> Result<StepReport<T>, StepError>
+    where
+        G: Clone,
+    {
         self.step_with_budget(time, measurements, u64::MAX)
     }
 
@@ -729,22 +725,61 @@ where
         time: f64,
         measurements: &[SVector<T, D>],
         max_moves: u64,
-    ) -> Result<StepReport<T>, StepError> {
+    ) -> Result<StepReport<T>, StepError>
+    where
+        G: Clone,
+    {
+        self.step_scan_with_budget(&ScanGeometry::single(time), measurements, max_moves)
+    }
+
+    /// As [`Tracker::step`] for a scan of the sensor `geometry` names, at `geometry.time`, seen from its
+    /// observer: the measurement model is placed at the scan ([`MeasurementModel::place`]) before anything
+    /// else, and every innovation, field-of-view test and weight of the scan uses it.
+    ///
+    /// # Errors
+    /// As [`Tracker::step`], and [`StepError::Placement`] for an unknown sensor or a missing, unexpected,
+    /// non-finite or underground observer.
+    pub fn step_scan(
+        &mut self,
+        geometry: &ScanGeometry<T>,
+        measurements: &[SVector<T, D>],
+    ) -> Result<StepReport<T>, StepError>
+    where
+        G: Clone,
+    {
+        self.step_scan_with_budget(geometry, measurements, u64::MAX)
+    }
+
+    /// [`Tracker::step_scan`] with at most `max_moves` Metropolis moves ([`Tracker::step_with_budget`]).
+    ///
+    /// # Errors
+    /// As [`Tracker::step_scan`].
+    pub fn step_scan_with_budget(
+        &mut self,
+        geometry: &ScanGeometry<T>,
+        measurements: &[SVector<T, D>],
+        max_moves: u64,
+    ) -> Result<StepReport<T>, StepError>
+    where
+        G: Clone,
+    {
         if !self.initialised {
             return Err(StepError::NotInitialised);
         }
-        check_scan(&self.config.sensor.field_of_view, self.time, time, measurements, Z)?;
+        let time = geometry.time;
+        let placed = place_scan(&self.config, geometry, self.time, measurements, Z)?;
+        let birth_cells = score::birth_cells(&self.config, &placed)?;
         let live = self.live();
         let dt = T::of_f64(time - self.time);
         let (store, next_store) = split_pair(&mut self.stores, self.active);
         let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
 
         let numerical_drops =
-            self.scores.run(&self.config, &self.weight_model, &self.birth_cells, store.as_slice(), dt, measurements)?;
+            self.scores.run(&self.config, &placed, &birth_cells, store.as_slice(), dt, measurements)?;
         let generated = self.generation.run(
             &self.config,
-            &self.weight_model,
-            &self.birth_cells,
+            &placed.weights,
+            &birth_cells,
             &self.scores,
             parents.as_slice(),
             measurements.len(),
@@ -753,7 +788,8 @@ where
         )?;
         let inputs = Inputs {
             config: &self.config,
-            birth_cells: &self.birth_cells,
+            model: &placed.model,
+            birth_cells: &birth_cells,
             scores: &self.scores,
             generation: &self.generation,
             store,

@@ -2,9 +2,8 @@
 
 use super::PriorHypothesis;
 use super::finish_hypotheses;
-use super::score::BirthCells;
 use crate::config::{ChildGeneration, Config};
-use crate::ekf::{self, Innovation};
+use crate::ekf;
 use crate::error::ConfigError;
 use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::index::insertion_sort_by;
@@ -12,21 +11,24 @@ use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{Real, ln};
 use crate::store::{Track, TrackStore};
 
-/// Checks every parameter of `config` for a tracker of at most `N` objects per hypothesis, and returns how
-/// the sensor sees its birth cells.
+/// Checks every parameter of `config` for a tracker of at most `N` objects per hypothesis, the birth cells
+/// as the measurement model sees them before its first placement included.
 ///
 /// # Errors
 /// [`ConfigError`] naming the first invalid parameter.
 pub(super) fn check_config<T, M, G, const S: usize, const D: usize, const N: usize, const B: usize>(
     config: &Config<T, M, G, S, B>,
-) -> Result<BirthCells<T, D, B>, ConfigError>
+) -> Result<(), ConfigError>
 where
     T: Real,
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D>,
 {
     config.motion.validate().map_err(ConfigError::Motion)?;
-    config.sensor.validate(D).map_err(ConfigError::Sensor)?;
+    // A model whose sensors carry their own detection models checked them when it was built.
+    if config.measurement.detection().is_none() {
+        config.sensor.validate(&config.measurement).map_err(ConfigError::Sensor)?;
+    }
     if !ekf::is_valid_covariance(&config.measurement.noise_covariance()) {
         return Err(ConfigError::MeasurementNoise);
     }
@@ -46,16 +48,13 @@ where
         }
         ChildGeneration::Sampled(sampler) => sampler.check()?,
     }
-    let mut cells = BirthCells { innovations: [Innovation::default(); B], in_field_of_view: [false; B] };
-    let views = cells.innovations.iter_mut().zip(cells.in_field_of_view.iter_mut());
-    for (cell, (birth, (innovation, in_view))) in config.birth.cells.iter().zip(views).enumerate() {
+    for (cell, birth) in config.birth.cells.iter().enumerate() {
         if !(birth.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&birth.covariance)) {
             return Err(ConfigError::BirthCell { cell });
         }
-        *innovation = ekf::innovation(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
-        *in_view = config.sensor.field_of_view.contains(&innovation.predicted);
+        ekf::innovation::<T, G, S, D>(&config.measurement, birth).map_err(|_| ConfigError::BirthInnovation { cell })?;
     }
-    Ok(cells)
+    Ok(())
 }
 
 /// α and β in [0, 1], and P(no event) = 1 − M_b α − M_d β > 0 for every parent: M_d ≤ N

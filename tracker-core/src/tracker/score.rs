@@ -2,6 +2,7 @@
 //! once. The entries δ of docs/maths.md §4.2 computed here serve every parent hypothesis that holds the
 //! track; birth cells are scored the same way.
 
+use super::scan::PlacedScan;
 use crate::config::{Config, NumericalFailure};
 use crate::ekf::{self, Gaussian, Innovation, NumericalError};
 use crate::error::StepError;
@@ -10,7 +11,6 @@ use crate::model::{MeasurementModel, MotionModel};
 use crate::real::Real;
 use crate::report::NumericalDrops;
 use crate::store::Track;
-use crate::weight::WeightModel;
 use nalgebra::SVector;
 
 /// A track after prediction to the current scan.
@@ -74,7 +74,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
     pub(super) fn run<M, G>(
         &mut self,
         config: &Config<T, M, G, S, B>,
-        weight_model: &WeightModel<T>,
+        placed: &PlacedScan<T, G>,
         birth_cells: &BirthCells<T, D, B>,
         tracks: &[Track<T, S>],
         dt: T,
@@ -87,7 +87,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
         let mut drops = NumericalDrops::default();
         let slots = self.predicted.iter_mut().zip(self.entries.iter_mut());
         for (track, (predicted, entries)) in tracks.iter().zip(slots) {
-            *predicted = match predict_track(config, track, dt) {
+            *predicted = match predict_track(&config.motion, placed, track, dt) {
                 Ok(prediction) => prediction,
                 Err(error) if config.numerical_failure == NumericalFailure::Error => {
                     return Err(StepError::Numerical { label: track.label, error });
@@ -103,12 +103,12 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
                     }
                 }
             };
-            score_row(entries, weight_model, &predicted.innovation, predicted.in_field_of_view, measurements);
+            score_row(entries, placed, &predicted.innovation, predicted.in_field_of_view, measurements);
         }
         let cells =
             self.birth_entries.iter_mut().zip(birth_cells.innovations.iter().zip(&birth_cells.in_field_of_view));
         for (entries, (innovation, &in_field_of_view)) in cells.take(config.birth.cells.len()) {
-            score_row(entries, weight_model, innovation, in_field_of_view, measurements);
+            score_row(entries, placed, innovation, in_field_of_view, measurements);
         }
         Ok(drops)
     }
@@ -135,8 +135,9 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
 /// Predicts `track` by `dt`: its state, innovation and whether it is in view; for a track in view, also
 /// checks that an update is possible (its gain and posterior covariance), so that a failure drops or fails
 /// the track before any child holds it.
-fn predict_track<T: Real, M, G, const S: usize, const D: usize, const B: usize>(
-    config: &Config<T, M, G, S, B>,
+fn predict_track<T: Real, M, G, const S: usize, const D: usize>(
+    motion: &M,
+    placed: &PlacedScan<T, G>,
     track: &Track<T, S>,
     dt: T,
 ) -> Result<Predicted<T, S, D>, NumericalError>
@@ -144,25 +145,51 @@ where
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D>,
 {
-    let state = ekf::predict(&config.motion, &track.state, dt)?;
-    let innovation = ekf::innovation(&config.measurement, &state)?;
-    let in_field_of_view = config.sensor.field_of_view.contains(&innovation.predicted);
+    let state = ekf::predict(motion, &track.state, dt)?;
+    let innovation = ekf::innovation(&placed.model, &state)?;
+    let in_field_of_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
     if in_field_of_view {
-        ekf::correction(&config.measurement, &state, &innovation)?;
+        ekf::correction(&placed.model, &state, &innovation)?;
     }
     Ok(Predicted { state, innovation, in_field_of_view, dropped: false })
 }
 
-/// δ of one track or birth cell against every measurement, `-inf` everywhere when it is out of view.
-fn score_row<T: Real, const D: usize>(
+/// The birth cells as this scan's sensor sees them: each cell's innovation and whether its predicted
+/// measurement lies in the field of view.
+///
+/// # Errors
+/// [`StepError::BirthCell`] when a cell's innovation cannot be formed.
+pub(super) fn birth_cells<T: Real, M, G, const S: usize, const D: usize, const B: usize>(
+    config: &Config<T, M, G, S, B>,
+    placed: &PlacedScan<T, G>,
+) -> Result<BirthCells<T, D, B>, StepError>
+where
+    G: MeasurementModel<T, S, D>,
+{
+    let mut cells = BirthCells::EMPTY;
+    let views = cells.innovations.iter_mut().zip(cells.in_field_of_view.iter_mut());
+    for (cell, (birth, (innovation, in_view))) in config.birth.cells.iter().zip(views).enumerate() {
+        *innovation = ekf::innovation(&placed.model, birth).map_err(|_| StepError::BirthCell { cell })?;
+        *in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+    }
+    Ok(cells)
+}
+
+/// δ of one track or birth cell against every measurement, `-inf` everywhere when it is out of view; the
+/// residuals formed by the scan's measurement model (angles wrapped).
+fn score_row<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
     entries: &mut [T],
-    weight_model: &WeightModel<T>,
+    placed: &PlacedScan<T, G>,
     innovation: &Innovation<T, D>,
     in_field_of_view: bool,
     measurements: &[SVector<T, D>],
 ) {
     for (entry, z) in entries.iter_mut().zip(measurements) {
-        *entry = if in_field_of_view { weight_model.entry(innovation, z) } else { T::NEG_INFINITY };
+        *entry = if in_field_of_view {
+            placed.weights.entry_of_residual(innovation, &placed.model.residual(z, &innovation.predicted))
+        } else {
+            T::NEG_INFINITY
+        };
     }
 }
 
@@ -197,6 +224,14 @@ mod tests {
         }
     }
 
+    fn placed(config: &Cv) -> PlacedScan<f64, PositionMeasurement<f64>> {
+        PlacedScan {
+            model: config.measurement,
+            detection: config.sensor,
+            weights: crate::weight::WeightModel::from_config(config),
+        }
+    }
+
     fn track(label: u32, x: f64, variance: f64) -> Track<f64, 4> {
         let state = Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() * variance };
         Track { label: TrackLabel(label), state, existence: 1.0 }
@@ -205,7 +240,7 @@ mod tests {
     #[test]
     fn entries_are_scored_in_view_and_impossible_out_of_view_or_outside_the_gate() {
         let config = config(NumericalFailure::Error);
-        let model = WeightModel::from_config(&config);
+        let model = placed(&config);
         let mut scores = Scores::<f64, 4, 2, 2, 4, 1>::new();
         let tracks = [track(0, 0.0, 1.0), track(1, 50.0, 1.0)];
         let zs = [SVector::from([1.0, 0.0]), SVector::from([-9.0, 9.0])];
@@ -223,11 +258,11 @@ mod tests {
         let zs = [SVector::from([1.0, 0.0])];
         let strict = config(NumericalFailure::Error);
         let mut scores = Scores::<f64, 4, 2, 1, 4, 1>::new();
-        let result = scores.run(&strict, &WeightModel::from_config(&strict), &BirthCells::EMPTY, &tracks, 1.0, &zs);
+        let result = scores.run(&strict, &placed(&strict), &BirthCells::EMPTY, &tracks, 1.0, &zs);
         assert!(matches!(result, Err(StepError::Numerical { label: TrackLabel(7), .. })), "{result:?}");
 
         let lenient = config(NumericalFailure::DropTrack);
-        let model = WeightModel::from_config(&lenient);
+        let model = placed(&lenient);
         let drops = scores.run(&lenient, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
         assert_eq!(drops.count, 1);
         assert_eq!(drops.first.map(|(label, _)| label), Some(TrackLabel(7)));
