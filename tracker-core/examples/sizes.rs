@@ -1,7 +1,7 @@
 //! Prints `core::mem::size_of` of the default configurations' trackers.
 //!
 //! `cargo run -p tracker-core --example sizes`
-use tracker_core::{SsaTracker, ssa_caps};
+use tracker_core::{OpticalTracker, RadarTracker, SsaTracker, ssa_caps};
 
 fn main() {
     println!(
@@ -14,4 +14,9 @@ fn main() {
     );
     println!("size_of::<SsaTracker<f64>>() = {} bytes", core::mem::size_of::<SsaTracker<f64>>());
     println!("size_of::<SsaTracker<f32>>() = {} bytes", core::mem::size_of::<SsaTracker<f32>>());
+    println!("3-D trackers: the same caps with K = {} and C = {} sensors", ssa_caps::TRACKS_3D, ssa_caps::SENSORS);
+    println!("size_of::<RadarTracker<f64>>() = {} bytes", core::mem::size_of::<RadarTracker<f64>>());
+    println!("size_of::<RadarTracker<f32>>() = {} bytes", core::mem::size_of::<RadarTracker<f32>>());
+    println!("size_of::<OpticalTracker<f64>>() = {} bytes", core::mem::size_of::<OpticalTracker<f64>>());
+    println!("size_of::<OpticalTracker<f32>>() = {} bytes", core::mem::size_of::<OpticalTracker<f32>>());
 }

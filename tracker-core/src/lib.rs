@@ -67,7 +67,10 @@ pub mod weight;
 pub use config::{BirthDetection, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
 pub use ekf::{Gaussian, NumericalError};
 pub use error::{ConfigError, StepError};
-pub use model::{ConstantVelocity, MeasurementModel, MotionModel, PositionMeasurement, TwoBody, TwoBodyJ2};
+pub use model::{
+    ConstantVelocity, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement, RadarRangeAzEl, ScanGeometry,
+    SensorNetwork, TwoBody, TwoBodyJ2,
+};
 pub use real::Real;
 pub use report::StepReport;
 pub use sensor::{Look, LookShape, Region, Sensor};
@@ -91,6 +94,11 @@ pub mod ssa_caps {
     pub const TRACKS: usize = 256;
     /// B: birth cells.
     pub const BIRTH_CELLS: usize = 8;
+    /// K of the 3-D trackers: a 6-state track is 1.7 times a planar one, and 192 keeps a
+    /// [`RadarTracker`](crate::RadarTracker) under 256 KiB in `f32` (`cargo run -p tracker-core --example sizes`).
+    pub const TRACKS_3D: usize = 192;
+    /// C: sensors of a [`RadarTracker`](crate::RadarTracker) or [`OpticalTracker`](crate::OpticalTracker).
+    pub const SENSORS: usize = 4;
 }
 
 /// The default SSA tracker: planar two-body motion, position measurements, [`ssa_caps`] capacities.
@@ -109,6 +117,47 @@ pub type SsaTracker<T> = Tracker<
 
 /// The configuration type of [`SsaTracker`].
 pub type SsaConfig<T> = Config<T, TwoBody<T>, PositionMeasurement<T>, 4, { ssa_caps::BIRTH_CELLS }>;
+
+/// Up to [`ssa_caps::SENSORS`] radars measuring range, azimuth and elevation.
+pub type RadarNetwork<T> = SensorNetwork<T, RadarRangeAzEl<T>, 3, { ssa_caps::SENSORS }>;
+
+/// Up to [`ssa_caps::SENSORS`] telescopes measuring topocentric right ascension and declination.
+pub type OpticalNetwork<T> = SensorNetwork<T, OpticalRaDec<T>, 2, { ssa_caps::SENSORS }>;
+
+/// The 3-D radar tracker: two-body + J2 motion in an Earth-centred inertial frame, a [`RadarNetwork`],
+/// [`ssa_caps`] capacities.
+pub type RadarTracker<T> = Tracker<
+    T,
+    TwoBodyJ2<T>,
+    RadarNetwork<T>,
+    6,
+    3,
+    { ssa_caps::HYPOTHESES },
+    { ssa_caps::OBJECTS },
+    { ssa_caps::MEASUREMENTS },
+    { ssa_caps::TRACKS_3D },
+    { ssa_caps::BIRTH_CELLS },
+>;
+
+/// The configuration type of [`RadarTracker`].
+pub type RadarConfig<T> = Config<T, TwoBodyJ2<T>, RadarNetwork<T>, 6, { ssa_caps::BIRTH_CELLS }>;
+
+/// The 3-D optical tracker: two-body + J2 motion, an [`OpticalNetwork`], [`ssa_caps`] capacities.
+pub type OpticalTracker<T> = Tracker<
+    T,
+    TwoBodyJ2<T>,
+    OpticalNetwork<T>,
+    6,
+    2,
+    { ssa_caps::HYPOTHESES },
+    { ssa_caps::OBJECTS },
+    { ssa_caps::MEASUREMENTS },
+    { ssa_caps::TRACKS_3D },
+    { ssa_caps::BIRTH_CELLS },
+>;
+
+/// The configuration type of [`OpticalTracker`].
+pub type OpticalConfig<T> = Config<T, TwoBodyJ2<T>, OpticalNetwork<T>, 6, { ssa_caps::BIRTH_CELLS }>;
 
 /// A constant-velocity tracker with position measurements and caller-chosen capacities.
 pub type LinearTracker<T, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
