@@ -1061,7 +1061,8 @@ pub struct SkySeries {
     /// Name used in error messages (sky plots do not list series in the legend).
     pub name: String,
     /// (azimuth, elevation) or (right ascension, declination) in radians, in time order. `None` breaks a truth line:
-    /// put one wherever the samples are not consecutive (a gap in time, another pass).
+    /// put one wherever the samples are not consecutive (a gap in time, another pass). In an estimate series a `None`
+    /// is simply no marker.
     pub points: Vec<Option<(f64, f64)>>,
     /// Index into the 10-colour palette (taken modulo 10). `None`: a truth series takes its position in the slice, an
     /// estimate series is black.
