@@ -1,9 +1,11 @@
-//! Result figures for the tracker simulator: truth-vs-estimate snapshots, hypothesis-weight bar charts and line
-//! charts (linear or log10 axes). Every function writes both `<stem>.png` and `<stem>.svg`.
+//! Result figures for the tracker simulator: truth-vs-estimate snapshots, hypothesis-weight bar charts, line
+//! charts (linear or log10 axes) and per-sensor sky plots (azimuth/elevation or right ascension/declination). Every
+//! function writes both `<stem>.png` and `<stem>.svg`.
 //!
 //! Text is rendered with a vendored DejaVu Sans font (registered with plotters' `ab_glyph` backend), so no system
-//! font libraries are needed. Points that cannot be drawn are skipped: non-finite values, magnitudes above 1e300, and
-//! on log axes values outside [1e-150, 1e150] (including non-positive ones). Empty or degenerate data still yields a
+//! font libraries are needed. In snapshots, bar and line charts, points that cannot be drawn are skipped: non-finite
+//! values, magnitudes above 1e300, and on log axes values outside [1e-150, 1e150] (including non-positive ones). Sky
+//! plots instead refuse a non-finite angle with an error naming the series. Empty or degenerate data still yields a
 //! valid, labelled figure.
 
 use std::fmt::Display;
@@ -415,6 +417,10 @@ enum LegendSymbol {
     OutsideBound,
     Fov,
     CentralBody,
+    /// Sky plots: truth tracks, one colour per object.
+    TruthTracks,
+    /// Sky plots: MAP estimate markers.
+    MapEstimate,
 }
 
 impl LegendSymbol {
@@ -425,6 +431,8 @@ impl LegendSymbol {
             Self::OutsideBound => "Estimate outside bound",
             Self::Fov => "Sensor FOV",
             Self::CentralBody => "Central body",
+            Self::TruthTracks => "Truth (one colour per object)",
+            Self::MapEstimate => "MAP estimate",
         }
     }
 }
@@ -530,6 +538,15 @@ fn draw_legend_symbol<DB: DrawingBackend>(
         LegendSymbol::WithinBound => area.draw(&within_bound_marker(center)),
         LegendSymbol::OutsideBound => area.draw(&(EmptyElement::at(center) + star_marker())),
         LegendSymbol::Fov => area.draw(&PathElement::new(vec![(x, y), (x + width, y)], FOV_COLOR.stroke_width(2))),
+        LegendSymbol::TruthTracks => {
+            let third = width / 3;
+            for (piece, color) in PALETTE.iter().take(3).enumerate() {
+                let from = x + piece as i32 * third;
+                area.draw(&PathElement::new(vec![(from, y), (from + third, y)], color.stroke_width(SKY_TRUTH_WIDTH)))?;
+            }
+            Ok(())
+        }
+        LegendSymbol::MapEstimate => area.draw(&estimate_marker((x + width / 2, y), ESTIMATE_COLOR)),
         LegendSymbol::CentralBody => {
             let swatch = [(x + 4, y - 9), (x + width - 4, y + 9)];
             area.draw(&Rectangle::new(swatch, BODY_FILL.filled()))?;
@@ -610,9 +627,21 @@ fn clip_segment(a: (f64, f64), b: (f64, f64), x: &Range<f64>, y: &Range<f64>) ->
 
 /// The visible pieces of a polyline, each still a polyline (so joins stay smooth).
 fn clip_polyline(points: &[(f64, f64)], x: &Range<f64>, y: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
+    clip_polyline_with(points, |a, b| clip_segment(a, b, x, y))
+}
+
+/// A line segment's two ends.
+type Segment = ((f64, f64), (f64, f64));
+
+/// The pieces of a polyline that `clip` keeps of each segment, rejoined where a kept segment starts exactly where the
+/// previous one ended.
+fn clip_polyline_with(
+    points: &[(f64, f64)],
+    clip: impl Fn((f64, f64), (f64, f64)) -> Option<Segment>,
+) -> Vec<Vec<(f64, f64)>> {
     let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
     for pair in points.windows(2) {
-        let Some((start, end)) = clip_segment(pair[0], pair[1], x, y) else { continue };
+        let Some((start, end)) = clip(pair[0], pair[1]) else { continue };
         match pieces.last_mut() {
             Some(piece) if piece.last() == Some(&start) => piece.push(end),
             _ => pieces.push(vec![start, end]),
@@ -1000,6 +1029,561 @@ impl LineChartContent<'_> {
     }
 }
 
+// ---------------------------------------------------------------------------------------------------------------
+// Sky plots
+// ---------------------------------------------------------------------------------------------------------------
+
+const SKY_TRUTH_WIDTH: u32 = 2;
+const ESTIMATE_COLOR: RGBColor = BLACK;
+const ESTIMATE_CROSS_SIZE: i32 = 4;
+const ISOLATED_TRUTH_RADIUS: i32 = 2;
+const SKY_GRID_COLOR: RGBColor = RGBColor(200, 200, 200);
+const SKY_TITLE_HEIGHT: u32 = 50;
+const SKY_POLAR_SIDE: u32 = 900;
+const SKY_RA_DEC_SIZE: (u32, u32) = (1100, 800);
+const SKY_FOOTNOTE_HEIGHT: u32 = 28;
+/// Outline vertices are joined by this many straight pieces, interpolated in angle (so an azimuth/elevation box
+/// keeps its arcs).
+const OUTLINE_STEPS_PER_EDGE: usize = 24;
+/// Half width of the narrowest right ascension / declination view, degrees (36 arcsec).
+const MIN_SKY_HALF_SPAN_DEG: f64 = 0.01;
+/// Polar sky plot view: the horizon is radius 1; labels sit outside it.
+const POLAR_VIEW_HALF_SIDE: f64 = 1.2;
+
+/// A truth series' colour and its visible polyline pieces, in plot coordinates.
+type TruthLines = (RGBColor, Vec<Vec<(f64, f64)>>);
+/// An estimate series' colour and its marker positions, in plot coordinates.
+type EstimateMarks = (RGBColor, Vec<(f64, f64)>);
+
+/// One object's (truth) or one track's (estimate) path on the sky, for [`sky_plot_az_el`] and [`sky_plot_ra_dec`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SkySeries {
+    /// Name used in error messages (sky plots do not list series in the legend).
+    pub name: String,
+    /// (azimuth, elevation) or (right ascension, declination) in radians, in time order. `None` breaks a truth line:
+    /// put one wherever the samples are not consecutive (a gap in time, another pass). In an estimate series a `None`
+    /// is simply no marker.
+    pub points: Vec<Option<(f64, f64)>>,
+    /// Index into the 10-colour palette (taken modulo 10). `None`: a truth series takes its position in the slice, an
+    /// estimate series is black.
+    pub color: Option<usize>,
+}
+
+/// A polar sky plot of one sensor: azimuth around the circle (North up, East right, azimuth clockwise from North),
+/// elevation as radius (90° at the centre, the horizon at the rim), rings at 0/30/60° elevation.
+///
+/// Truth series are drawn as thin lines (cut where a `None` breaks them and at the horizon: samples below it are not
+/// drawn), estimates as crosses; `field_of_view` is an optional outline of (azimuth, elevation) vertices in radians,
+/// drawn closed, consecutive vertices joined along the shorter way round in azimuth. Estimate points below the
+/// horizon are counted in a footnote instead of drawn. Writes `<stem>.png` and `<stem>.svg` (900 px wide).
+///
+/// Errors: a non-finite angle or an elevation outside [-π/2, π/2] in any series or the outline (the message names
+/// the series and point), or a file that cannot be written.
+pub fn sky_plot_az_el(
+    stem: &Path,
+    title: &str,
+    truth: &[SkySeries],
+    estimates: &[SkySeries],
+    field_of_view: Option<&[(f64, f64)]>,
+) -> Result<(), PlotError> {
+    check_sky_input(stem, SkyAxes::AzEl, truth, estimates, field_of_view)?;
+    ensure_font_registered()?;
+    write_png_and_svg(stem, &PolarSkyFigure::new(title, truth, estimates, field_of_view)?)
+}
+
+/// A right ascension / declination plot of one sensor, in degrees, zoomed to the truth and estimates with a small
+/// margin (at least ±0.01°, so a cluster within 0.1° fills the view).
+///
+/// Right ascension increases to the right and is unwrapped about the data's circular mean, so data straddling
+/// 0°/360° (or ±180°) stay together; tick labels are brought back into [0, 360). Truth lines are cut at `None` and
+/// where consecutive points lie more than 180° apart after unwrapping. `field_of_view` (vertices in radians, drawn
+/// closed) is clipped to the view, and framed only when there are no points. Writes `<stem>.png` and `<stem>.svg`
+/// (1100 px wide).
+///
+/// Errors: as [`sky_plot_az_el`], with declination in place of elevation.
+pub fn sky_plot_ra_dec(
+    stem: &Path,
+    title: &str,
+    truth: &[SkySeries],
+    estimates: &[SkySeries],
+    field_of_view: Option<&[(f64, f64)]>,
+) -> Result<(), PlotError> {
+    check_sky_input(stem, SkyAxes::RaDec, truth, estimates, field_of_view)?;
+    ensure_font_registered()?;
+    write_png_and_svg(stem, &RaDecFigure::new(title, truth, estimates, field_of_view)?)
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SkyAxes {
+    AzEl,
+    RaDec,
+}
+
+impl SkyAxes {
+    fn names(self) -> (&'static str, &'static str) {
+        match self {
+            Self::AzEl => ("azimuth", "elevation"),
+            Self::RaDec => ("right ascension", "declination"),
+        }
+    }
+}
+
+/// Every angle finite and every elevation / declination within [-π/2, π/2]; the error names the first bad point.
+fn check_sky_input(
+    stem: &Path,
+    axes: SkyAxes,
+    truth: &[SkySeries],
+    estimates: &[SkySeries],
+    field_of_view: Option<&[(f64, f64)]>,
+) -> Result<(), PlotError> {
+    let (first, second) = axes.names();
+    let check = |what: &dyn Fn() -> String, index: usize, (a, b): (f64, f64)| {
+        let problem = if !a.is_finite() || !b.is_finite() {
+            format!("{first}/{second} ({a}, {b}) rad is not finite")
+        } else if b.abs() > std::f64::consts::FRAC_PI_2 {
+            format!("{second} {b} rad is outside [-pi/2, pi/2]")
+        } else {
+            return Ok(());
+        };
+        Err(PlotError(format!("plots: sky plot {}: {} point {index}: {problem}", stem.display(), what())))
+    };
+    for (kind, list) in [("truth", truth), ("estimate", estimates)] {
+        for (series_index, series) in list.iter().enumerate() {
+            let what = || {
+                if series.name.is_empty() {
+                    format!("{kind} series #{series_index}")
+                } else {
+                    format!("{kind} series \"{}\"", series.name)
+                }
+            };
+            for (index, point) in series.points.iter().enumerate() {
+                if let Some(point) = point {
+                    check(&what, index, *point)?;
+                }
+            }
+        }
+    }
+    for (index, &point) in field_of_view.unwrap_or(&[]).iter().enumerate() {
+        check(&|| "field of view outline".to_string(), index, point)?;
+    }
+    Ok(())
+}
+
+fn truth_color(series: &SkySeries, index: usize) -> RGBColor {
+    PALETTE[series.color.unwrap_or(index) % PALETTE.len()]
+}
+
+fn estimate_color(series: &SkySeries) -> RGBColor {
+    series.color.map_or(ESTIMATE_COLOR, |index| PALETTE[index % PALETTE.len()])
+}
+
+fn estimate_marker<C>(at: C, color: RGBColor) -> Cross<C, i32> {
+    Cross::new(at, ESTIMATE_CROSS_SIZE, color.stroke_width(2))
+}
+
+/// `angle` brought into [-π, π).
+fn wrap_angle(angle: f64) -> f64 {
+    (angle + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+}
+
+/// The closed outline with each edge split into [`OUTLINE_STEPS_PER_EDGE`] pieces, the first angle interpolated
+/// along the shorter way round; the first angle is left unwrapped (callers project or unwrap it).
+fn densified_outline(outline: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    if outline.len() < 2 {
+        return outline.to_vec();
+    }
+    let mut points = Vec::with_capacity(outline.len() * OUTLINE_STEPS_PER_EDGE + 1);
+    for (index, &(a0, b0)) in outline.iter().enumerate() {
+        let (a1, b1) = outline[(index + 1) % outline.len()];
+        let da = wrap_angle(a1 - a0);
+        for step in 0..OUTLINE_STEPS_PER_EDGE {
+            let t = step as f64 / OUTLINE_STEPS_PER_EDGE as f64;
+            points.push((a0 + t * da, b0 + t * (b1 - b0)));
+        }
+    }
+    points.push(points[0]);
+    points
+}
+
+/// Splits a series at `None` into runs of consecutive points.
+fn sky_runs(points: &[Option<(f64, f64)>]) -> Vec<Vec<(f64, f64)>> {
+    points
+        .split(Option::is_none)
+        .map(|run| run.iter().flatten().copied().collect::<Vec<_>>())
+        .filter(|run| !run.is_empty())
+        .collect()
+}
+
+/// Draws truth polylines (isolated points as dots) and estimate crosses on a chart.
+fn draw_sky_content<DB, X, Y>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    truth: &[TruthLines],
+    estimates: &[EstimateMarks],
+    field_of_view: &[Vec<(f64, f64)>],
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    chart
+        .draw_series(field_of_view.iter().map(|piece| PathElement::new(piece.clone(), FOV_COLOR.stroke_width(2))))
+        .map_err(to_message)?;
+    for (color, pieces) in truth {
+        let style = color.stroke_width(SKY_TRUTH_WIDTH);
+        chart
+            .draw_series(
+                pieces.iter().filter(|piece| piece.len() > 1).map(|piece| PathElement::new(piece.clone(), style)),
+            )
+            .map_err(to_message)?;
+        chart
+            .draw_series(
+                pieces
+                    .iter()
+                    .filter(|piece| piece.len() == 1)
+                    .map(|piece| Circle::new(piece[0], ISOLATED_TRUTH_RADIUS, color.filled())),
+            )
+            .map_err(to_message)?;
+    }
+    for (color, points) in estimates {
+        chart.draw_series(points.iter().map(|&point| estimate_marker(point, *color))).map_err(to_message)?;
+    }
+    Ok(())
+}
+
+/// Legend entries of a sky plot, and a footnote strip when there is one.
+fn sky_legend(has_field_of_view: bool, width: u32) -> Result<Vec<Vec<PlacedLegendEntry>>, PlotError> {
+    let mut symbols = vec![LegendSymbol::TruthTracks, LegendSymbol::MapEstimate];
+    if has_field_of_view {
+        symbols.push(LegendSymbol::Fov);
+    }
+    layout_legend(&symbols, width)
+}
+
+fn legend_height(lines: &[Vec<PlacedLegendEntry>]) -> u32 {
+    lines.len() as u32 * LEGEND_LINE_HEIGHT + 2 * LEGEND_PADDING
+}
+
+fn draw_footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, text: &str) -> Result<(), PlotError> {
+    let (width, height) = area.dim_in_pixel();
+    let style = centered_text(16).color(&RGBColor(90, 90, 90));
+    area.draw(&Text::new(text.to_string(), (width as i32 / 2, height as i32 / 2), style)).map_err(to_message)
+}
+
+/// (x, y) of the polar sky projection: radius 1 - elevation / 90°, North up, East right.
+fn polar_projection(azimuth: f64, elevation: f64) -> (f64, f64) {
+    let radius = 1.0 - elevation / std::f64::consts::FRAC_PI_2;
+    (radius * azimuth.sin(), radius * azimuth.cos())
+}
+
+fn inside_horizon((x, y): (f64, f64)) -> bool {
+    x * x + y * y <= 1.0
+}
+
+/// The part of segment `a`-`b` inside the horizon circle (radius 1); None when both ends are below the horizon
+/// (the projection of such a chord says nothing about the sky).
+fn clip_to_horizon(a: (f64, f64), b: (f64, f64)) -> Option<Segment> {
+    let (a_in, b_in) = (inside_horizon(a), inside_horizon(b));
+    if a_in && b_in {
+        return Some((a, b));
+    }
+    if !a_in && !b_in {
+        return None;
+    }
+    // |a + t d|^2 = 1: t^2 (d.d) + 2 t (a.d) + (a.a - 1) = 0, one root in [0, 1] since one end is inside.
+    let d = (b.0 - a.0, b.1 - a.1);
+    let (qa, qb, qc) = (d.0 * d.0 + d.1 * d.1, a.0 * d.0 + a.1 * d.1, a.0 * a.0 + a.1 * a.1 - 1.0);
+    let root = (qb * qb - qa * qc).max(0.0).sqrt();
+    let t = if a_in { (-qb + root) / qa } else { (-qb - root) / qa }.clamp(0.0, 1.0);
+    let crossing = (a.0 + t * d.0, a.1 + t * d.1);
+    Some(if a_in { (a, crossing) } else { (crossing, b) })
+}
+
+struct PolarSkyFigure<'a> {
+    title: &'a str,
+    truth: Vec<TruthLines>,
+    estimates: Vec<EstimateMarks>,
+    field_of_view: Vec<Vec<(f64, f64)>>,
+    estimates_below_horizon: usize,
+    legend_lines: Vec<Vec<PlacedLegendEntry>>,
+}
+
+impl<'a> PolarSkyFigure<'a> {
+    fn new(
+        title: &'a str,
+        truth: &[SkySeries],
+        estimates: &[SkySeries],
+        field_of_view: Option<&[(f64, f64)]>,
+    ) -> Result<Self, PlotError> {
+        let project_run = |run: &[(f64, f64)]| run.iter().map(|&(az, el)| polar_projection(az, el)).collect::<Vec<_>>();
+        let visible = |run: Vec<(f64, f64)>| -> Vec<Vec<(f64, f64)>> {
+            if run.len() == 1 {
+                return if inside_horizon(run[0]) { vec![run] } else { Vec::new() };
+            }
+            clip_polyline_with(&run, clip_to_horizon)
+        };
+        let truth = truth
+            .iter()
+            .enumerate()
+            .map(|(index, series)| {
+                let pieces = sky_runs(&series.points).iter().flat_map(|run| visible(project_run(run))).collect();
+                (truth_color(series, index), pieces)
+            })
+            .collect();
+        let mut estimates_below_horizon = 0;
+        let estimates = estimates
+            .iter()
+            .map(|series| {
+                let projected = project_run(&series.points.iter().flatten().copied().collect::<Vec<_>>());
+                let shown: Vec<_> = projected.into_iter().filter(|&point| inside_horizon(point)).collect();
+                estimates_below_horizon += series.points.iter().flatten().count() - shown.len();
+                (estimate_color(series), shown)
+            })
+            .collect();
+        let field_of_view =
+            field_of_view.map_or_else(Vec::new, |outline| visible(project_run(&densified_outline(outline))));
+        let legend_lines = sky_legend(!field_of_view.is_empty(), SKY_POLAR_SIDE)?;
+        Ok(Self { title, truth, estimates, field_of_view, estimates_below_horizon, legend_lines })
+    }
+
+    fn footnote(&self) -> Option<String> {
+        (self.estimates_below_horizon > 0)
+            .then(|| format!("{} MAP estimate point(s) below the horizon not shown", self.estimates_below_horizon))
+    }
+}
+
+impl Figure for PolarSkyFigure<'_> {
+    fn canvas_size(&self) -> (u32, u32) {
+        let footnote = if self.footnote().is_some() { SKY_FOOTNOTE_HEIGHT } else { 0 };
+        (SKY_POLAR_SIDE, SKY_TITLE_HEIGHT + SKY_POLAR_SIDE + legend_height(&self.legend_lines) + footnote)
+    }
+
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
+        let (title_area, rest) = root.split_vertically(SKY_TITLE_HEIGHT);
+        let (plot_area, rest) = rest.split_vertically(SKY_POLAR_SIDE);
+        let (legend_area, footnote_area) = rest.split_vertically(legend_height(&self.legend_lines));
+        title_area
+            .draw(&Text::new(
+                self.title.to_string(),
+                (SKY_POLAR_SIDE as i32 / 2, SKY_TITLE_HEIGHT as i32 / 2 + 4),
+                centered_text(26),
+            ))
+            .map_err(to_message)?;
+        let view = -POLAR_VIEW_HALF_SIDE..POLAR_VIEW_HALF_SIDE;
+        let mut chart = ChartBuilder::on(&plot_area)
+            .margin(CHART_MARGIN)
+            .build_cartesian_2d(view.clone(), view)
+            .map_err(to_message)?;
+        draw_polar_grid(&mut chart)?;
+        draw_sky_content(&mut chart, &self.truth, &self.estimates, &self.field_of_view)?;
+        draw_snapshot_legend(&legend_area, &self.legend_lines)?;
+        if let Some(footnote) = self.footnote() {
+            draw_footnote(&footnote_area, &footnote)?;
+        }
+        Ok(())
+    }
+}
+
+/// Elevation rings at 0/30/60°, azimuth spokes every 30° with their labels, N/E/S/W.
+fn draw_polar_grid<DB, X, Y>(chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>) -> Result<(), PlotError>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let degrees = |value: f64| value.to_radians();
+    for elevation in [0.0, 30.0, 60.0] {
+        let mut ring = circle_polygon(1.0 - elevation / 90.0);
+        ring.push(ring[0]);
+        let style = if elevation == 0.0 { BLACK.stroke_width(2) } else { SKY_GRID_COLOR.stroke_width(1) };
+        chart.draw_series(std::iter::once(PathElement::new(ring, style))).map_err(to_message)?;
+        let label_at = polar_projection(degrees(15.0), degrees(elevation + 2.5));
+        chart
+            .draw_series(std::iter::once(Text::new(
+                format!("{elevation:.0}°"),
+                label_at,
+                centered_text(14).color(&RGBColor(110, 110, 110)),
+            )))
+            .map_err(to_message)?;
+    }
+    for step in 0..12 {
+        let azimuth = degrees(f64::from(step) * 30.0);
+        let spoke = vec![(0.0, 0.0), polar_projection(azimuth, 0.0)];
+        chart
+            .draw_series(std::iter::once(PathElement::new(spoke, SKY_GRID_COLOR.stroke_width(1))))
+            .map_err(to_message)?;
+        let (label, size, radius) = match step {
+            0 => ("N".to_string(), 24, 1.1),
+            3 => ("E".to_string(), 24, 1.1),
+            6 => ("S".to_string(), 24, 1.1),
+            9 => ("W".to_string(), 24, 1.1),
+            _ => (format!("{}°", step * 30), 15, 1.09),
+        };
+        let at = (radius * azimuth.sin(), radius * azimuth.cos());
+        chart.draw_series(std::iter::once(Text::new(label, at, centered_text(size)))).map_err(to_message)?;
+    }
+    chart
+        .draw_series(std::iter::once(Text::new(
+            "90°".to_string(),
+            (0.0, -0.04),
+            centered_text(14).color(&RGBColor(110, 110, 110)),
+        )))
+        .map_err(to_message)?;
+    Ok(())
+}
+
+/// Right ascension (unwrapped, degrees) / declination (degrees) data and the view that frames it.
+struct RaDecView {
+    truth: Vec<TruthLines>,
+    estimates: Vec<EstimateMarks>,
+    field_of_view: Vec<Vec<(f64, f64)>>,
+    x: Range<f64>,
+    y: Range<f64>,
+}
+
+/// Circular mean of the right ascensions in [0, 2π) radians (so a cluster near ±180° is labelled around 180°); π when
+/// they have no clear mean (none, or evenly spread).
+fn circular_mean(angles: impl Iterator<Item = f64>) -> f64 {
+    let (mut sin_sum, mut cos_sum, mut count) = (0.0, 0.0, 0usize);
+    for angle in angles {
+        sin_sum += angle.sin();
+        cos_sum += angle.cos();
+        count += 1;
+    }
+    let resultant = sin_sum.hypot(cos_sum);
+    if count == 0 || resultant < 1e-9 * count as f64 {
+        std::f64::consts::PI
+    } else {
+        sin_sum.atan2(cos_sum).rem_euclid(std::f64::consts::TAU)
+    }
+}
+
+/// Axis around `data` with 8 % padding and at least ±[`MIN_SKY_HALF_SPAN_DEG`].
+fn sky_axis(data: Option<Range<f64>>, fallback: Range<f64>) -> Range<f64> {
+    let data = data.unwrap_or(fallback);
+    let center = data.start / 2.0 + data.end / 2.0;
+    let half = ((data.end - data.start) / 2.0 * 1.08).max(MIN_SKY_HALF_SPAN_DEG);
+    center - half..center + half
+}
+
+impl RaDecView {
+    fn new(truth: &[SkySeries], estimates: &[SkySeries], field_of_view: Option<&[(f64, f64)]>) -> Self {
+        let all_points = || truth.iter().chain(estimates).flat_map(|series| series.points.iter().flatten());
+        let outline = field_of_view.unwrap_or(&[]);
+        let mean = if all_points().next().is_some() {
+            circular_mean(all_points().map(|&(ra, _)| ra))
+        } else {
+            circular_mean(outline.iter().map(|&(ra, _)| ra))
+        };
+        let to_degrees = |(ra, dec): (f64, f64)| ((mean + wrap_angle(ra - mean)).to_degrees(), dec.to_degrees());
+        // Cut where consecutive points cross the seam opposite the mean.
+        let split_at_seam = |run: Vec<(f64, f64)>| -> Vec<Vec<(f64, f64)>> {
+            let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+            for point in run {
+                match pieces.last_mut() {
+                    Some(piece) if piece.last().is_some_and(|last: &(f64, f64)| (point.0 - last.0).abs() <= 180.0) => {
+                        piece.push(point);
+                    }
+                    _ => pieces.push(vec![point]),
+                }
+            }
+            pieces
+        };
+        let truth: Vec<_> = truth
+            .iter()
+            .enumerate()
+            .map(|(index, series)| {
+                let pieces = sky_runs(&series.points)
+                    .into_iter()
+                    .flat_map(|run| split_at_seam(run.into_iter().map(to_degrees).collect()))
+                    .collect();
+                (truth_color(series, index), pieces)
+            })
+            .collect();
+        let estimates: Vec<_> = estimates
+            .iter()
+            .map(|series| (estimate_color(series), series.points.iter().flatten().map(|&p| to_degrees(p)).collect()))
+            .collect();
+        let outline: Vec<(f64, f64)> = densified_outline(outline).into_iter().map(to_degrees).collect();
+
+        let mut bounds = None;
+        let data_points = truth.iter().flat_map(|(_, pieces): &(_, Vec<Vec<_>>)| pieces.iter().flatten());
+        for &(x, y) in data_points.chain(estimates.iter().flat_map(|(_, points): &(_, Vec<_>)| points)) {
+            Bounds::include(&mut bounds, x, y);
+        }
+        if bounds.is_none() {
+            for &(x, y) in &outline {
+                Bounds::include(&mut bounds, x, y);
+            }
+        }
+        let x = sky_axis(bounds.as_ref().map(|b| b.x.clone()), 0.0..360.0);
+        let y = sky_axis(bounds.map(|b| b.y), -90.0..90.0);
+        let field_of_view =
+            split_at_seam(outline).iter().flat_map(|piece| clip_polyline(piece, &x, &y)).collect::<Vec<_>>();
+        Self { truth, estimates, field_of_view, x, y }
+    }
+}
+
+/// Right ascension tick: the unwrapped value brought back into [0, 360).
+fn format_ra_tick(value: &f64) -> String {
+    let wrapped = value.rem_euclid(360.0);
+    // rem_euclid can round up to exactly 360 for tiny negative values.
+    format_tick(&if wrapped >= 360.0 { 0.0 } else { wrapped })
+}
+
+struct RaDecFigure<'a> {
+    title: &'a str,
+    view: RaDecView,
+    legend_lines: Vec<Vec<PlacedLegendEntry>>,
+}
+
+impl<'a> RaDecFigure<'a> {
+    fn new(
+        title: &'a str,
+        truth: &[SkySeries],
+        estimates: &[SkySeries],
+        field_of_view: Option<&[(f64, f64)]>,
+    ) -> Result<Self, PlotError> {
+        let view = RaDecView::new(truth, estimates, field_of_view);
+        let legend_lines = sky_legend(!view.field_of_view.is_empty(), SKY_RA_DEC_SIZE.0)?;
+        Ok(Self { title, view, legend_lines })
+    }
+}
+
+impl Figure for RaDecFigure<'_> {
+    fn canvas_size(&self) -> (u32, u32) {
+        (SKY_RA_DEC_SIZE.0, SKY_RA_DEC_SIZE.1 + legend_height(&self.legend_lines))
+    }
+
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
+        let (chart_area, legend_area) = root.split_vertically(SKY_RA_DEC_SIZE.1);
+        let view = &self.view;
+        let mut chart = ChartBuilder::on(&chart_area)
+            .caption(self.title, (FONT, 28))
+            .margin(20)
+            .x_label_area_size(60)
+            .y_label_area_size(95)
+            .build_cartesian_2d(view.x.clone(), view.y.clone())
+            .map_err(to_message)?;
+        chart
+            .configure_mesh()
+            .x_desc("Right ascension [deg]")
+            .y_desc("Declination [deg]")
+            .x_labels(8)
+            .y_labels(8)
+            .x_label_formatter(&format_ra_tick)
+            .y_label_formatter(&format_tick)
+            .label_style((FONT, 17))
+            .axis_desc_style((FONT, 20))
+            .light_line_style(BLACK.mix(0.04))
+            .bold_line_style(BLACK.mix(0.14))
+            .draw()
+            .map_err(to_message)?;
+        draw_sky_content(&mut chart, &view.truth, &view.estimates, &view.field_of_view)?;
+        draw_snapshot_legend(&legend_area, &self.legend_lines)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1332,5 +1916,169 @@ mod tests {
         let pieces =
             clip_polyline(&[(-1.0, 5.0), (2.0, 5.0), (4.0, 6.0), (20.0, 6.0), (20.0, 8.0), (5.0, 8.0)], &x, &y);
         assert_eq!(pieces, vec![vec![(0.0, 5.0), (2.0, 5.0), (4.0, 6.0), (10.0, 6.0)], vec![(10.0, 8.0), (5.0, 8.0)]]);
+    }
+
+    /// A LEO pass from NNE over a near-zenith point (88°) to SSW, its azimuth wrapping through ±π, with a gap.
+    fn leo_pass() -> SkySeries {
+        let points = (0..=120)
+            .map(|k| {
+                let t = f64::from(k) / 120.0;
+                let azimuth = wrap_angle(0.1 - t * (std::f64::consts::PI + 0.2));
+                let elevation = 88_f64.to_radians() * (std::f64::consts::PI * t).sin();
+                (!(40..45).contains(&k)).then_some((azimuth, elevation))
+            })
+            .collect();
+        SkySeries { name: "leo 1".to_string(), points, color: None }
+    }
+
+    /// Every fifth point of `truth`, offset by `offset` radians in both angles.
+    fn estimates_of(truth: &SkySeries, offset: f64) -> SkySeries {
+        let points = truth.points.iter().step_by(5).map(|p| p.map(|(a, b)| (a + offset, b - offset.abs()))).collect();
+        SkySeries { name: format!("track of {}", truth.name), points, color: None }
+    }
+
+    /// Five GEO objects within 0.1° around RA = 180°, right ascensions given on both sides of ±180°.
+    fn geo_cluster() -> Vec<SkySeries> {
+        (0..5)
+            .map(|object| {
+                let points = (0..60)
+                    .map(|k| {
+                        let ra = (179.96 + 0.02 * f64::from(object) + 0.0005 * f64::from(k)).to_radians();
+                        let ra = if object % 2 == 0 { wrap_angle(ra) } else { ra };
+                        Some((ra, (-5.0 + 0.01 * f64::from(object)).to_radians()))
+                    })
+                    .collect();
+                SkySeries { name: format!("geo {object}"), points, color: None }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn polar_projection_puts_north_up_and_east_right() {
+        let close = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12;
+        assert!(close(polar_projection(0.0, 0.0), (0.0, 1.0)), "north on the rim, up");
+        assert!(close(polar_projection(std::f64::consts::FRAC_PI_2, 0.0), (1.0, 0.0)), "east right");
+        assert!(close(polar_projection(1.0, std::f64::consts::FRAC_PI_2), (0.0, 0.0)), "zenith at the centre");
+        assert!(close(polar_projection(std::f64::consts::PI, std::f64::consts::FRAC_PI_6), (0.0, -2.0 / 3.0)));
+        // Consecutive samples either side of azimuth ±π stay neighbours in the projection.
+        let near_south = std::f64::consts::PI - 0.001;
+        let (a, b) = (polar_projection(near_south, 0.2), polar_projection(-near_south, 0.2));
+        assert!((a.0 - b.0).hypot(a.1 - b.1) < 0.01);
+    }
+
+    #[test]
+    fn lines_are_cut_at_the_horizon() {
+        let (inside, outside) = ((0.0, 0.5), (0.0, 1.5));
+        let (start, end) = clip_to_horizon(inside, outside).unwrap();
+        assert_eq!(start, inside);
+        assert!((end.1 - 1.0).abs() < 1e-12 && end.0.abs() < 1e-12);
+        let (start, _) = clip_to_horizon(outside, inside).unwrap();
+        assert!((start.1 - 1.0).abs() < 1e-12);
+        // A chord between two points below the horizon is not drawn, even through the sky.
+        assert_eq!(clip_to_horizon((0.0, 1.2), (0.0, -1.2)), None);
+    }
+
+    #[test]
+    fn sky_az_el_leo_pass_through_zenith() {
+        let dir = TestDir::new("sky-az-el");
+        let truth = vec![leo_pass(), SkySeries { color: Some(3), ..estimates_of(&leo_pass(), 0.3) }];
+        let estimates = vec![estimates_of(&truth[0], 0.01), estimates_of(&truth[0], -0.2)];
+        let box_outline = [(-0.6, 0.2), (0.6, 0.2), (0.6, 1.2), (-0.6, 1.2)];
+        let stem = dir.stem("az_el");
+        sky_plot_az_el(&stem, "Radar 1: azimuth/elevation", &truth, &estimates, Some(&box_outline)).unwrap();
+        let (width, height) = assert_png_and_svg(&stem);
+        assert_eq!(width, SKY_POLAR_SIDE);
+        assert!(height > SKY_POLAR_SIDE);
+
+        // The estimates 0.2 rad below the truth put some points under the horizon: counted, not drawn.
+        let figure = PolarSkyFigure::new("t", &truth, &estimates, Some(&box_outline)).unwrap();
+        assert!(figure.estimates_below_horizon > 0 && figure.footnote().is_some());
+        // The gap and the cut at the horizon split the first truth series; no piece leaves the horizon circle.
+        assert!(figure.truth[0].1.len() >= 2);
+        for &(x, y) in figure.truth.iter().flat_map(|(_, pieces)| pieces.iter().flatten()) {
+            assert!(x.hypot(y) <= 1.0 + 1e-12);
+        }
+
+        sky_plot_az_el(&dir.stem("empty"), "Nothing", &[], &[], None).unwrap();
+        assert_png_and_svg(&dir.stem("empty"));
+    }
+
+    #[test]
+    fn sky_ra_dec_geo_cluster_near_180_zooms_in() {
+        let dir = TestDir::new("sky-ra-dec");
+        let truth = geo_cluster();
+        let estimates: Vec<_> = truth.iter().map(|series| estimates_of(series, 1e-5)).collect();
+        let stare = [(178.0_f64, -6.0_f64), (-178.0, -6.0), (-178.0, -4.0), (178.0, -4.0)]
+            .map(|(ra, dec)| (ra.to_radians(), dec.to_radians()));
+        let stem = dir.stem("ra_dec");
+        sky_plot_ra_dec(&stem, "Telescope: RA/Dec", &truth, &estimates, Some(&stare)).unwrap();
+        assert_png_and_svg(&stem);
+
+        // The view spans the cluster (0.11° wide in RA) across ±180°, not the whole circle.
+        let view = RaDecView::new(&truth, &estimates, Some(&stare));
+        assert!(view.x.start < 179.96 && view.x.end > 180.07 && view.x.end - view.x.start < 0.3, "{:?}", view.x);
+        assert!(view.y.start < -5.0 && view.y.end > -4.96 && view.y.end - view.y.start < 0.2, "{:?}", view.y);
+        assert!(view.truth.iter().all(|(_, pieces)| pieces.len() == 1), "no line cut at ±180°");
+        assert!(view.field_of_view.is_empty(), "the 4° field of view lies outside the zoomed view");
+
+        // With no points the view frames the field of view, which straddles RA = 180° too.
+        let empty = RaDecView::new(&[], &[], Some(&stare));
+        assert!(empty.x.start < 178.0 && empty.x.end > 182.0 && empty.x.end - empty.x.start < 5.0, "{:?}", empty.x);
+        assert_eq!(empty.field_of_view.len(), 1, "the whole closed outline, uncut at ±180°");
+        sky_plot_ra_dec(&dir.stem("empty"), "Nothing", &[], &[], None).unwrap();
+        assert_png_and_svg(&dir.stem("empty"));
+    }
+
+    #[test]
+    fn sky_ra_dec_wraps_at_zero_and_cuts_at_the_seam() {
+        let near_zero = SkySeries {
+            name: "near 0".to_string(),
+            points: [359.9_f64, 359.95, 0.0, 0.05].iter().map(|ra| Some((ra.to_radians(), 0.0))).collect(),
+            color: None,
+        };
+        let view = RaDecView::new(&[near_zero], &[], None);
+        assert!(view.x.end - view.x.start < 1.0, "{:?}", view.x);
+        assert_eq!(view.truth[0].1.len(), 1);
+        assert_eq!(format_ra_tick(&360.02), "0.02");
+        assert_eq!(format_ra_tick(&-0.5), "359.5");
+
+        // A circumpolar path covers all right ascensions: the line is cut where it crosses the seam.
+        let around = SkySeries {
+            name: "around the pole".to_string(),
+            points: (0..=36).map(|k| Some((f64::from(k * 10).to_radians(), 89_f64.to_radians()))).collect(),
+            color: None,
+        };
+        let view = RaDecView::new(&[around], &[], None);
+        assert!(view.truth[0].1.len() >= 2);
+        for piece in &view.truth[0].1 {
+            assert!(piece.windows(2).all(|pair| (pair[1].0 - pair[0].0).abs() <= 180.0));
+        }
+    }
+
+    #[test]
+    fn sky_plots_refuse_bad_angles_and_unwritable_paths() {
+        let dir = TestDir::new("sky-errors");
+        let mut bad = leo_pass();
+        bad.name = "leo 7".to_string();
+        bad.points[3] = Some((f64::NAN, 0.3));
+        for ra_dec in [false, true] {
+            let plot = if ra_dec { sky_plot_ra_dec } else { sky_plot_az_el };
+            let stem = dir.stem(&format!("bad_{ra_dec}"));
+            let error = plot(&stem, "t", &[leo_pass()], std::slice::from_ref(&bad), None).unwrap_err();
+            assert!(error.0.contains("estimate series \"leo 7\" point 3"), "{error}");
+            assert!(!path_with_extension(&stem, "png").exists(), "nothing written on bad input");
+
+            let too_high = SkySeries { points: vec![Some((0.0, 1.6))], ..SkySeries::default() };
+            let error = plot(&stem, "t", &[too_high], &[], None).unwrap_err();
+            assert!(error.0.contains("truth series #0 point 0") && error.0.contains("outside"), "{error}");
+
+            let error = plot(&stem, "t", &[], &[], Some(&[(0.0, 0.1), (f64::INFINITY, 0.2)])).unwrap_err();
+            assert!(error.0.contains("field of view outline point 1"), "{error}");
+
+            let blocker = dir.stem(&format!("blocker_{ra_dec}"));
+            std::fs::write(&blocker, b"a file, not a directory").unwrap();
+            let error = plot(&blocker.join("sky"), "t", &[leo_pass()], &[], None).unwrap_err();
+            assert!(error.0.contains("blocker"), "message names the path: {error}");
+        }
     }
 }
