@@ -106,8 +106,9 @@ pub struct Look<T> {
     pub range_rate: Option<T>,
 }
 
-/// Rows of the elevation quadrature of [`LookShape::area`]: a midpoint rule in φ with elevation
-/// E = centre + half·sin φ, which removes the square-root behaviour of a cone's width at its top and bottom.
+/// Rows of the elevation quadrature of [`LookShape::area`]: for a cone a midpoint rule in φ with elevation
+/// E = centre + half·sin φ, which removes the square-root behaviour of its width at its top and bottom; for
+/// a box plain midpoints in E.
 const LOOK_ROWS: usize = 256;
 
 impl<T: Real> LookShape<T> {
@@ -178,11 +179,17 @@ impl<T: Real> LookShape<T> {
         let rows = T::of_f64(LOOK_ROWS as f64);
         let columns = azimuth_points.clamp(1, 1024);
         let mut total = T::zero();
+        let cone = matches!(self, LookShape::Cone { .. });
         for row in 0..LOOK_ROWS {
-            // φ ∈ (−π/2, π/2) at the midpoints; dE = half cos φ dφ.
-            let phi = (T::of_f64(row as f64) + c(0.5)) / rows * T::pi() - T::frac_pi_2();
-            let elevation = centre + half * sin(phi);
-            let weight = half * cos(phi) * T::pi() / rows;
+            let midpoint = (T::of_f64(row as f64) + c(0.5)) / rows;
+            let (elevation, weight) = if cone {
+                // φ ∈ (−π/2, π/2) at the midpoints; dE = half cos φ dφ.
+                let phi = midpoint * T::pi() - T::frac_pi_2();
+                (centre + half * sin(phi), half * cos(phi) * T::pi() / rows)
+            } else {
+                // A box's rows all have the same width: plain midpoints are exact for a constant density.
+                (low + midpoint * (high - low), (high - low) / rows)
+            };
             let width = self.row_half_width(elevation);
             let step = c::<T>(2.0) * width / T::of_f64(columns as f64);
             let mut row_sum = T::zero();
@@ -505,6 +512,137 @@ impl<T: Real> Sensor<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand_core::Rng;
+
+    /// A uniform draw in [low, high) from 53 random bits.
+    pub(crate) fn uniform(rng: &mut impl Rng, low: f64, high: f64) -> f64 {
+        low + (high - low) * ((rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    /// The look-angle area of `region` by Monte Carlo over the whole (A, E) rectangle, with its standard
+    /// error.
+    fn monte_carlo_area(region: &Region<f64>, samples: usize) -> (f64, f64) {
+        let mut rng = crate::random::test_stream(7);
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let box_area = 2.0 * core::f64::consts::PI * 2.0 * half_pi;
+        let mut inside = 0usize;
+        for _ in 0..samples {
+            let azimuth = uniform(&mut rng, -core::f64::consts::PI, core::f64::consts::PI);
+            let elevation = uniform(&mut rng, -half_pi, half_pi);
+            let look = Look { azimuth, elevation, range: None, range_rate: None };
+            let angles_only = match *region {
+                Region::Look { shape, min_elevation, .. } => {
+                    Region::Look { shape, min_elevation, range: None, range_rate: None }
+                }
+                other => other,
+            };
+            inside += usize::from(angles_only.contains_look(&look));
+        }
+        let fraction = inside as f64 / samples as f64;
+        (fraction * box_area, box_area * (fraction * (1.0 - fraction) / samples as f64).sqrt())
+    }
+
+    #[test]
+    fn look_volumes_match_monte_carlo_in_measurement_coordinates() {
+        let degree = 1f64.to_radians();
+        let cases = [
+            // A radar cone at 50° elevation above a 10° mask, with a range window.
+            Region::Look {
+                shape: LookShape::Cone { azimuth: 2.0, elevation: 50.0 * degree, half_angle: 30.0 * degree },
+                min_elevation: 10.0 * degree,
+                range: Some([200.0, 2200.0]),
+                range_rate: None,
+            },
+            // A cone holding the zenith, cut by a 30° mask.
+            Region::Look {
+                shape: LookShape::Cone { azimuth: -3.0, elevation: 80.0 * degree, half_angle: 60.0 * degree },
+                min_elevation: 30.0 * degree,
+                range: None,
+                range_rate: None,
+            },
+            // A box across azimuth ±180°.
+            Region::Look {
+                shape: LookShape::Box { azimuth: 3.0, half_width: 0.5, elevation: [5.0 * degree, 40.0 * degree] },
+                min_elevation: 10.0 * degree,
+                range: Some([0.0, 3000.0]),
+                range_rate: Some([-8.0, 8.0]),
+            },
+        ];
+        for region in cases {
+            assert_eq!(region.validate(3), Ok(()));
+            let (estimate, error) = monte_carlo_area(&region, 400_000);
+            let extent = match region {
+                Region::Look { range, range_rate, .. } => {
+                    window_extent(range).max(1.0) * window_extent(range_rate).max(1.0)
+                }
+                _ => 1.0,
+            };
+            let area = region.volume() / extent;
+            eprintln!("look area {area:.6} sr-coordinates, Monte Carlo {estimate:.6} ± {error:.6}");
+            assert!((area - estimate).abs() < 4.0 * error, "{area} vs {estimate} ± {error}");
+        }
+        // The box's area is exact: 2 · 0.5 rad of azimuth × 30° of elevation above the mask.
+        let exact = 1.0 * 30.0 * degree * 3000.0 * 16.0;
+        assert!((cases[2].volume() - exact).abs() < 1e-9 * exact);
+    }
+
+    #[test]
+    fn look_regions_test_every_coordinate_and_reject_bad_parameters() {
+        let degree = 1f64.to_radians();
+        let region = Region::Look {
+            shape: LookShape::Box { azimuth: core::f64::consts::PI, half_width: 0.2, elevation: [0.0, 0.5] },
+            min_elevation: 0.1,
+            range: Some([100.0, 1000.0]),
+            range_rate: None,
+        };
+        let look = |azimuth: f64, elevation: f64, range: f64| Look {
+            azimuth,
+            elevation,
+            range: Some(range),
+            range_rate: None,
+        };
+        assert!(region.contains_look(&look(-3.1, 0.3, 500.0))); // across ±π
+        assert!(!region.contains_look(&look(-3.1, 0.05, 500.0))); // under the mask
+        assert!(!region.contains_look(&look(-3.1, 0.3, 1500.0))); // beyond the range window
+        assert!(!region.contains_look(&Look { range: None, ..look(-3.1, 0.3, 500.0) })); // no range given
+        assert!(!region.contains_look(&look(2.0, 0.3, 500.0)));
+        let bad = [
+            Region::Look {
+                shape: LookShape::Cone { azimuth: 0.0, elevation: 100.0 * degree, half_angle: 0.1 },
+                min_elevation: 0.0,
+                range: None,
+                range_rate: None,
+            },
+            Region::Look {
+                shape: LookShape::Cone { azimuth: 0.0, elevation: 0.5, half_angle: 0.0 },
+                min_elevation: 0.0,
+                range: None,
+                range_rate: None,
+            },
+            // Zero volume: an empty range window, or everything under the mask.
+            Region::Look {
+                shape: LookShape::Cone { azimuth: 0.0, elevation: 0.5, half_angle: 0.1 },
+                min_elevation: 0.0,
+                range: Some([500.0, 500.0]),
+                range_rate: None,
+            },
+            Region::Look {
+                shape: LookShape::Box { azimuth: 0.0, half_width: 0.1, elevation: [0.0, 0.2] },
+                min_elevation: 0.3,
+                range: None,
+                range_rate: None,
+            },
+            Region::Look {
+                shape: LookShape::Box { azimuth: f64::NAN, half_width: 0.1, elevation: [0.0, 0.2] },
+                min_elevation: 0.0,
+                range: None,
+                range_rate: None,
+            },
+        ];
+        for region in bad {
+            assert!(region.validate(3).is_err(), "{region:?}");
+        }
+    }
 
     #[test]
     fn sector_contains_points_inside_only() {

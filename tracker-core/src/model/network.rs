@@ -305,7 +305,11 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
             (Platform::Spacecraft, None) => return Err(PlacementError::MissingObserver),
             (Platform::Ground(ground), None) => {
                 // The rotation angle in f64 from the f64 scan time, then one cast.
-                let angle = self.rotation.angle_at_epoch.as_f64() + self.rotation.rate.as_f64() * time;
+                // The nominal rate at f64 precision: its f32 rounding alone (3e-8 relative) would move a site
+                // by 13 m after ten days.
+                let nominal = self.rotation.rate == T::of_f64(super::EARTH_ROTATION_RATE);
+                let rate = if nominal { super::EARTH_ROTATION_RATE } else { self.rotation.rate.as_f64() };
+                let angle = self.rotation.angle_at_epoch.as_f64() + rate * time;
                 let at = EarthRotation { angle_at_epoch: T::of_f64(wrap_angle(angle)), rate: self.rotation.rate };
                 (ground.observer(&at, T::zero()), ground.enu(&at, T::zero()))
             }
@@ -414,5 +418,295 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
 
     fn detection(&self) -> Option<Sensor<T>> {
         self.sensors().get(self.current).map(|sensor| sensor.detection)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{EARTH_MU, MotionModel, ProcessNoise, TwoBodyJ2};
+    use crate::sensor::LookShape;
+    use crate::store::TrackLabel;
+    use crate::{BirthModel, Config, Gaussian, PriorObject, StepError, Tracker};
+    use rand_core::Rng;
+
+    const DEGREE: f64 = core::f64::consts::PI / 180.0;
+
+    fn radar_site(latitude: f64, longitude: f64) -> SiteSensor<f64, 3> {
+        SiteSensor {
+            platform: Platform::Ground(GroundSite {
+                latitude: latitude * DEGREE,
+                longitude: longitude * DEGREE,
+                height: 0.2,
+            }),
+            sigma: [0.02, 0.02 * DEGREE, 0.02 * DEGREE],
+            detection: Sensor {
+                detection_probability: 0.95,
+                clutter_rate: 1.0,
+                field_of_view: Region::Look {
+                    shape: LookShape::Cone { azimuth: 0.0, elevation: 90.0 * DEGREE, half_angle: 80.0 * DEGREE },
+                    min_elevation: 5.0 * DEGREE,
+                    range: Some([0.0, 4000.0]),
+                    range_rate: None,
+                },
+            },
+        }
+    }
+
+    fn telescope() -> SiteSensor<f64, 2> {
+        SiteSensor {
+            platform: Platform::Ground(GroundSite { latitude: 40.0 * DEGREE, longitude: -105.0 * DEGREE, height: 1.6 }),
+            sigma: [2e-6, 2e-6],
+            detection: Sensor {
+                detection_probability: 0.9,
+                clutter_rate: 3.0,
+                field_of_view: Region::Look {
+                    shape: LookShape::Cone {
+                        azimuth: 170.0 * DEGREE,
+                        elevation: 42.0 * DEGREE,
+                        half_angle: 5.0 * DEGREE,
+                    },
+                    min_elevation: 10.0 * DEGREE,
+                    range: None,
+                    range_rate: None,
+                },
+            },
+        }
+    }
+
+    /// The inertial unit vector of look angles (A, E) in `frame`.
+    fn direction(frame: &[[f64; 3]; 3], azimuth: f64, elevation: f64) -> [f64; 3] {
+        let (e, n, u) = (azimuth.sin() * elevation.cos(), azimuth.cos() * elevation.cos(), elevation.sin());
+        core::array::from_fn(|k| e * frame[0][k] + n * frame[1][k] + u * frame[2][k])
+    }
+
+    #[test]
+    fn optical_clutter_volume_in_right_ascension_and_declination_matches_monte_carlo_at_any_time() {
+        let network: SensorNetwork<f64, OpticalRaDec<f64>, 2, 1> =
+            SensorNetwork::new(EarthRotation::new(1.1), &[telescope()]).unwrap();
+        let volume = network.volume(0).unwrap();
+        let region = telescope().detection.field_of_view;
+        for time in [0.0, 5_000.0] {
+            let placed = network.place(&ScanGeometry::single(time)).unwrap();
+            // Sample (α, δ) uniformly in a box around the boresight's (α, δ).
+            let axis = direction(&placed.frame, 170.0 * DEGREE, 42.0 * DEGREE);
+            let (alpha0, delta0) = (axis[1].atan2(axis[0]), axis[2].asin());
+            let (half_alpha, half_delta) = (0.2, 0.1);
+            let mut rng = crate::random::test_stream(11);
+            let samples = 400_000;
+            let mut inside = 0usize;
+            for _ in 0..samples {
+                let uniform = |rng: &mut rand_xoshiro::SplitMix64, low: f64, high: f64| {
+                    low + (high - low) * ((rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+                };
+                let alpha = uniform(&mut rng, alpha0 - half_alpha, alpha0 + half_alpha);
+                let delta = uniform(&mut rng, delta0 - half_delta, delta0 + half_delta);
+                let z = SVector::from([wrap_angle(alpha), delta]);
+                inside += usize::from(region.sees(&placed, &z));
+            }
+            let fraction = inside as f64 / samples as f64;
+            let box_area = 4.0 * half_alpha * half_delta;
+            let (estimate, error) =
+                (fraction * box_area, box_area * (fraction * (1.0 - fraction) / samples as f64).sqrt());
+            eprintln!("t = {time}: volume {volume:.6e} rad², Monte Carlo {estimate:.6e} ± {error:.1e}");
+            assert!((volume - estimate).abs() < 4.0 * error, "{volume} vs {estimate} ± {error}");
+            // In (α, δ) the cone covers Ω / cos δ, not its look-angle area Ω / cos E.
+            assert!((volume - region.volume()).abs() > 0.1 * volume, "{volume} vs {}", region.volume());
+            assert_eq!(placed.clutter_volume(&region), volume);
+        }
+    }
+
+    #[test]
+    fn placement_errors_are_typed_and_ground_sites_move_with_the_earth() {
+        let rotation = EarthRotation::new(0.4);
+        let spacecraft = SiteSensor { platform: Platform::Spacecraft, ..radar_site(0.0, 0.0) };
+        let network: SensorNetwork<f64, RadarRangeAzEl<f64>, 3, 3> =
+            SensorNetwork::new(rotation, &[radar_site(40.0, -105.0), spacecraft]).unwrap();
+        let at = |sensor, observer| ScanGeometry { sensor, time: 600.0, observer };
+        let leo = [7000.0, 0.0, 0.0, 0.0, 7.5, 0.0];
+        assert_eq!(network.place(&at(2, None)), Err(PlacementError::UnknownSensor { sensor: 2, sensors: 2 }));
+        assert_eq!(network.place(&at(0, Some(leo))), Err(PlacementError::UnexpectedObserver));
+        assert_eq!(network.place(&at(1, None)), Err(PlacementError::MissingObserver));
+        let nan = [f64::NAN, 0.0, 0.0, 0.0, 7.5, 0.0];
+        assert_eq!(network.place(&at(1, Some(nan))), Err(PlacementError::NonFiniteObserver));
+        let underground = [6000.0, 0.0, 0.0, 0.0, 7.5, 0.0];
+        assert_eq!(network.place(&at(1, Some(underground))), Err(PlacementError::ObserverInsideEarth));
+        assert_eq!(network.place(&at(1, Some(leo))).unwrap().placed().observer, leo);
+        // A ground site is where GroundSite puts it at that time.
+        let placed = network.place(&at(0, None)).unwrap();
+        let site = GroundSite { latitude: 40.0 * DEGREE, longitude: -105.0 * DEGREE, height: 0.2 };
+        let expected = site.observer(&rotation, 600.0);
+        for (a, b) in placed.placed().observer.iter().zip(expected) {
+            assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+        }
+        // Bad networks.
+        let too_many = [radar_site(0.0, 0.0); 4];
+        assert!(SensorNetwork::<f64, RadarRangeAzEl<f64>, 3, 3>::new(rotation, &too_many).is_err());
+        assert!(SensorNetwork::<f64, RadarRangeAzEl<f64>, 3, 3>::new(rotation, &[]).is_err());
+        let mut inside = radar_site(0.0, 0.0);
+        inside.platform = Platform::Ground(GroundSite { latitude: 0.0, longitude: 0.0, height: -50.0 });
+        assert!(SensorNetwork::<f64, RadarRangeAzEl<f64>, 3, 3>::new(rotation, &[inside]).is_err());
+        let mut pole = radar_site(0.0, 0.0);
+        pole.platform = Platform::Ground(GroundSite { latitude: 2.0, longitude: 0.0, height: 0.0 });
+        assert!(SensorNetwork::<f64, RadarRangeAzEl<f64>, 3, 3>::new(rotation, &[pole]).is_err());
+        let mut flat = radar_site(0.0, 0.0);
+        flat.detection.field_of_view = Region::Look {
+            shape: LookShape::Cone { azimuth: 0.0, elevation: 0.5, half_angle: 0.1 },
+            min_elevation: 0.0,
+            range: Some([1.0, 1.0]),
+            range_rate: None,
+        };
+        assert!(SensorNetwork::<f64, RadarRangeAzEl<f64>, 3, 3>::new(rotation, &[flat]).is_err());
+    }
+
+    #[test]
+    fn an_f32_site_keeps_its_place_at_large_times() {
+        let rotation = EarthRotation::new(0.4);
+        let f64_network: SensorNetwork<f64, RadarRangeAzEl<f64>, 3, 1> =
+            SensorNetwork::new(rotation, &[radar_site(40.0, -105.0)]).unwrap();
+        let site32 = SiteSensor {
+            platform: Platform::Ground(GroundSite {
+                latitude: (40.0 * DEGREE) as f32,
+                longitude: (-105.0 * DEGREE) as f32,
+                height: 0.2,
+            }),
+            sigma: [0.02f32, 3e-4, 3e-4],
+            detection: Sensor {
+                detection_probability: 0.95,
+                clutter_rate: 1.0,
+                field_of_view: Region::Look {
+                    shape: LookShape::Cone {
+                        azimuth: 0.0,
+                        elevation: (90.0 * DEGREE) as f32,
+                        half_angle: (80.0 * DEGREE) as f32,
+                    },
+                    min_elevation: (5.0 * DEGREE) as f32,
+                    range: Some([0.0, 4000.0]),
+                    range_rate: None,
+                },
+            },
+        };
+        let f32_network: SensorNetwork<f32, RadarRangeAzEl<f32>, 3, 1> =
+            SensorNetwork::new(EarthRotation::new(0.4f32), &[site32]).unwrap();
+        // Ten days in: the f64 angle is cast once, so the f32 site is within f32 rounding of the f64 one.
+        let time = 864_000.123;
+        let a = f64_network.place(&ScanGeometry::single(time)).unwrap().placed().observer;
+        let b = f32_network.place(&ScanGeometry::single(time)).unwrap().placed().observer;
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - f64::from(y)).abs() < 2e-3, "{x} vs {y}");
+        }
+    }
+
+    /// A circular LEO object seen from `frame`/`observer` at look angles (A, E) and range ρ, moving
+    /// westwards (its azimuth grows through ±π when it starts due south).
+    fn object_at(
+        observer: &[f64; 6],
+        frame: &[[f64; 3]; 3],
+        azimuth: f64,
+        elevation: f64,
+        range: f64,
+    ) -> SVector<f64, 6> {
+        let u = direction(frame, azimuth, elevation);
+        let p: [f64; 3] = core::array::from_fn(|k| observer[k] + range * u[k]);
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        let west = frame[0].map(|v| -v);
+        let along = (west[0] * p[0] + west[1] * p[1] + west[2] * p[2]) / r;
+        let mut w: [f64; 3] = core::array::from_fn(|k| west[k] - along * p[k] / r);
+        let norm = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        let speed = (EARTH_MU / r).sqrt();
+        w = w.map(|v| v * speed / norm);
+        SVector::from([p[0], p[1], p[2], w[0], w[1], w[2]])
+    }
+
+    type Radars = SensorNetwork<f64, RadarRangeAzEl<f64>, 3, 2>;
+
+    #[test]
+    fn two_radars_track_a_pass_through_azimuth_pi_and_refuse_bad_scans_unchanged() {
+        let network: Radars =
+            SensorNetwork::new(EarthRotation::new(0.3), &[radar_site(40.0, -105.0), radar_site(38.0, -100.0)]).unwrap();
+        let motion = TwoBodyJ2::<f64>::earth(ProcessNoise::Isotropic(1e-10), 20.0, 2000);
+        let first = network.place(&ScanGeometry::single(0.0)).unwrap();
+        let truth0 = object_at(&first.placed().observer, &first.frame, 160.0 * DEGREE, 45.0 * DEGREE, 900.0);
+        let mut covariance = SMatrix::<f64, 6, 6>::zeros();
+        for k in 0..3 {
+            covariance[(k, k)] = 0.25;
+            covariance[(k + 3, k + 3)] = 1e-4;
+        }
+        let mut start = truth0;
+        start[0] += 0.3;
+        start[4] -= 0.005;
+        let config = Config {
+            motion,
+            measurement: network,
+            sensor: radar_site(0.0, 0.0).detection,
+            birth: BirthModel::<f64, 6, 1>::none(),
+            death_probability: 0.0,
+            gate: None,
+            children: Default::default(),
+            selection: Default::default(),
+            store_overflow: Default::default(),
+            numerical_failure: Default::default(),
+            seed: 3,
+        };
+        let objects = [PriorObject { label: TrackLabel(0), state: Gaussian { mean: start, covariance } }];
+        let prior = [crate::PriorHypothesis { weight: 1.0, objects: &objects }];
+        let mut tracker: Tracker<f64, TwoBodyJ2<f64>, Radars, 6, 3, 8, 4, 8, 16, 1> =
+            Tracker::new(config, &prior, 0.0).unwrap();
+        let mut rng = crate::random::test_stream(5);
+        let mut gaussian = move || {
+            // Box–Muller from two uniforms in (0, 1].
+            let u1 = ((rng.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64;
+            let u2 = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+            (-2.0 * u1.ln()).sqrt() * (2.0 * core::f64::consts::PI * u2).cos()
+        };
+        let mut truth = truth0;
+        let mut azimuth_signs = [false; 2];
+        let mut last_error = f64::INFINITY;
+        for scan in 1..=12u32 {
+            let time = 10.0 * f64::from(scan);
+            truth = motion.propagate(&truth, 10.0).unwrap().state;
+            let geometry = ScanGeometry { sensor: scan as usize % 2, time, observer: None };
+            let placed = network.place(&geometry).unwrap();
+            let exact = placed.measure(&truth);
+            let sigma = placed.sensors()[geometry.sensor].sigma;
+            let z = SVector::from([
+                exact[0] + sigma[0] * gaussian(),
+                wrap_angle(exact[1] + sigma[1] * gaussian()),
+                exact[2] + sigma[2] * gaussian(),
+            ]);
+            azimuth_signs[usize::from(z[1] > 0.0)] = true;
+            // Bad scans first: each is refused and leaves the tracker as it was.
+            let before = tracker.digest();
+            let unknown = ScanGeometry { sensor: 2, ..geometry };
+            assert_eq!(
+                tracker.step_scan(&unknown, &[z]),
+                Err(StepError::Placement(PlacementError::UnknownSensor { sensor: 2, sensors: 2 }))
+            );
+            let observed = ScanGeometry { observer: Some([7000.0, 0.0, 0.0, 0.0, 7.5, 0.0]), ..geometry };
+            assert_eq!(
+                tracker.step_scan(&observed, &[z]),
+                Err(StepError::Placement(PlacementError::UnexpectedObserver))
+            );
+            let far = ScanGeometry { time: 1e6, ..geometry };
+            assert_eq!(tracker.step_scan(&far, &[z]), Err(StepError::TimeStepTooLong { limit_seconds: 40_000 }));
+            let below = SVector::from([z[0], z[1], -0.5]);
+            assert_eq!(
+                tracker.step_scan(&geometry, &[below]),
+                Err(StepError::MeasurementOutsideFieldOfView { index: 0 })
+            );
+            assert_eq!(tracker.digest(), before);
+
+            tracker.step_scan(&geometry, &[z]).unwrap();
+            let map = tracker.map_hypothesis();
+            let track = map.tracks().next().expect("the object is kept");
+            let error = (track.state.mean.fixed_rows::<3>(0) - truth.fixed_rows::<3>(0)).norm();
+            eprintln!("scan {scan}: sensor {} azimuth {:.4} rad, position error {error:.3} km", geometry.sensor, z[1]);
+            // σ of 0.02° is 0.3 km across the line of sight at 900 km.
+            assert!(map.weight() > 0.99 && error < 1.0, "scan {scan}: weight {} error {error} km", map.weight());
+            last_error = error;
+        }
+        assert!(last_error < 0.3, "{last_error} km after twelve scans");
+        // The pass crossed azimuth ±π: measurements on both sides of it.
+        assert_eq!(azimuth_signs, [true, true]);
     }
 }
