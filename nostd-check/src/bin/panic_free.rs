@@ -10,17 +10,22 @@
 //! configuration (both child generations, both birth variants, gate on or off, both selections, both
 //! store policies, any values), any prior and any scan (any number of measurements, any time) stays
 //! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
-//! `SsaTracker<f32>` and `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells).
+//! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
+//! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
+//! sensor index and observer per scan).
 #![no_std]
 #![no_main]
 
 use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
+use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor};
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::LookShape;
 use tracker_core::{
     BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
-    PriorHypothesis, PriorObject, Real, Region, Sensor, SsaConfig, SsaTracker, TrackLabel, TwoBody, ssa_caps,
+    PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, SsaConfig,
+    SsaTracker, TrackLabel, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 // The C runtime provides `_start`, which calls `main`.
@@ -187,9 +192,82 @@ fn linear(argc: i32) -> u64 {
     digest
 }
 
+/// `RadarTracker<T>`: a network of two ground radars and a spacecraft radar, `new`, then `step_scan` and
+/// `digest` over opaque scans, sensors and observers.
+fn radar<T: Real>(argc: i32) -> u64 {
+    let c = T::of_f64;
+    let x = c(f64::from(argc));
+    let detection = Sensor {
+        detection_probability: c(0.9) / x,
+        clutter_rate: x,
+        field_of_view: Region::Look {
+            shape: LookShape::Cone { azimuth: c(0.3) * x, elevation: c(0.9), half_angle: c(0.7) * x },
+            min_elevation: c(0.1) * x,
+            range: Some([T::zero(), c(3000.0) * x]),
+            range_rate: None,
+        },
+    };
+    let site = |latitude: f64| SiteSensor {
+        platform: Platform::Ground(GroundSite { latitude: c(latitude) * x, longitude: c(-1.8), height: c(0.2) }),
+        sigma: [c(0.02) * x, c(3e-4), c(3e-4)],
+        detection,
+    };
+    let sensors = black_box([site(0.7), site(0.6), SiteSensor { platform: Platform::Spacecraft, ..site(0.0) }]);
+    let Ok(network) = RadarNetwork::<T>::new(EarthRotation::new(c(0.4) * x), &sensors[..argc as usize % 4]) else {
+        return 3;
+    };
+    let config: RadarConfig<T> = black_box(Config {
+        motion: TwoBodyJ2::<T> {
+            mu: c(398_600.441_8),
+            j2: c(1.082_626_68e-3) * x,
+            radius: c(6378.137),
+            min_radius: c(6300.0),
+            noise: ProcessNoise::Isotropic(c(1e-12) * x),
+            max_step: c(20.0),
+            max_substeps: 2000,
+        },
+        measurement: network,
+        sensor: detection,
+        birth: BirthModel::none(),
+        death_probability: c(1e-4) * x,
+        gate: if argc > 3 { None } else { Some(c(25.0) * x) },
+        children: children(argc),
+        selection: selection(argc),
+        store_overflow: store_overflow(argc),
+        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        seed: argc as u64,
+    });
+    let state = |z: f64| Gaussian {
+        mean: SVector::from([c(-1400.0) * x, c(-5000.0), c(z), c(7.0), T::zero(), c(1.0)]),
+        covariance: SMatrix::identity() * x,
+    };
+    let objects = [
+        PriorObject { label: TrackLabel(0), state: state(4200.0) },
+        PriorObject { label: TrackLabel(3), state: state(4300.0) },
+    ];
+    let prior = [
+        PriorHypothesis { weight: c(0.7), objects: &objects[..] },
+        PriorHypothesis { weight: c(0.3), objects: &objects[..1] },
+    ];
+    let Ok(mut tracker) = RadarTracker::<T>::new(config, black_box(&prior[..]), black_box(0.0)) else { return 2 };
+    let zs: [SVector<T, 3>; MEASUREMENTS] =
+        core::array::from_fn(|i| SVector::from([c(800.0 + 20.0 * i as f64) * x, c(0.1 * i as f64), c(0.8)]));
+    let mut digest = 0u64;
+    for k in 1..=argc as usize {
+        let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
+        let observer = if argc > 6 { Some([c(7000.0) * x, T::zero(), T::zero(), T::zero(), c(7.5), T::zero()]) } else { None };
+        let geometry = black_box(ScanGeometry { sensor: k % 4, time: 10.0 * k as f64, observer });
+        if tracker.step_scan(&geometry, scan).is_err() {
+            digest ^= 1;
+        }
+        digest ^= tracker.digest();
+    }
+    digest
+}
+
 /// Inputs come from the command line so the optimiser cannot fold them: argc picks values.
 #[unsafe(no_mangle)]
 pub extern "C" fn main(argc: i32, _argv: *const *const u8) -> i32 {
-    let digest = ssa::<f64>(argc) ^ ssa::<f32>(argc) ^ linear(argc);
+    let digest = ssa::<f64>(argc) ^ ssa::<f32>(argc) ^ linear(argc) ^ radar::<f64>(argc) ^ radar::<f32>(argc);
     (digest & 0x7f) as i32
 }
