@@ -5,16 +5,23 @@
 //! - [`worst_case`]: a tracker at its caps with a scan that fills them (the instruction-count benches):
 //!   H prior hypotheses of (N − 1) objects over K distinct tracks, and Z measurements that are all inside
 //!   the gate of every object and every birth cell, so every association matrix is dense.
+//! - [`radar_worst_case`]: the same for the 3-D [`RadarTracker`]: a dense cluster of LEO objects in the
+//!   field of view of one of two ground radars (two-body + J2, range/azimuth/elevation).
 
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::SplitMix64;
 use tracker_core::association::AssociationMatrix;
 use tracker_core::config::{ChildGeneration, Selection};
+use tracker_core::model::{
+    EARTH_MU as MU, EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor,
+};
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::LookShape;
 use tracker_core::{
-    BirthDetection, BirthModel, Config, Gaussian, MotionModel, PositionMeasurement, PriorHypothesis, PriorObject, Real,
-    Region, Sensor, StepError, StepReport, StoreOverflow, TrackLabel, Tracker, TwoBody,
+    BirthDetection, BirthModel, Config, Gaussian, MeasurementModel, MotionModel, PositionMeasurement, PriorHypothesis,
+    PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, StepError, StepReport, StoreOverflow,
+    TrackLabel, Tracker, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 /// The next output of the SplitMix64 stream whose state is `state` (advanced), for deterministic bench
@@ -220,9 +227,198 @@ pub fn worst_case<T: Real, const H: usize, const N: usize, const Z: usize, const
     WorstCase { tracker, measurements, time: WORST_CASE_DT, move_budget: u64::MAX }
 }
 
+/// Seconds from the prior to the 3-D worst-case scan.
+pub const RADAR_WORST_CASE_DT: f64 = 10.0;
+
+/// Two ground radars 400 km apart (σ 20 m, 0.02°; a 60° cone about the zenith above a 10° mask, range
+/// 200–3000 km; p_D 0.95, one clutter return per scan), Earth rotation angle 0.3 rad at the epoch.
+pub fn radar_network<T: Real>() -> RadarNetwork<T> {
+    let c = T::of_f64;
+    let degree = 1f64.to_radians();
+    let detection = Sensor {
+        detection_probability: c(0.95),
+        clutter_rate: c(1.0),
+        field_of_view: Region::Look {
+            shape: LookShape::Cone { azimuth: T::zero(), elevation: c(90.0 * degree), half_angle: c(60.0 * degree) },
+            min_elevation: c(10.0 * degree),
+            range: Some([c(200.0), c(3000.0)]),
+            range_rate: None,
+        },
+    };
+    let site = |latitude: f64, longitude: f64| SiteSensor {
+        platform: Platform::Ground(GroundSite {
+            latitude: c(latitude * degree),
+            longitude: c(longitude * degree),
+            height: c(0.3),
+        }),
+        sigma: [c(0.02), c(0.02 * degree), c(0.02 * degree)],
+        detection,
+    };
+    RadarNetwork::new(EarthRotation::new(c(0.3)), &[site(40.0, -105.0), site(37.0, -103.0)]).expect("valid network")
+}
+
+/// The J2 model of the 3-D benches: 20 s RK4 sub-steps, RIC process noise.
+pub fn radar_motion<T: Real>() -> TwoBodyJ2<T> {
+    let c = T::of_f64;
+    TwoBodyJ2 {
+        mu: c(tracker_core::model::EARTH_MU),
+        j2: c(tracker_core::model::EARTH_J2),
+        radius: c(tracker_core::model::EARTH_RADIUS),
+        min_radius: c(tracker_core::model::EARTH_MIN_RADIUS),
+        noise: ProcessNoise::Ric { radial: c(1e-12), in_track: c(1e-11), cross_track: c(1e-12) },
+        max_step: c(20.0),
+        max_substeps: 2000,
+    }
+}
+
+/// A circular LEO state 900 km from radar 0 at azimuth 30°, elevation 50° at the prior time.
+fn radar_cluster_state() -> [f64; 6] {
+    let network = radar_network::<f64>();
+    let placed = network.place(&ScanGeometry::single(0.0)).expect("placement");
+    let o = placed.placed().observer;
+    let enu = placed.placed().enu;
+    let (azimuth, elevation, range) = (30f64.to_radians(), 50f64.to_radians(), 900.0);
+    let (e, n, u) = (azimuth.sin() * elevation.cos(), azimuth.cos() * elevation.cos(), elevation.sin());
+    let p: [f64; 3] = core::array::from_fn(|k| o[k] + range * (e * enu[0][k] + n * enu[1][k] + u * enu[2][k]));
+    let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    // Velocity along East, made horizontal, at circular speed.
+    let east = enu[0];
+    let along = (east[0] * p[0] + east[1] * p[1] + east[2] * p[2]) / r;
+    let w: [f64; 3] = core::array::from_fn(|k| east[k] - along * p[k] / r);
+    let norm = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    let speed = (MU / r).sqrt();
+    [p[0], p[1], p[2], w[0] * speed / norm, w[1] * speed / norm, w[2] * speed / norm]
+}
+
+fn gaussian6<T: Real>(mean: [f64; 6], variances: [f64; 6]) -> Gaussian<T, 6> {
+    Gaussian {
+        mean: SVector::from(mean.map(T::of_f64)),
+        covariance: SMatrix::from_diagonal(&SVector::from(variances.map(T::of_f64))),
+    }
+}
+
+/// The 3-D tracker at its caps and the scan that fills them (see [`radar_worst_case`]).
+pub struct RadarWorstCase<T: Real> {
+    /// The tracker, boxed (it is large).
+    pub tracker: Box<RadarTracker<T>>,
+    /// Z measurements of radar 0, all inside every gate.
+    pub measurements: Vec<SVector<T, 3>>,
+    /// The scan's geometry (radar 0).
+    pub geometry: ScanGeometry<T>,
+}
+
+impl<T: Real> RadarWorstCase<T> {
+    /// Processes the worst-case scan.
+    ///
+    /// # Errors
+    /// The tracker's.
+    pub fn step(&mut self) -> Result<StepReport<T>, StepError> {
+        self.tracker.step_scan(&self.geometry, &self.measurements)
+    }
+}
+
+/// The worst case of [`RadarTracker`] at [`ssa_caps`] (K = `TRACKS_3D`): H hypotheses of N − 1 objects
+/// drawn from K / N versions of each, all in one cluster (position σ 3 km, within ±1 km of each other) in
+/// radar 0's field of view, the B birth cells centred on it, and Z measurements within ±1 km of its
+/// predicted centre, so every entry is inside the gate (25) and every matrix dense, as in [`worst_case`].
+///
+/// # Panics
+/// If the configuration or the prior is rejected (a bug in this function).
+pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
+    const H: usize = ssa_caps::HYPOTHESES;
+    const N: usize = ssa_caps::OBJECTS;
+    const K: usize = ssa_caps::TRACKS_3D;
+    const B: usize = ssa_caps::BIRTH_CELLS;
+    const Z: usize = ssa_caps::MEASUREMENTS;
+    let objects = N - 1;
+    let versions = (K / N).max(1);
+    let mut state = 0x3d_5eed_u64;
+    let base = radar_cluster_state();
+    let tracks: Vec<Vec<PriorObject<T, 6>>> = (0..objects)
+        .map(|label| {
+            let offset: [f64; 3] = core::array::from_fn(|_| uniform(&mut state) * 2.0 - 1.0);
+            (0..versions)
+                .map(|version| {
+                    let shift = 0.05 * version as f64;
+                    let mut mean = base;
+                    for k in 0..3 {
+                        mean[k] += offset[k] + shift;
+                    }
+                    let state = gaussian6(mean, [9.0, 9.0, 9.0, 1e-6, 1e-6, 1e-6]);
+                    PriorObject { label: TrackLabel(label as u32), state }
+                })
+                .collect()
+        })
+        .collect();
+    let hypotheses: Vec<Vec<PriorObject<T, 6>>> = (0..H)
+        .map(|h| {
+            (0..objects)
+                .map(|label| {
+                    let mut key = ((h / versions) as u64) << 32 | label as u64;
+                    tracks[label][(h + (splitmix(&mut key) % versions as u64) as usize) % versions]
+                })
+                .collect()
+        })
+        .collect();
+    let prior: Vec<PriorHypothesis<'_, T, 6>> = hypotheses
+        .iter()
+        .enumerate()
+        .map(|(h, objects)| PriorHypothesis { weight: T::of_f64(1.0 / (1.0 + h as f64)), objects })
+        .collect();
+    let motion = radar_motion::<f64>();
+    let centre = motion.propagate(&SVector::from(base), RADAR_WORST_CASE_DT).expect("J2").state;
+    let mut cells = heapless::Vec::new();
+    for _ in 0..B {
+        let mean: [f64; 6] = core::array::from_fn(|k| centre[k]);
+        let _ = cells.push(gaussian6(mean, [100.0, 100.0, 100.0, 1e-2, 1e-2, 1e-2]));
+    }
+    let config: RadarConfig<T> = Config {
+        motion: radar_motion(),
+        measurement: radar_network(),
+        sensor: radar_network::<T>().sensors()[0].detection,
+        birth: BirthModel { probability: T::of_f64(1e-3), cells, detection: BirthDetection::AllDetected },
+        death_probability: T::of_f64(1e-4),
+        gate: Some(T::of_f64(25.0)),
+        children: ChildGeneration::Sampled(SamplerConfig::default()),
+        selection: Selection::TopWeight,
+        store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
+        seed: 1,
+    };
+    let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
+    let geometry = ScanGeometry::single(RADAR_WORST_CASE_DT);
+    let placed = radar_network::<f64>().place(&geometry).expect("placement");
+    let measurements = (0..Z)
+        .map(|_| {
+            let mut point = centre;
+            for k in 0..3 {
+                point[k] += uniform(&mut state) * 2.0 - 1.0;
+            }
+            let z = placed.measure(&point);
+            SVector::from([T::of_f64(z[0]), T::of_f64(z[1]), T::of_f64(z[2])])
+        })
+        .collect();
+    RadarWorstCase { tracker, measurements, geometry: ScanGeometry::single(RADAR_WORST_CASE_DT) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn radar_worst_case_fills_the_caps_with_dense_matrices() {
+        // A debug build moves the 424 KB tracker through several stack frames: a roomy thread.
+        let check = || {
+            let mut case = radar_worst_case::<f64>();
+            assert_eq!(case.tracker.hypotheses().len(), ssa_caps::HYPOTHESES);
+            let report = case.step().unwrap();
+            assert_eq!(report.hypotheses, ssa_caps::HYPOTHESES);
+            assert_eq!(report.numerical_drops.count, 0);
+            assert!(report.sampler_steps > 0, "sampled children: {report:?}");
+            assert_eq!(report.measurements, ssa_caps::MEASUREMENTS);
+        };
+        std::thread::Builder::new().stack_size(64 << 20).spawn(check).unwrap().join().unwrap();
+    }
 
     #[test]
     fn worst_case_fills_the_caps_with_dense_matrices() {

@@ -230,7 +230,13 @@ impl<T: Real> Region<T> {
     pub fn contains_look(&self, look: &Look<T>) -> bool {
         match *self {
             Region::Look { shape, min_elevation, range, range_rate } => {
-                look.elevation >= min_elevation
+                // Angles outside their ranges are no direction the sensor sees.
+                let half_pi = T::frac_pi_2();
+                look.azimuth >= -T::pi()
+                    && look.azimuth <= T::pi()
+                    && look.elevation >= -half_pi
+                    && look.elevation <= half_pi
+                    && look.elevation >= min_elevation
                     && shape.contains(look.azimuth, look.elevation)
                     && in_window(range, look.range)
                     && in_window(range_rate, look.range_rate)
@@ -458,6 +464,17 @@ impl<T: Real> Sensor<T> {
         &self,
         model: &G,
     ) -> Result<(), &'static str> {
+        self.validate_parts(D, model.look_axes(), model.clutter_volume(&self.field_of_view))
+    }
+
+    /// [`Sensor::validate`] from its parts: the measurement dimension, the model's look axes (`None`
+    /// without a sensor frame) and the field of view's clutter volume in measurement coordinates.
+    pub(crate) fn validate_parts(
+        &self,
+        measurement_dimension: usize,
+        look_axes: Option<LookAxes>,
+        volume: T,
+    ) -> Result<(), &'static str> {
         let pd = self.detection_probability;
         if !(pd.is_finite_value() && pd > T::zero() && pd <= T::one()) {
             return Err("sensor: detection probability must be in (0, 1]");
@@ -465,9 +482,9 @@ impl<T: Real> Sensor<T> {
         if !(self.clutter_rate.is_finite_value() && self.clutter_rate > T::zero()) {
             return Err("sensor: clutter rate must be finite and > 0");
         }
-        self.field_of_view.validate(D)?;
+        self.field_of_view.validate(measurement_dimension)?;
         if let Region::Look { range, range_rate, .. } = self.field_of_view {
-            let Some(axes) = model.look_axes() else {
+            let Some(axes) = look_axes else {
                 return Err("field of view: a look-angle field of view needs a measurement model with a sensor frame");
             };
             if axes.range != range.is_some() {
@@ -481,7 +498,6 @@ impl<T: Real> Sensor<T> {
         }
         // The region's volume and the clutter intensity must be representable: a region whose volume
         // overflows or underflows the scalar type would make λ_C infinite or zero.
-        let volume = model.clutter_volume(&self.field_of_view);
         let intensity = self.clutter_rate / volume;
         if !(volume.is_finite_value() && volume > T::zero()) {
             return Err("field of view: its volume is not a finite positive number in this scalar type");

@@ -111,8 +111,8 @@ pub trait Placeable<T: Real, const D: usize>: MeasurementModel<T, 6, D> + Copy {
     /// The model for one scan.
     fn placed(observer: [T; 6], frame: [[T; 3]; 3], sigma: [T; D]) -> Self;
 
-    /// Measurement `z` as a look direction in `frame`.
-    fn look_in(frame: &[[T; 3]; 3], z: &SVector<T, D>) -> Look<T>;
+    /// Measurement `z` as a look direction in `frame`; `None` when its angles are outside their ranges.
+    fn look_in(frame: &[[T; 3]; 3], z: &SVector<T, D>) -> Option<Look<T>>;
 
     /// |∂(measured angles)/∂(azimuth, elevation)| at a look direction: the factor that turns an area in
     /// look angles into one in measurement coordinates. `frame_z` holds the inertial z components of the
@@ -129,8 +129,8 @@ impl<T: Real> Placeable<T, 3> for RadarRangeAzEl<T> {
         Self { observer, enu: frame, sigma }
     }
 
-    fn look_in(_frame: &[[T; 3]; 3], z: &SVector<T, 3>) -> Look<T> {
-        Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None }
+    fn look_in(_frame: &[[T; 3]; 3], z: &SVector<T, 3>) -> Option<Look<T>> {
+        Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None })
     }
 }
 
@@ -141,8 +141,8 @@ impl<T: Real> Placeable<T, 4> for RadarRangeRate<T> {
         Self { observer, enu: frame, sigma }
     }
 
-    fn look_in(_frame: &[[T; 3]; 3], z: &SVector<T, 4>) -> Look<T> {
-        Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) }
+    fn look_in(_frame: &[[T; 3]; 3], z: &SVector<T, 4>) -> Option<Look<T>> {
+        Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) })
     }
 }
 
@@ -153,13 +153,17 @@ impl<T: Real> Placeable<T, 2> for OpticalRaDec<T> {
         Self { observer, sigma }
     }
 
-    fn look_in(frame: &[[T; 3]; 3], z: &SVector<T, 2>) -> Look<T> {
+    fn look_in(frame: &[[T; 3]; 3], z: &SVector<T, 2>) -> Option<Look<T>> {
         // The inertial unit vector of (α, δ), then its components along the frame's rows.
         let (alpha, delta) = (z[0], z[1]);
+        let half_pi = T::frac_pi_2();
+        if !(alpha >= -T::pi() && alpha <= T::pi() && delta >= -half_pi && delta <= half_pi) {
+            return None;
+        }
         let unit = [cos(delta) * cos(alpha), cos(delta) * sin(alpha), sin(delta)];
         let along = |row: &[T; 3]| row[0] * unit[0] + row[1] * unit[1] + row[2] * unit[2];
         let (_, azimuth, elevation, _) = look_angles([along(&frame[0]), along(&frame[1]), along(&frame[2])]);
-        Look { azimuth, elevation, range: None, range_rate: None }
+        Some(Look { azimuth, elevation, range: None, range_rate: None })
     }
 
     /// dα dδ = dΩ / cos δ and dA dE = dΩ / cos E, so the factor is cos E / cos δ, with
@@ -256,15 +260,8 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
                 Platform::Spacecraft => inertial_frame(),
             };
             let volume = angular_volume::<T, X, D>(&sensor.detection.field_of_view, &frame);
-            let intensity = sensor.detection.clutter_rate / volume;
-            if !(volume.is_finite_value()
-                && volume > T::zero()
-                && intensity.is_finite_value()
-                && intensity > T::zero()
-                && crate::real::ln(intensity).is_finite_value())
-            {
-                return Err("sensor network: a field of view's clutter volume or intensity is not finite and > 0");
-            }
+            // p_D, clutter, the look region (windows as the model measures) and the clutter volume.
+            sensor.detection.validate_parts(D, Some(X::AXES), volume)?;
             if let (Some(slot), Some(volume_slot)) = (network.sensors.get_mut(index), network.volumes.get_mut(index)) {
                 *slot = *sensor;
                 *volume_slot = volume;
@@ -395,7 +392,7 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
     }
 
     fn look(&self, z: &SVector<T, D>) -> Option<Look<T>> {
-        Some(X::look_in(&self.frame, z))
+        X::look_in(&self.frame, z)
     }
 
     fn clutter_volume(&self, region: &Region<T>) -> T {
