@@ -1091,8 +1091,10 @@ pub fn tiny_3d(seed: u64) -> Result<SsaScenario, SsaError> {
 /// Parameters of [`optical_geo_with`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OpticalGeoConfig {
-    /// Objects on their own slots.
+    /// Station-kept objects on their own slots (always in view).
     pub singles: usize,
+    /// Uncontrolled inclined objects that sweep north–south through the field.
+    pub sweepers: usize,
     /// Co-located clusters.
     pub clusters: usize,
     /// Objects per cluster.
@@ -1104,9 +1106,15 @@ pub struct OpticalGeoConfig {
 }
 
 impl OpticalGeoConfig {
-    /// The `optical-geo` preset: 24 singles + 3 clusters of 4, 4 h, a frame every 90 s.
-    pub const PRESET: OpticalGeoConfig =
-        OpticalGeoConfig { singles: 24, clusters: 3, cluster_size: 4, duration: 4.0 * 3600.0, cadence: 90.0 };
+    /// The `optical-geo` preset: 8 singles + 3 clusters of 4 + 12 sweepers, 4 h, a frame every 90 s.
+    pub const PRESET: OpticalGeoConfig = OpticalGeoConfig {
+        singles: 8,
+        sweepers: 12,
+        clusters: 3,
+        cluster_size: 4,
+        duration: 4.0 * 3600.0,
+        cadence: 90.0,
+    };
 }
 
 const GEO_EPOCH: &str = "2026-03-20T02:00:00Z";
@@ -1123,13 +1131,13 @@ pub fn geo_telescope() -> SensorSpec {
         site,
         kind: SensorKind::Optical,
         fov: FieldOfView {
-            shape: LookShape::Cone { azimuth, elevation, half_angle: deg(6.0) },
+            shape: LookShape::Cone { azimuth, elevation, half_angle: deg(3.0) },
             min_elevation: deg(20.0),
             range: None,
         },
         sigma: vec![deg(1.5 / 3600.0), deg(1.5 / 3600.0)],
         detection_probability: 0.95,
-        clutter_rate: 2.0,
+        clutter_rate: 1.0,
     }
 }
 
@@ -1138,10 +1146,14 @@ fn geo_radius() -> f64 {
     (MU / (EARTH_ROTATION_RATE * EARTH_ROTATION_RATE)).cbrt()
 }
 
-/// `optical-geo`: one staring telescope at 32° N 110° W, 2 km, a 6° cone about the GEO belt on its
-/// meridian (az 180°, el ≈ 52.7°), mask 20°, σ 1.5″ per angle, p_D 0.95, 2 clutter per frame; 24 GEO
-/// objects within ±4° of longitude of the meridian (e ≤ 5e-4, i ≤ 0.5°) and 3 co-located clusters of 4
-/// (within ±0.015° of longitude of a slot, e ≤ 8e-5, i ≤ 0.01°); a frame every 90 s for 4 h.
+/// `optical-geo`: one staring telescope at 32° N 110° W, 2 km, a cone of half-angle 3° about the GEO
+/// belt on its meridian (az 180°, el ≈ 52.7°), mask 20°, σ 1.5″ per angle, p_D 0.95, 1 clutter per
+/// frame; a frame every 90 s for 4 h. Objects: 8 station-kept singles within ±2° of longitude of the
+/// meridian (e ≤ 2e-4, i ≤ 0.1°), 3 co-located clusters of 4 (slots near −1.5°, 0°, +1.5°; members
+/// within ±0.015° of longitude of the slot, e ≤ 8e-5, i ≤ 0.01°), always in view; and 12 uncontrolled
+/// inclined geosynchronous objects (i 8–15°, circular) crossing the equator within ±2° of the meridian
+/// at a random time of the run, each in view for 1–2 h. The sweepers keep the number in view at once
+/// below the 32 measurements a scan may carry while at least 30 objects are seen.
 ///
 /// # Errors
 /// As [`radar_leo`].
@@ -1171,12 +1183,25 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
     };
     let mut random = Random::stream(seed, Stream::Orbit, 0);
     for _ in 0..config.singles {
-        let longitude = sensor.site.longitude + deg(random.between(-4.0, 4.0));
-        let s = state_at(&mut random, longitude, 5e-4, deg(0.5));
+        let longitude = sensor.site.longitude + deg(random.between(-2.0, 2.0));
+        let s = state_at(&mut random, longitude, 2e-4, deg(0.1));
+        objects.push(ObjectTruth { initial_state: s, group: None });
+    }
+    for _ in 0..config.sweepers {
+        let t_node = random.between(0.0, config.duration);
+        let longitude = sensor.site.longitude + deg(random.between(-2.0, 2.0));
+        let inclination = deg(random.between(8.0, 15.0));
+        let at_node = aimed_circular(
+            [earth_rotation_angle(epoch_jd, t_node) + longitude, 0.0],
+            a,
+            inclination,
+            random.uniform() < 0.5,
+        );
+        let s = Propagator::EARTH.propagate(at_node, -t_node)?;
         objects.push(ObjectTruth { initial_state: s, group: None });
     }
     for c in 0..config.clusters {
-        let slot = sensor.site.longitude + deg(-3.0 + 3.0 * c as f64 + random.between(-0.5, 0.5));
+        let slot = sensor.site.longitude + deg(-1.5 + 1.5 * c as f64 + random.between(-0.3, 0.3));
         let mut members = Vec::new();
         for _ in 0..config.cluster_size {
             let longitude = slot + deg(random.between(-0.015, 0.015));
@@ -1498,16 +1523,31 @@ mod tests {
     #[test]
     #[ignore = "full preset: run with --release -- --ignored"]
     fn radar_leo_full_preset() {
-        let s = radar_leo(1).unwrap();
-        check_radar_leo(&s, &RadarLeoConfig::PRESET);
-        assert!(s.objects.len() >= 100);
+        for seed in 1..=5 {
+            let s = radar_leo(seed).unwrap();
+            check_radar_leo(&s, &RadarLeoConfig::PRESET);
+            assert!(s.objects.len() >= 100);
+        }
     }
 
     fn check_optical_geo(s: &SsaScenario, config: &OpticalGeoConfig) {
-        assert_eq!(s.objects.len(), config.singles + config.clusters * config.cluster_size);
+        let kept = config.singles + config.clusters * config.cluster_size;
+        assert_eq!(s.objects.len(), kept + config.sweepers);
         assert!(s.stats().max_measurements <= MAX_MEASUREMENTS);
-        // Every object in view in every frame (staring at the belt).
-        assert!(s.scans.iter().all(|scan| scan.truth.len() == s.objects.len()));
+        // Station-kept objects (singles, then sweepers, then clusters) are in view in every frame.
+        let kept_ids: Vec<usize> =
+            (0..config.singles).chain(config.singles + config.sweepers..s.objects.len()).collect();
+        for scan in &s.scans {
+            assert!(kept_ids.iter().all(|i| scan.truth.iter().any(|t| t.object == *i)));
+        }
+        // Every sweeper is seen, and leaves or enters the field during the run.
+        for i in config.singles..config.singles + config.sweepers {
+            let frames = s.scans.iter().filter(|scan| scan.truth.iter().any(|t| t.object == i)).count();
+            assert!(frames > 0, "sweeper {i} never in view");
+            if config.duration >= 3.0 * 3600.0 {
+                assert!(frames < s.scans.len(), "sweeper {i} in view all the time");
+            }
+        }
         // Clusters stay within 0.1° as seen from the telescope.
         for g in &s.groups {
             for scan in &s.scans {
@@ -1528,7 +1568,8 @@ mod tests {
 
     #[test]
     fn optical_geo_short_properties_and_determinism() {
-        let config = OpticalGeoConfig { singles: 10, clusters: 2, cluster_size: 4, duration: 3600.0, cadence: 120.0 };
+        let config =
+            OpticalGeoConfig { singles: 6, sweepers: 4, clusters: 2, cluster_size: 4, duration: 3600.0, cadence: 120.0 };
         let a = optical_geo_with(5, &config).unwrap();
         check_optical_geo(&a, &config);
         assert_eq!(a, optical_geo_with(5, &config).unwrap());
@@ -1552,9 +1593,11 @@ mod tests {
     #[test]
     #[ignore = "full preset: run with --release -- --ignored"]
     fn optical_geo_full_preset() {
-        let s = optical_geo(1).unwrap();
-        check_optical_geo(&s, &OpticalGeoConfig::PRESET);
-        assert!(s.objects.len() >= 30);
+        for seed in 1..=10 {
+            let s = optical_geo(seed).unwrap();
+            check_optical_geo(&s, &OpticalGeoConfig::PRESET);
+            assert!(s.objects.len() >= 30);
+        }
     }
 
     #[test]
