@@ -1106,9 +1106,9 @@ pub struct OpticalGeoConfig {
 }
 
 impl OpticalGeoConfig {
-    /// The `optical-geo` preset: 8 singles + 3 clusters of 4 + 12 sweepers, 4 h, a frame every 90 s.
+    /// The `optical-geo` preset: 6 singles + 3 clusters of 4 + 12 sweepers, 4 h, a frame every 90 s.
     pub const PRESET: OpticalGeoConfig = OpticalGeoConfig {
-        singles: 8,
+        singles: 6,
         sweepers: 12,
         clusters: 3,
         cluster_size: 4,
@@ -1148,11 +1148,11 @@ fn geo_radius() -> f64 {
 
 /// `optical-geo`: one staring telescope at 32° N 110° W, 2 km, a cone of half-angle 3° about the GEO
 /// belt on its meridian (az 180°, el ≈ 52.7°), mask 20°, σ 1.5″ per angle, p_D 0.95, 1 clutter per
-/// frame; a frame every 90 s for 4 h. Objects: 8 station-kept singles within ±2° of longitude of the
+/// frame; a frame every 90 s for 4 h. Objects: 6 station-kept singles within ±2° of longitude of the
 /// meridian (e ≤ 2e-4, i ≤ 0.1°), 3 co-located clusters of 4 (slots near −1.5°, 0°, +1.5°; members
 /// within ±0.015° of longitude of the slot, e ≤ 8e-5, i ≤ 0.01°), always in view; and 12 uncontrolled
-/// inclined geosynchronous objects (i 8–15°, circular) crossing the equator within ±2° of the meridian
-/// at a random time of the run, each in view for 1–2 h. The sweepers keep the number in view at once
+/// inclined geosynchronous objects (i 10–16°, circular) crossing the equator within ±2° of the meridian
+/// at a random time of the run, each in view for about 1–1.5 h. The sweepers keep the number in view at once
 /// below the 32 measurements a scan may carry while at least 30 objects are seen.
 ///
 /// # Errors
@@ -1190,7 +1190,7 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
     for _ in 0..config.sweepers {
         let t_node = random.between(0.0, config.duration);
         let longitude = sensor.site.longitude + deg(random.between(-2.0, 2.0));
-        let inclination = deg(random.between(8.0, 15.0));
+        let inclination = deg(random.between(10.0, 16.0));
         let at_node = aimed_circular(
             [earth_rotation_angle(epoch_jd, t_node) + longitude, 0.0],
             a,
