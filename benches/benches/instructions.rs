@@ -8,14 +8,16 @@
 //!   [`tracker_core::ssa_caps`] (H = 32, N = 64, Z = 32, K = 256, B = 8); `ssa_f64_n_full` holds N objects
 //!   per hypothesis (no room for a birth, so no birth chains); the others vary one cap of the f64 tracker
 //!   (`hH`, `nN` with K = 4N, `zZ`); `ssa_f64_budget_M` is `ssa_f64` with a budget of M Metropolis moves
-//!   for the scan (`Tracker::step_with_budget`; the unlimited scan makes 604,800).
+//!   for the scan (`Tracker::step_with_budget`; the unlimited scan makes 604,800). `radar_f64` and
+//!   `radar_f32` are the 3-D `RadarTracker<f64>` / `RadarTracker<f32>` (two-body + J2, two ground radars,
+//!   K = 192) on [`benches::radar_worst_case`]: the same construction in one radar's field of view.
 //! - `chain`: one Metropolis chain of 20,000 steps with the default (informed) proposal on the 32 × 64
 //!   crossing matrix of the `sampler` bench (tables, greedy start, climb, steps, duplicate removal).
 //! - `ekf`: two-body predict (dt = 60 s) and update, f64.
 //!
 //! Setup (building the tracker and the scan) is not counted. Run:
 //! `cargo bench -p benches --bench instructions` (needs valgrind and gungraun-runner 0.20.0).
-use benches::{WorstCase, crossing_matrix, ssa_motion, worst_case};
+use benches::{RadarWorstCase, WorstCase, crossing_matrix, radar_worst_case, ssa_motion, worst_case};
 use gungraun::prelude::*;
 use nalgebra::{SMatrix, SVector};
 use std::hint::black_box;
@@ -37,6 +39,18 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize, const K: usize, co
     }
 }
 
+impl<T: Real> Scan for RadarWorstCase<T> {
+    fn run(&mut self) -> usize {
+        self.step().map(|report| report.hypotheses).unwrap_or(0)
+    }
+}
+
+fn radar_f64() -> Box<dyn Scan> {
+    Box::new(radar_worst_case::<f64>())
+}
+fn radar_f32() -> Box<dyn Scan> {
+    Box::new(radar_worst_case::<f32>())
+}
 fn ssa_f64() -> Box<dyn Scan> {
     Box::new(worst_case::<f64, H, N, Z, K, B>(N - 1))
 }
@@ -85,6 +99,8 @@ fn ssa_f64_budget(moves: u64) -> Box<dyn Scan> {
 #[bench::ssa_f64_budget_10k(args = (10_000), setup = ssa_f64_budget)]
 #[bench::ssa_f64_budget_100k(args = (100_000), setup = ssa_f64_budget)]
 #[bench::ssa_f64_budget_300k(args = (300_000), setup = ssa_f64_budget)]
+#[bench::radar_f64(setup = radar_f64)]
+#[bench::radar_f32(setup = radar_f32)]
 fn step(mut scan: Box<dyn Scan>) -> usize {
     black_box(scan.run())
 }

@@ -408,14 +408,18 @@ mod tests {
     #[test]
     fn radar_worst_case_fills_the_caps_with_dense_matrices() {
         // A debug build moves the 424 KB tracker through several stack frames: a roomy thread.
-        let check = || {
-            let mut case = radar_worst_case::<f64>();
+        fn check<T: Real>() {
+            let mut case = radar_worst_case::<T>();
             assert_eq!(case.tracker.hypotheses().len(), ssa_caps::HYPOTHESES);
             let report = case.step().unwrap();
             assert_eq!(report.hypotheses, ssa_caps::HYPOTHESES);
             assert_eq!(report.numerical_drops.count, 0);
             assert!(report.sampler_steps > 0, "sampled children: {report:?}");
             assert_eq!(report.measurements, ssa_caps::MEASUREMENTS);
+        }
+        let check = || {
+            check::<f64>();
+            check::<f32>();
         };
         std::thread::Builder::new().stack_size(64 << 20).spawn(check).unwrap().join().unwrap();
     }
