@@ -32,5 +32,6 @@ pub mod setup;
 pub mod sim;
 pub mod snapshot;
 pub mod soak;
+pub mod ssa;
 
 pub use error::Error;
