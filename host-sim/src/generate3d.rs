@@ -95,7 +95,7 @@ pub struct Generated {
     pub measurements: usize,
     /// Most measurements in one scan.
     pub max_measurements: usize,
-    /// Detections dropped because their noisy measurement fell outside the field of view.
+    /// Measurements dropped because they fell outside the field of view (noisy detections at its edge).
     pub dropped_outside: usize,
 }
 
@@ -237,8 +237,13 @@ pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> 
     Ok((scenario, figures))
 }
 
+/// Degrees of a configuration angle, rounded to 1e-9° (≈ 2e-11 rad) so that 15° reads 15, not 14.999999999999998.
+fn degrees(rad: f64) -> f64 {
+    (rad.to_degrees() * 1e9).round() / 1e9
+}
+
 fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
-    let arcsec = |rad: f64| rad.to_degrees() * 3600.0;
+    let arcsec = |rad: f64| (rad.to_degrees() * 3600.0 * 1e9).round() / 1e9;
     let noise = match sensor.kind {
         SensorKind::Radar => NoiseSpec {
             range_km: Some(sensor.sigma[0]),
@@ -261,27 +266,27 @@ fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
     };
     let shape = match sensor.fov.shape {
         ssa::LookShape::Cone { azimuth, elevation, half_angle } => ShapeSpec::Cone {
-            azimuth_deg: azimuth.to_degrees(),
-            elevation_deg: elevation.to_degrees(),
-            half_angle_deg: half_angle.to_degrees(),
+            azimuth_deg: degrees(azimuth),
+            elevation_deg: degrees(elevation),
+            half_angle_deg: degrees(half_angle),
         },
         ssa::LookShape::Box { azimuth_centre, azimuth_half_width, elevation_min, elevation_max } => ShapeSpec::Box {
-            azimuth_deg: azimuth_centre.to_degrees(),
-            half_width_deg: azimuth_half_width.to_degrees().min(180.0),
-            elevation_deg: [elevation_min.to_degrees(), elevation_max.to_degrees().min(90.0)],
+            azimuth_deg: degrees(azimuth_centre),
+            half_width_deg: degrees(azimuth_half_width).min(180.0),
+            elevation_deg: [degrees(elevation_min), degrees(elevation_max).min(90.0)],
         },
     };
     Sensor3dSpec {
         name: sensor.name.clone(),
         site: SiteSpec {
-            latitude_deg: sensor.site.latitude.to_degrees(),
-            longitude_deg: sensor.site.longitude.to_degrees(),
+            latitude_deg: degrees(sensor.site.latitude),
+            longitude_deg: degrees(sensor.site.longitude),
             height_km: sensor.site.height,
         },
         noise,
         field_of_view: FieldOfView3dSpec {
             shape,
-            min_elevation_deg: sensor.fov.min_elevation.to_degrees(),
+            min_elevation_deg: degrees(sensor.fov.min_elevation),
             range_km: sensor.fov.range,
             range_rate_km_s: match sensor.kind {
                 SensorKind::RadarRangeRate { max_range_rate } => Some([-max_range_rate, max_range_rate]),

@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 use host_sim::Error;
 use host_sim::evaluate::{self, Options};
 use host_sim::experiment::Experiment;
-use host_sim::runner::{Profile, TrackerKind};
 use host_sim::generate3d::Preset3d;
+use host_sim::runner::{Profile, TrackerKind};
 use host_sim::scenario3d::{AnyScenario, load_any};
 use host_sim::sim::Preset;
 use std::path::{Path, PathBuf};
@@ -247,7 +247,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
             eprintln!(
-                "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} detections outside the \
+                "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
                  field of view dropped)",
                 out.display(),
                 figures.scans,
@@ -262,7 +262,8 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let scenario = match load_any(&file)? {
                 AnyScenario::V1(scenario) => scenario,
                 AnyScenario::V2(scenario) => {
-                    let (summary, clean) = host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, &out)?;
+                    let (summary, clean) =
+                        host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, &out)?;
                     println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
                     return if clean { Ok(()) } else { Err(CliError::Rejected) };
                 }

@@ -466,6 +466,10 @@ fn fov_outline(shape: &ShapeSpec, mask_deg: f64) -> Vec<(f64, f64)> {
                     (tracker_core::model::wrap_angle(a0 - w + 2.0 * w * f), el)
                 })
             };
+            if w >= std::f64::consts::PI {
+                // Every azimuth: the ring of the lowest elevation seen.
+                return along(low, true).collect();
+            }
             along(low, true).chain(along(high, false)).collect()
         }
     }
@@ -503,8 +507,7 @@ pub fn run(
     let geometry = SiteGeometry::new(scenario);
     let prior = runner.posterior();
     let csv_path = out.join("estimates.csv");
-    let mut csv =
-        std::io::BufWriter::new(std::fs::File::create(&csv_path).map_err(|e| Error::output(&csv_path, e))?);
+    let mut csv = std::io::BufWriter::new(std::fs::File::create(&csv_path).map_err(|e| Error::output(&csv_path, e))?);
     writeln!(csv, "scan,time,sensor,label,x,y,z,vx,vy,vz,existence,within_error_bound")
         .map_err(|e| Error::output(&csv_path, e))?;
 
@@ -689,8 +692,7 @@ fn write_plots(
             .enumerate()
             .map(|(i, (id, points))| SkySeries { name: format!("object {id}"), points: points.clone(), color: Some(i) })
             .collect();
-        let estimates =
-            [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
+        let estimates = [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
         let stem = out.join(format!("sky_{s}_{}", stem_of(&sensor.name)));
         if scenario.measurement == Measurement3dSpec::Optical {
             let title = format!("{}: right ascension / declination, truth in view and MAP estimates", sensor.name);

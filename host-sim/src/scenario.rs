@@ -776,7 +776,10 @@ fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
     check_covariance(field, matrix)
 }
 
-pub(crate) fn check_covariance<const D: usize>(field: &str, m: nalgebra::SMatrix<f64, D, D>) -> Result<(), ScenarioError> {
+pub(crate) fn check_covariance<const D: usize>(
+    field: &str,
+    m: nalgebra::SMatrix<f64, D, D>,
+) -> Result<(), ScenarioError> {
     if !m.iter().all(|v| v.is_finite()) {
         return Err(error(field, "has a non-finite entry"));
     }

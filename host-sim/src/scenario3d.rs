@@ -230,9 +230,7 @@ impl NoiseSpec {
     fn fields(kind: Measurement3dSpec) -> &'static [&'static str] {
         match kind {
             Measurement3dSpec::Radar => &["range_km", "azimuth_arcsec", "elevation_arcsec"],
-            Measurement3dSpec::RadarRangeRate => {
-                &["range_km", "azimuth_arcsec", "elevation_arcsec", "range_rate_km_s"]
-            }
+            Measurement3dSpec::RadarRangeRate => &["range_km", "azimuth_arcsec", "elevation_arcsec", "range_rate_km_s"],
             Measurement3dSpec::Optical => &["right_ascension_arcsec", "declination_arcsec"],
         }
     }
@@ -661,7 +659,11 @@ impl Scenario3d {
                 if z.len() != dimension {
                     return Err(error(
                         &field,
-                        format!("has {} components, a {} measurement has {dimension}", z.len(), self.measurement.name()),
+                        format!(
+                            "has {} components, a {} measurement has {dimension}",
+                            z.len(),
+                            self.measurement.name()
+                        ),
                     ));
                 }
                 finite_all(&field, z)?;
@@ -731,7 +733,10 @@ impl Sensor3dSpec {
                     return Err(error(format!("{field}.noise.{name}"), format!("required for {}", kind.name())));
                 }
                 (Some(_), false) => {
-                    return Err(error(format!("{field}.noise.{name}"), format!("not part of a {} measurement", kind.name())));
+                    return Err(error(
+                        format!("{field}.noise.{name}"),
+                        format!("not part of a {} measurement", kind.name()),
+                    ));
                 }
                 (None, false) => {}
             }
@@ -807,7 +812,10 @@ impl FieldOfView3dSpec {
             }
             (None, true) => return Err(error(format!("{field}.range_rate_km_s"), "required for radar-range-rate")),
             (Some(_), false) => {
-                return Err(error(format!("{field}.range_rate_km_s"), format!("not part of a {} measurement", kind.name())));
+                return Err(error(
+                    format!("{field}.range_rate_km_s"),
+                    format!("not part of a {} measurement", kind.name()),
+                ));
             }
             (None, false) => {}
         }
@@ -836,11 +844,13 @@ impl FieldOfView3dSpec {
                 elevation: elevation_deg.to_radians(),
                 half_angle: half_angle_deg.to_radians(),
             },
-            ShapeSpec::Box { azimuth_deg, half_width_deg, elevation_deg: [low, high] } => tracker_core::LookShape::Box {
-                azimuth: azimuth_deg.to_radians(),
-                half_width: half_width_deg.to_radians(),
-                elevation: [low.to_radians(), high.to_radians()],
-            },
+            ShapeSpec::Box { azimuth_deg, half_width_deg, elevation_deg: [low, high] } => {
+                tracker_core::LookShape::Box {
+                    azimuth: azimuth_deg.to_radians(),
+                    half_width: half_width_deg.to_radians(),
+                    elevation: [low.to_radians(), high.to_radians()],
+                }
+            }
         };
         tracker_core::Region::Look {
             shape,
@@ -867,10 +877,16 @@ impl Truth3dSpec {
             for (i, state) in truth.objects.iter().enumerate() {
                 finite_all(&format!("truth.scans[{k}].objects[{i}].state"), &state.state)?;
                 if !known.contains(&state.id) {
-                    return Err(error(format!("truth.scans[{k}].objects[{i}].id"), format!("unknown object id {}", state.id)));
+                    return Err(error(
+                        format!("truth.scans[{k}].objects[{i}].id"),
+                        format!("unknown object id {}", state.id),
+                    ));
                 }
                 if !seen.insert(state.id) {
-                    return Err(error(format!("truth.scans[{k}].objects[{i}].id"), format!("id {} appears twice", state.id)));
+                    return Err(error(
+                        format!("truth.scans[{k}].objects[{i}].id"),
+                        format!("id {} appears twice", state.id),
+                    ));
                 }
             }
             if let Some(origins) = &truth.origins {

@@ -739,7 +739,12 @@ fn track(initial: [f64; 6], times: &[f64]) -> Result<Vec<[f64; 6]>, SsaError> {
 }
 
 /// Per scan, whether the object is inside the scan's field of view.
-fn visibility(sensors: &[SensorSpec], schedule: &[(f64, usize)], observers: &[Observer], states: &[[f64; 6]]) -> Vec<bool> {
+fn visibility(
+    sensors: &[SensorSpec],
+    schedule: &[(f64, usize)],
+    observers: &[Observer],
+    states: &[[f64; 6]],
+) -> Vec<bool> {
     schedule.iter().zip(observers).zip(states).map(|((&(_, s), o), x)| sensors[s].sees(o, x)).collect()
 }
 
@@ -1568,8 +1573,14 @@ mod tests {
 
     #[test]
     fn optical_geo_short_properties_and_determinism() {
-        let config =
-            OpticalGeoConfig { singles: 6, sweepers: 4, clusters: 2, cluster_size: 4, duration: 3600.0, cadence: 120.0 };
+        let config = OpticalGeoConfig {
+            singles: 6,
+            sweepers: 4,
+            clusters: 2,
+            cluster_size: 4,
+            duration: 3600.0,
+            cadence: 120.0,
+        };
         let a = optical_geo_with(5, &config).unwrap();
         check_optical_geo(&a, &config);
         assert_eq!(a, optical_geo_with(5, &config).unwrap());
