@@ -346,7 +346,7 @@ mod tests {
 
     #[test]
     fn gospa_of_empty_sets_is_zero() {
-        let g = gospa(&[], &[], 10.0, 2.0);
+        let g = gospa::<2>(&[], &[], 10.0, 2.0);
         assert_eq!(g, Gospa { distance: 0.0, localisation: 0.0, missed: 0, false_tracks: 0, assignment: vec![] });
     }
 
@@ -534,7 +534,7 @@ mod tests {
 
     #[test]
     fn ospa_empty_cases() {
-        assert_eq!(ospa(&[], &[], 10.0, 2.0), 0.0);
+        assert_eq!(ospa::<2>(&[], &[], 10.0, 2.0), 0.0);
         assert_eq!(ospa(&[[1.0, 2.0]], &[], 10.0, 2.0), 10.0);
         assert_eq!(ospa(&[], &[[1.0, 2.0], [3.0, 4.0]], 7.0, 1.0), 7.0);
     }

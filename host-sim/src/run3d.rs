@@ -743,3 +743,79 @@ fn write_plots(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tiny() -> Scenario3d {
+        let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
+        crate::generate3d::to_scenario(&simulation).expect("scenario").0
+    }
+
+    fn temp(tag: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("host-sim-run3d-{}-{tag}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    /// The core's own errors for bad input (an unvalidated scenario) are bad input at the command line:
+    /// `Error::Input` (exit code 2) with one line naming the scan.
+    /// Runs `f` on a thread with the stack `main` gives the trackers.
+    fn on_large_stack(f: impl FnOnce() + Send + 'static) {
+        std::thread::Builder::new().stack_size(512 << 20).spawn(f).expect("thread").join().expect("no panic");
+    }
+
+    #[test]
+    fn core_gap_and_placement_errors_are_bad_input() {
+        on_large_stack(core_gap_and_placement_errors);
+    }
+
+    fn core_gap_and_placement_errors() {
+        let mut gap = tiny();
+        gap.motion = Motion3dSpecFor::short();
+        let out = temp("gap");
+        match run(&gap, TrackerKind::Rfisst, None, true, &out) {
+            Err(Error::Input(e)) => {
+                assert!(e.0.starts_with("scans[1]: scan is more than 5 s after the last one"), "{e}");
+                assert!(!e.0.contains('\n'));
+            }
+            other => panic!("{:?}", other.map(|s| s.0.scans)),
+        }
+        let mut unknown = tiny();
+        unknown.scans[2].sensor = 3;
+        match run(&unknown, TrackerKind::Rfisst, None, true, &out) {
+            Err(Error::Input(e)) => assert!(e.0.starts_with("scans[2]: scan geometry: scan names sensor 3"), "{e}"),
+            other => panic!("{:?}", other.map(|s| s.0.scans)),
+        }
+        let _ = std::fs::remove_dir_all(&out);
+    }
+
+    struct Motion3dSpecFor;
+
+    impl Motion3dSpecFor {
+        /// Gaps of at most 5 s: the 10 s between tiny-3d's scans are too long.
+        fn short() -> crate::scenario3d::Motion3dSpec {
+            crate::scenario3d::Motion3dSpec::TwoBodyJ2 {
+                process_noise: crate::scenario3d::ProcessNoiseSpec::Isotropic { q: 1e-12 },
+                max_step: 5.0,
+                max_substeps: 1,
+            }
+        }
+    }
+
+    #[test]
+    fn look_angles_match_the_core_radar_model() {
+        use tracker_core::MeasurementModel;
+        let scenario = tiny();
+        let geometry = SiteGeometry::new(&scenario);
+        let network = network::<RadarRangeAzEl<f64>, 3>(&scenario).expect("network");
+        let truth = &scenario.truth.as_ref().expect("truth").scans[4].objects[0];
+        let time = scenario.scans[4].time;
+        let placed = network.place(&ScanGeometry { sensor: 0, time, observer: None }).expect("placed");
+        let z = placed.measure(&SVector::from(truth.state));
+        let look = geometry.look(0, time, &truth.state);
+        assert!((look.range.expect("range") - z[0]).abs() < 1e-9, "{look:?} {z}");
+        assert!((look.azimuth - z[1]).abs() < 1e-12 && (look.elevation - z[2]).abs() < 1e-12, "{look:?} {z}");
+    }
+}
