@@ -14,6 +14,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 const BIN: &str = env!("CARGO_BIN_EXE_host-sim");
 const FIXTURE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/hand_written.json");
 const DOC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/scenario-format.md");
+const FIXTURE_3D: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/hand_written_3d.json");
 
 /// A fresh directory under the system temp dir, removed on drop.
 struct TempDir(PathBuf);
@@ -1532,4 +1533,23 @@ fn v2_malformed_files_exit_2_with_one_error_line() {
         }
     }
     assert!(failures.is_empty(), "{} of {} cases failed:\n{}", failures.len(), texts.len(), failures.join("\n"));
+}
+
+#[test]
+fn v2_documented_example_is_the_fixture_and_runs() {
+    let doc = std::fs::read_to_string(DOC).expect("docs/scenario-format.md");
+    let section = &doc[doc.find("## Example (version 2)").expect("the version 2 example")..];
+    let start = section.find("```json\n").expect("a json block") + "```json\n".len();
+    let end = start + section[start..].find("```").expect("end of the json block");
+    let example: Value = serde_json::from_str(&section[start..end]).expect("the documented example is JSON");
+    assert_eq!(example, read_json(Path::new(FIXTURE_3D)));
+    let dir = TempDir::new("v2-fixture");
+    let out = dir.join("out");
+    let output =
+        host_sim(&["run".as_ref(), FIXTURE_3D.as_ref(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let summary = read_json(&out.join("summary.json"));
+    assert_eq!((summary["scans"].clone(), summary["sensors"].clone()), (json!(2), json!(1)));
+    assert_eq!(summary["final_map_cardinality"], json!(1), "{summary}");
+    assert!(summary["mean_gospa"].as_f64().is_some_and(|g| g < 1.0), "{summary}");
 }
