@@ -260,7 +260,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         }
         Command::Run { file, tracker, out, common } => {
             let scenario = match load_any(&file)? {
-                AnyScenario::V1(scenario) => scenario,
+                AnyScenario::V1(scenario) => *scenario,
                 AnyScenario::V2(scenario) => {
                     let (summary, clean) =
                         host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, &out)?;

@@ -475,6 +475,9 @@ fn fov_outline(shape: &ShapeSpec, mask_deg: f64) -> Vec<(f64, f64)> {
     }
 }
 
+/// One sensor's sky-plot truth: per object id, a point per scan of that sensor (`None` out of view).
+type SkyTruth = BTreeMap<u64, Vec<Option<(f64, f64)>>>;
+
 /// Per-scan figures of a 3-D run.
 struct Record {
     time: f64,
@@ -517,7 +520,7 @@ pub fn run(
     let born: HashMap<u64, bool> =
         scenario.truth.iter().flat_map(|t| t.objects.iter().map(|o| (o.id, !o.in_prior))).collect();
     // Sky plots: per sensor, per truth object, a point per scan of that sensor (None out of view).
-    let mut sky_truth: Vec<BTreeMap<u64, Vec<Option<(f64, f64)>>>> = vec![BTreeMap::new(); sensors];
+    let mut sky_truth: Vec<SkyTruth> = vec![BTreeMap::new(); sensors];
     let mut sky_estimates: Vec<Vec<Option<(f64, f64)>>> = vec![vec![]; sensors];
     let mut records = vec![];
     let mut rejected = vec![];
@@ -682,7 +685,7 @@ fn stem_of(name: &str) -> String {
 fn write_plots(
     scenario: &Scenario3d,
     records: &[Record],
-    sky_truth: &[BTreeMap<u64, Vec<Option<(f64, f64)>>>],
+    sky_truth: &[SkyTruth],
     sky_estimates: &[Vec<Option<(f64, f64)>>],
     out: &Path,
 ) -> Result<(), Error> {

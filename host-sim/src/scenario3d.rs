@@ -31,7 +31,7 @@ pub const MAX_SENSORS: usize = tracker_core::ssa_caps::SENSORS;
 #[derive(Debug, Clone, PartialEq)]
 pub enum AnyScenario {
     /// Version 1: the planar world of paper 003.
-    V1(Scenario),
+    V1(Box<Scenario>),
     /// Version 2: 3-D SSA geometry.
     V2(Box<Scenario3d>),
 }
@@ -53,9 +53,9 @@ pub fn load_any(path: &Path) -> Result<AnyScenario, ScenarioError> {
     let version = serde_json::from_str::<Probe>(text).ok().and_then(|p| p.version);
     match version {
         Some(v) if v.as_u64() == Some(2) => Ok(AnyScenario::V2(Box::new(Scenario3d::from_json(text)?))),
-        Some(v) if v.as_u64() == Some(1) => Ok(AnyScenario::V1(Scenario::from_json(text)?)),
+        Some(v) if v.as_u64() == Some(1) => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
         Some(v) => Err(error("version", format!("{v} is not a known format version (1 or 2)"))),
-        None => Ok(AnyScenario::V1(Scenario::from_json(text)?)),
+        None => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
     }
 }
 
