@@ -30,6 +30,12 @@ fn main() {
         for s in &scenario.scans {
             per_sensor[s.sensor] += 1;
         }
+        let separations: Vec<String> = scenario
+            .group_separations()
+            .iter()
+            .map(|(lo, hi)| format!("{:.4}–{:.3}°", lo.to_degrees(), hi.to_degrees()))
+            .collect();
+        println!("  {name} group separations (min–max, deg, seen together): {separations:?}");
         let json = serde_json::to_string(&scenario).map(|j| j.len()).unwrap_or(0);
         println!(
             "{name} seed {seed}: {:.3} s; objects {} groups {} sensors {} scans {} (per sensor {:?}); \

@@ -2,6 +2,8 @@
 //! `host-sim` command line and its plots.
 //!
 //! - [`sim`] simulates scenarios (presets of paper 003's experiments) into [`scenario`] files.
+//! - [`ssa`] simulates 3-D SSA scans (ground radars, a telescope; two-body + J2 truth) with its own
+//!   geometry, independent of tracker-core's (not yet wired into the scenario files).
 //! - [`setup`] turns a scenario into tracker-core values; [`runner`] runs a core tracker or the
 //!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
