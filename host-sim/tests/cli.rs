@@ -241,7 +241,18 @@ fn generate_unknown_preset_exits_2() {
 #[test]
 fn help_lists_every_preset_experiment_tracker_and_profile() {
     for (command, values) in [
-        ("generate", &["fifty-birth-death", "fifteen-compare", "debris-crossing", "linear-small"][..]),
+        (
+            "generate",
+            &[
+                "fifty-birth-death",
+                "fifteen-compare",
+                "debris-crossing",
+                "linear-small",
+                "radar-leo",
+                "optical-geo",
+                "tiny-3d",
+            ][..],
+        ),
         ("experiment", &["fifty", "fifteen", "scaling", "debris", "ablation", "all"]),
         ("run", &["reference", "homht", "rfisst", "embedded", "host"]),
         ("compare", &["reference", "homht", "rfisst", "embedded", "host"]),
@@ -1403,6 +1414,18 @@ fn v2_generate_is_deterministic_and_compare_is_not_yet_supported() {
     let output =
         host_sim(&["compare".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
     if let Err(why) = check_malformed(&output, "not yet supported on version 2") {
+        panic!("{why}\n{}", describe(&output));
+    }
+    let output = host_sim(&[
+        "run".as_ref(),
+        file.as_os_str(),
+        "--tracker".as_ref(),
+        "reference".as_ref(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    if let Err(why) = check_malformed(&output, "--tracker reference: not yet supported on version 2") {
         panic!("{why}\n{}", describe(&output));
     }
 }
