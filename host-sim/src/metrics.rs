@@ -274,6 +274,20 @@ mod tests {
     // ---------- optimal_assignment ----------
 
     #[test]
+    fn gospa_in_three_dimensions_uses_the_3d_distance() {
+        // |(3, 4, 12)| = 13: within c = 20 a proper pair, beyond c = 10 one miss and one false track.
+        let g = gospa(&[[0.0, 0.0, 0.0]], &[[3.0, 4.0, 12.0]], 20.0, 2.0);
+        assert_close(g.distance, 13.0);
+        assert_eq!(g.assignment, vec![Some(0)]);
+        let g = gospa(&[[0.0, 0.0, 0.0]], &[[3.0, 4.0, 12.0]], 10.0, 2.0);
+        assert_close(g.distance, (2.0 * 100.0_f64 / 2.0).sqrt());
+        assert_eq!((g.missed, g.false_tracks), (1, 1));
+        // The third coordinate decides the assignment: in the plane both estimates would be equally near.
+        let g = gospa(&[[0.0, 0.0, 1.0]], &[[0.0, 0.0, 5.0], [0.0, 0.0, 0.0]], 50.0, 1.0);
+        assert_eq!(g.assignment, vec![Some(1)]);
+    }
+
+    #[test]
     fn assignment_of_empty_matrices() {
         assert!(optimal_assignment(&[]).is_empty());
         assert_eq!(optimal_assignment(&[vec![], vec![]]), vec![None, None]);
