@@ -39,7 +39,7 @@ pub struct Options {
 }
 
 /// The mean of `values`, 0 when there is none.
-fn mean(values: &[f64]) -> f64 {
+pub(crate) fn mean(values: &[f64]) -> f64 {
     if values.is_empty() { 0.0 } else { values.iter().sum::<f64>() / values.len() as f64 }
 }
 
@@ -378,6 +378,7 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
             .map(|r| r.scan)
             .collect(),
         peak_resident_kib: None,
+        sensors: None,
     };
     write_run_plots(scenario, &records, &snapshots, out)?;
     drop(snapshots);
@@ -390,7 +391,7 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
 }
 
 /// VmHWM of /proc/self/status in KiB, where there is one.
-fn peak_resident_kib() -> Option<u64> {
+pub(crate) fn peak_resident_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     line.split_whitespace().nth(1)?.parse().ok()

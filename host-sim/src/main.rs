@@ -8,8 +8,9 @@ use clap::{Parser, Subcommand};
 use host_sim::Error;
 use host_sim::evaluate::{self, Options};
 use host_sim::experiment::Experiment;
+use host_sim::generate3d::Preset3d;
 use host_sim::runner::{Profile, TrackerKind};
-use host_sim::scenario::Scenario;
+use host_sim::scenario3d::{AnyScenario, load_any};
 use host_sim::sim::Preset;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -23,9 +24,10 @@ struct Cli {
 
 #[derive(clap::Args, Clone, Copy)]
 struct Common {
-    /// Capacity profile of the core tracker.
-    #[arg(long, value_enum, default_value_t = Profile::Embedded)]
-    profile: Profile,
+    /// Capacity profile of the core tracker [default: embedded; on version 2 files, embedded when the
+    /// scenario fits it, else host].
+    #[arg(long, value_enum)]
+    profile: Option<Profile>,
     /// Memory budget of the unbounded reference tracker, in MiB (everything that grows with its
     /// hypotheses, children and measurements); beyond it the reference keeps its best children and
     /// reports the scan in reference_budget_reached_scans (docs/scenario-format.md).
@@ -46,7 +48,7 @@ struct Common {
 impl Common {
     fn options(self) -> Options {
         Options {
-            profile: self.profile,
+            profile: self.profile.unwrap_or_default(),
             reference: host_sim::runner::ReferenceBudget {
                 bytes: self.reference_budget_mib.saturating_mul(1 << 20),
                 children: self.reference_max_children,
@@ -63,7 +65,7 @@ enum Command {
     Generate {
         /// The preset.
         #[arg(value_enum)]
-        preset: Preset,
+        preset: AnyPreset,
         /// Seed of every random choice.
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -158,6 +160,34 @@ enum Command {
     },
 }
 
+/// A preset of `generate`: a planar one (version 1 file) or a 3-D one (version 2 file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum AnyPreset {
+    Planar(Preset),
+    Ssa(Preset3d),
+}
+
+impl clap::ValueEnum for AnyPreset {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[
+            AnyPreset::Planar(Preset::FiftyBirthDeath),
+            AnyPreset::Planar(Preset::FifteenCompare),
+            AnyPreset::Planar(Preset::DebrisCrossing),
+            AnyPreset::Planar(Preset::LinearSmall),
+            AnyPreset::Ssa(Preset3d::RadarLeo),
+            AnyPreset::Ssa(Preset3d::OpticalGeo),
+            AnyPreset::Ssa(Preset3d::Tiny3d),
+        ]
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            AnyPreset::Planar(p) => p.to_possible_value(),
+            AnyPreset::Ssa(p) => p.to_possible_value(),
+        }
+    }
+}
+
 /// Why a command failed, at the command line's edge: a one-line message and an exit code.
 enum CliError {
     /// A failed command (exit code 2 for bad input, 1 otherwise; [`Error::exit_code`]).
@@ -199,7 +229,7 @@ impl std::fmt::Display for CliError {
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        Command::Generate { preset, seed, out } => {
+        Command::Generate { preset: AnyPreset::Planar(preset), seed, out } => {
             let simulation = preset.simulation(seed);
             let scenario = simulation.run();
             scenario.save(&out)?;
@@ -212,8 +242,32 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
+        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out } => {
+            let simulation = preset.simulate(seed)?;
+            let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
+            scenario.save(&out)?;
+            eprintln!(
+                "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
+                 field of view dropped)",
+                out.display(),
+                figures.scans,
+                figures.measurements,
+                figures.max_measurements,
+                figures.objects,
+                figures.dropped_outside
+            );
+            Ok(())
+        }
         Command::Run { file, tracker, out, common } => {
-            let scenario = Scenario::load(&file)?;
+            let scenario = match load_any(&file)? {
+                AnyScenario::V1(scenario) => *scenario,
+                AnyScenario::V2(scenario) => {
+                    let (summary, clean) =
+                        host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, &out)?;
+                    println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
+                    return if clean { Ok(()) } else { Err(CliError::Rejected) };
+                }
+            };
             let (summary, clean) = evaluate::run(&scenario, tracker, &common.options(), &out)?;
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
             if clean { Ok(()) } else { Err(CliError::Rejected) }
@@ -222,7 +276,13 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             if tracker == TrackerKind::Reference {
                 return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst").into());
             }
-            let scenario = Scenario::load(&file)?;
+            let AnyScenario::V1(scenario) = load_any(&file)? else {
+                return Err(Error::input(format!(
+                    "{}: compare is not yet supported on version 2 (3-D) scenario files",
+                    file.display()
+                ))
+                .into());
+            };
             let result = evaluate::compare(&scenario, tracker, &common.options(), &out)?;
             println!("{}", serde_json::to_string_pretty(&result.summary).unwrap_or_default());
             Ok(())
@@ -239,7 +299,13 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {
-            let scenario = Scenario::load(&file)?;
+            let AnyScenario::V1(scenario) = load_any(&file)? else {
+                return Err(Error::input(format!(
+                    "{}: digest is not yet supported on version 2 (3-D) scenario files",
+                    file.display()
+                ))
+                .into());
+            };
             let digest = host_sim::digest::run(&scenario, scans)?;
             println!("{digest}");
             Ok(())

@@ -1,7 +1,7 @@
 //! Multi-object metrics for evaluating tracker estimates against truth.
 //!
 //! Conventions:
-//! - Objects are planar points `[x, y]`; the base distance is Euclidean.
+//! - Objects are points `[f64; D]` (planar `[x, y]`, or 3-D positions in km); the base distance is Euclidean.
 //! - `c > 0` is the cut-off and `p >= 1` the order of GOSPA / OSPA; preconditions are `debug_assert!`ed.
 //! - Empty sets are valid input everywhere and never panic.
 //! - Assignments are optimal (Hungarian algorithm, O(n^3)) and deterministic: the same input always gives the
@@ -38,16 +38,22 @@ pub fn optimal_assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
     row_to_column
 }
 
-fn euclidean(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+/// The Euclidean distance; `hypot` in the plane (the planar figures stay bit-identical), the root of the
+/// sum of squares otherwise.
+fn euclidean<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+    if D == 2 {
+        (a[0] - b[0]).hypot(a[1] - b[1])
+    } else {
+        a.iter().zip(&b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+    }
 }
 
 /// Cost matrix `min(d(x_i, y_j), c)^p` with rows `xs` and columns `ys`.
-fn cut_off_cost_matrix(xs: &[[f64; 2]], ys: &[[f64; 2]], c: f64, p: f64) -> Vec<Vec<f64>> {
+fn cut_off_cost_matrix<const D: usize>(xs: &[[f64; D]], ys: &[[f64; D]], c: f64, p: f64) -> Vec<Vec<f64>> {
     xs.iter().map(|&x| ys.iter().map(|&y| euclidean(x, y).min(c).powf(p)).collect()).collect()
 }
 
-/// GOSPA with alpha = 2 (Rahmathullah, Garcia-Fernandez, Svensson, 2017) between planar point sets, with
+/// GOSPA with alpha = 2 (Rahmathullah, Garcia-Fernandez, Svensson, 2017) between point sets, with
 /// cut-off c > 0 and order p >= 1, Euclidean base distance.
 /// d^p = min over assignments gamma of [ sum_{(i,j) in gamma} min(d(x_i,y_j), c)^p + c^p/2 (|X| - |gamma| + |Y| - |gamma|) ]
 /// Pairs at distance >= c are counted as one missed and one false object (that is equivalent for alpha = 2).
@@ -71,7 +77,7 @@ pub struct Gospa {
 /// the minimum over full assignments (min(|X|, |Y|) pairs) of the cut-off cost min(d, c)^p plus
 /// c^p/2 (|X| + |Y| - 2 min(|X|, |Y|)); the optimal full assignment is then split into proper pairs (d < c)
 /// and missed + false objects (d >= c).
-pub fn gospa(truth: &[[f64; 2]], estimates: &[[f64; 2]], c: f64, p: f64) -> Gospa {
+pub fn gospa<const D: usize>(truth: &[[f64; D]], estimates: &[[f64; D]], c: f64, p: f64) -> Gospa {
     debug_assert!(c > 0.0, "GOSPA cut-off c must be positive");
     debug_assert!(p >= 1.0, "GOSPA order p must be at least 1");
     let full_assignment = optimal_assignment(&cut_off_cost_matrix(truth, estimates, c, p));
@@ -99,7 +105,7 @@ pub fn gospa(truth: &[[f64; 2]], estimates: &[[f64; 2]], c: f64, p: f64) -> Gosp
 /// OSPA (Schuhmacher, Vo, Vo 2008) with cut-off c and order p: 0 when both sets are empty, c when exactly one
 /// is empty; otherwise with m <= n the sizes of the smaller and larger set,
 /// ( (1/n) ( min_pi sum_{i<=m} min(d(x_i, y_pi(i)), c)^p + c^p (n - m) ) )^(1/p).
-pub fn ospa(truth: &[[f64; 2]], estimates: &[[f64; 2]], c: f64, p: f64) -> f64 {
+pub fn ospa<const D: usize>(truth: &[[f64; D]], estimates: &[[f64; D]], c: f64, p: f64) -> f64 {
     debug_assert!(c > 0.0, "OSPA cut-off c must be positive");
     debug_assert!(p >= 1.0, "OSPA order p must be at least 1");
     let (smaller, larger) = if truth.len() <= estimates.len() { (truth, estimates) } else { (estimates, truth) };
@@ -268,6 +274,20 @@ mod tests {
     // ---------- optimal_assignment ----------
 
     #[test]
+    fn gospa_in_three_dimensions_uses_the_3d_distance() {
+        // |(3, 4, 12)| = 13: within c = 20 a proper pair, beyond c = 10 one miss and one false track.
+        let g = gospa(&[[0.0, 0.0, 0.0]], &[[3.0, 4.0, 12.0]], 20.0, 2.0);
+        assert_close(g.distance, 13.0);
+        assert_eq!(g.assignment, vec![Some(0)]);
+        let g = gospa(&[[0.0, 0.0, 0.0]], &[[3.0, 4.0, 12.0]], 10.0, 2.0);
+        assert_close(g.distance, (2.0 * 100.0_f64 / 2.0).sqrt());
+        assert_eq!((g.missed, g.false_tracks), (1, 1));
+        // The third coordinate decides the assignment: in the plane both estimates would be equally near.
+        let g = gospa(&[[0.0, 0.0, 1.0]], &[[0.0, 0.0, 5.0], [0.0, 0.0, 0.0]], 50.0, 1.0);
+        assert_eq!(g.assignment, vec![Some(1)]);
+    }
+
+    #[test]
     fn assignment_of_empty_matrices() {
         assert!(optimal_assignment(&[]).is_empty());
         assert_eq!(optimal_assignment(&[vec![], vec![]]), vec![None, None]);
@@ -340,7 +360,7 @@ mod tests {
 
     #[test]
     fn gospa_of_empty_sets_is_zero() {
-        let g = gospa(&[], &[], 10.0, 2.0);
+        let g = gospa::<2>(&[], &[], 10.0, 2.0);
         assert_eq!(g, Gospa { distance: 0.0, localisation: 0.0, missed: 0, false_tracks: 0, assignment: vec![] });
     }
 
@@ -528,7 +548,7 @@ mod tests {
 
     #[test]
     fn ospa_empty_cases() {
-        assert_eq!(ospa(&[], &[], 10.0, 2.0), 0.0);
+        assert_eq!(ospa::<2>(&[], &[], 10.0, 2.0), 0.0);
         assert_eq!(ospa(&[[1.0, 2.0]], &[], 10.0, 2.0), 10.0);
         assert_eq!(ospa(&[], &[[1.0, 2.0], [3.0, 4.0]], 7.0, 1.0), 7.0);
     }

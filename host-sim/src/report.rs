@@ -66,6 +66,9 @@ pub struct RunSummary {
     pub reference_budget_reached_scans: Vec<usize>,
     /// The process's peak resident memory (VmHWM, KiB) when the summary was written, where the OS tells it.
     pub peak_resident_kib: Option<u64>,
+    /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensors: Option<usize>,
 }
 
 /// A born object and the scan at which it was confirmed (`null`: never).

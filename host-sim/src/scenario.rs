@@ -41,7 +41,7 @@ impl fmt::Display for ScenarioError {
 
 impl std::error::Error for ScenarioError {}
 
-fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
+pub(crate) fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
     ScenarioError(one_line(&format!("{field}: {message}")))
 }
 
@@ -98,6 +98,9 @@ fn is_format(c: char) -> bool {
 pub struct Scenario {
     /// Must be [`FORMAT`].
     pub format: String,
+    /// The format version: absent or 1 (version 2 files are [`crate::scenario3d`]'s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub version: Option<u32>,
     /// Short name.
     pub name: String,
     /// Free text.
@@ -491,6 +494,11 @@ impl Scenario {
         if self.format != FORMAT {
             return Err(error("format", format!("expected \"{FORMAT}\", found \"{}\"", self.format)));
         }
+        if let Some(version) = self.version
+            && version != 1
+        {
+            return Err(error("version", format!("{version} does not go with format \"{FORMAT}\" (version 1)")));
+        }
         self.validate_models()?;
         self.validate_sensor()?;
         self.validate_births_and_tracker()?;
@@ -606,7 +614,7 @@ impl Scenario {
 
 /// The text of the file at `path`, read only up to [`MAX_FILE_BYTES`] (`/dev/zero` is rejected, not read to
 /// the end).
-fn read_limited(path: &Path) -> Result<String, ScenarioError> {
+pub(crate) fn read_limited(path: &Path) -> Result<String, ScenarioError> {
     use std::io::Read;
     let file = std::fs::File::open(path).map_err(|e| error(path.display(), e))?;
     let mut bytes = vec![];
@@ -717,7 +725,7 @@ impl TruthScanSpec {
 impl EvaluationSpec {
     /// Bounds, GOSPA order and cut-off: every figure of the metrics stays finite and non-zero (see
     /// [`MAX_GOSPA_ORDER`] and [`GOSPA_POWER_RANGE`]).
-    fn validate(&self) -> Result<(), ScenarioError> {
+    pub(crate) fn validate(&self) -> Result<(), ScenarioError> {
         positive("evaluation.error_bound", self.error_bound)?;
         positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
         let p = self.gospa_order;
@@ -746,15 +754,15 @@ impl EvaluationSpec {
     }
 }
 
-fn finite(field: &str, value: f64) -> Result<(), ScenarioError> {
+pub(crate) fn finite(field: &str, value: f64) -> Result<(), ScenarioError> {
     if value.is_finite() { Ok(()) } else { Err(error(field, format!("{value} is not finite"))) }
 }
 
-fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioError> {
+pub(crate) fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioError> {
     values.iter().try_for_each(|&v| finite(field, v))
 }
 
-fn positive(field: &str, value: f64) -> Result<(), ScenarioError> {
+pub(crate) fn positive(field: &str, value: f64) -> Result<(), ScenarioError> {
     if value.is_finite() && value > 0.0 { Ok(()) } else { Err(error(field, format!("{value} is not finite and > 0"))) }
 }
 
@@ -768,7 +776,10 @@ fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
     check_covariance(field, matrix)
 }
 
-fn check_covariance<const D: usize>(field: &str, m: nalgebra::SMatrix<f64, D, D>) -> Result<(), ScenarioError> {
+pub(crate) fn check_covariance<const D: usize>(
+    field: &str,
+    m: nalgebra::SMatrix<f64, D, D>,
+) -> Result<(), ScenarioError> {
     if !m.iter().all(|v| v.is_finite()) {
         return Err(error(field, "has a non-finite entry"));
     }

@@ -120,7 +120,12 @@ pub fn sampled(scenario: &Scenario) -> ChildGeneration {
 
 /// The sampler settings a scenario asks for (`tracker.sampler`).
 pub fn sampler_config(scenario: &Scenario) -> tracker_core::sampler::SamplerConfig {
-    let spec = scenario.tracker.sampler;
+    sampler_config_of(&scenario.tracker)
+}
+
+/// The sampler settings of tracker settings `tracker` (`tracker.sampler`), of either scenario version.
+pub fn sampler_config_of(tracker: &TrackerSpec) -> tracker_core::sampler::SamplerConfig {
+    let spec = tracker.sampler;
     tracker_core::sampler::SamplerConfig {
         burn_in: spec.burn_in,
         steps: spec.steps,

@@ -220,6 +220,7 @@ impl Simulation {
 
         Scenario {
             format: FORMAT.to_string(),
+            version: None,
             name: self.name.clone(),
             description: self.description.clone(),
             motion: self.motion,

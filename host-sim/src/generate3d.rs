@@ -1,0 +1,299 @@
+//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
+//! version 2 scenario files ([`crate::scenario3d`]).
+//!
+//! The truth of every object at every scan comes from [`crate::orbit`]'s adaptive RKF7(8) two-body + J2
+//! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
+//! for the whole run and is in the prior, 1 s before the first scan: its prior mean is the true state then
+//! plus an error drawn from the prior covariance (stream [`Stream::Prior`] of the seed). A detection whose noisy measurement
+//! falls outside the sensor's field of view (an object at the edge) is dropped: the sensor does not report
+//! it, and the tracker rejects a scan with a measurement outside the field of view.
+
+use crate::error::Error;
+use crate::orbit::Propagator;
+use crate::rng::{Random, Stream};
+use crate::run3d::{FieldOfViewCheck, measurements_in_radians};
+use crate::scenario::{
+    BirthDetectionSpec, EvaluationSpec, NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec,
+    TrackerSpec, TruthObjectSpec,
+};
+use crate::scenario3d::*;
+use crate::ssa::{self, SensorKind, SsaScenario};
+use nalgebra::SMatrix;
+
+/// The 3-D presets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Preset3d {
+    /// Two ground radars, 120 LEO objects (10 crossing pairs), 6 h.
+    RadarLeo,
+    /// A staring telescope on the GEO belt, 32 objects (3 co-located clusters), 4 h.
+    OpticalGeo,
+    /// One radar, 3 LEO objects, 11 scans over 100 s (tests).
+    #[value(name = "tiny-3d")]
+    Tiny3d,
+}
+
+impl Preset3d {
+    /// The simulation of this preset with `seed`.
+    ///
+    /// # Errors
+    /// The simulator's message.
+    pub fn simulate(self, seed: u64) -> Result<SsaScenario, Error> {
+        let result = match self {
+            Preset3d::RadarLeo => ssa::radar_leo(seed),
+            Preset3d::OpticalGeo => ssa::optical_geo(seed),
+            Preset3d::Tiny3d => ssa::tiny_3d(seed),
+        };
+        result.map_err(|e| Error::internal(format!("simulation: {e}")))
+    }
+}
+
+/// Prior standard deviations (position km, velocity km/s) and process noise q (km²/s³) of a preset.
+struct Settings {
+    position_sigma: f64,
+    velocity_sigma: f64,
+    q: f64,
+    evaluation: EvaluationSpec,
+}
+
+fn settings(kind: SensorKind) -> Settings {
+    match kind {
+        // LEO radar: a catalogue-quality prior; GOSPA in km.
+        SensorKind::Radar | SensorKind::RadarRangeRate { .. } => Settings {
+            position_sigma: 0.2,
+            velocity_sigma: 2e-4,
+            q: 1e-12,
+            evaluation: EvaluationSpec {
+                error_bound: 5.0,
+                gospa_cutoff: 10.0,
+                gospa_order: 2.0,
+                confirmation_existence: 0.9,
+            },
+        },
+        // GEO telescope: angles only, range weakly observed: a looser prior and cut-off.
+        SensorKind::Optical => Settings {
+            position_sigma: 1.0,
+            velocity_sigma: 1e-4,
+            q: 1e-12,
+            evaluation: EvaluationSpec {
+                error_bound: 10.0,
+                gospa_cutoff: 20.0,
+                gospa_order: 2.0,
+                confirmation_existence: 0.9,
+            },
+        },
+    }
+}
+
+/// Figures of a generated file.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Generated {
+    /// Objects.
+    pub objects: usize,
+    /// Scans.
+    pub scans: usize,
+    /// Measurements over all scans.
+    pub measurements: usize,
+    /// Most measurements in one scan.
+    pub max_measurements: usize,
+    /// Measurements dropped because they fell outside the field of view (noisy detections at its edge).
+    pub dropped_outside: usize,
+}
+
+/// The version 2 scenario of a simulation.
+///
+/// # Errors
+/// [`Error::Internal`] when the sensors mix measurement types, or truth propagation fails.
+pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> {
+    let kind = sim.sensors.first().map(|s| s.kind).ok_or_else(|| Error::internal("simulation has no sensor"))?;
+    let measurement = match kind {
+        SensorKind::Radar => Measurement3dSpec::Radar,
+        SensorKind::RadarRangeRate { .. } => Measurement3dSpec::RadarRangeRate,
+        SensorKind::Optical => Measurement3dSpec::Optical,
+    };
+    if sim.sensors.iter().any(|s| std::mem::discriminant(&s.kind) != std::mem::discriminant(&kind)) {
+        return Err(Error::internal("the simulation's sensors mix measurement types"));
+    }
+    let settings = settings(kind);
+    let sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
+
+    // Truth: every object at every scan, RKF7(8) step by step from the epoch.
+    let times: Vec<f64> = sim.scans.iter().map(|s| s.time).collect();
+    let mut truth_scans: Vec<TruthScan3dSpec> =
+        times.iter().map(|_| TruthScan3dSpec { objects: vec![], origins: None }).collect();
+    for (i, object) in sim.objects.iter().enumerate() {
+        let mut state = object.initial_state;
+        let mut t = 0.0;
+        for (k, &time) in times.iter().enumerate() {
+            state = Propagator::EARTH
+                .propagate(state, time - t)
+                .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?;
+            t = time;
+            truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
+        }
+    }
+
+    let prior_covariance = SMatrix::<f64, 6, 6>::from_diagonal(&nalgebra::SVector::from([
+        settings.position_sigma.powi(2),
+        settings.position_sigma.powi(2),
+        settings.position_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+    ]));
+    let covariance: [[f64; 6]; 6] = core::array::from_fn(|i| core::array::from_fn(|j| prior_covariance[(i, j)]));
+    // The prior holds 1 s before the first scan (a scan must come after it).
+    let prior_time = times.first().map_or(0.0, |&t| t.min(0.0)) - 1.0;
+    let mut objects = Vec::with_capacity(sim.objects.len());
+    for (i, o) in sim.objects.iter().enumerate() {
+        let state = Propagator::EARTH
+            .propagate(o.initial_state, prior_time)
+            .map_err(|e| Error::internal(format!("prior propagation of object {i}: {e}")))?;
+        let error = Random::stream(sim.seed, Stream::Prior, i as u64).gaussian(&prior_covariance);
+        objects.push(PriorObject3dSpec {
+            label: i as u32,
+            mean: core::array::from_fn(|j| state[j] + error[j]),
+            covariance,
+        });
+    }
+
+    let mut scenario = Scenario3d {
+        format: FORMAT_V2.into(),
+        version: 2,
+        name: sim.name.clone(),
+        description: format!(
+            "host-sim generate {} --seed {}: {} objects, {} sensors, {} scans; truth by RKF7(8) two-body + J2",
+            sim.name,
+            sim.seed,
+            sim.objects.len(),
+            sim.sensors.len(),
+            sim.scans.len()
+        ),
+        epoch: EpochSpec { utc: Some(sim.epoch.clone()), julian_date: Some(sim.epoch_jd) },
+        motion: Motion3dSpec::TwoBodyJ2 {
+            process_noise: ProcessNoiseSpec::Isotropic { q: settings.q },
+            max_step: 20.0,
+            max_substeps: 1100,
+        },
+        measurement,
+        sensors,
+        birth: Birth3dSpec { probability: 0.0, detection: BirthDetectionSpec::AllDetected, cells: vec![] },
+        death_probability: 0.0,
+        tracker: TrackerSpec {
+            gate: Some(25.0),
+            max_children_per_scan: 2_000_000,
+            store_overflow: StoreOverflowSpec::PruneChildren,
+            numerical_failure: NumericalFailureSpec::DropTrack,
+            seed: sim.seed,
+            sampler: SamplerSpec::default(),
+            selection: SelectionSpec::default(),
+        },
+        prior: Prior3dSpec { time: prior_time, hypotheses: vec![PriorHypothesis3dSpec { weight: 1.0, objects }] },
+        scans: vec![],
+        truth: None,
+        evaluation: settings.evaluation,
+    };
+
+    // Scans: measurements in degrees, detections outside the field of view dropped.
+    let check = FieldOfViewCheck::new(&scenario)?;
+    let mut dropped_outside = 0;
+    let mut scans = Vec::with_capacity(sim.scans.len());
+    for (k, scan) in sim.scans.iter().enumerate() {
+        let origin_of: Vec<Option<u64>> = (0..scan.measurements.len())
+            .map(|j| scan.truth.iter().find(|t| t.measurement == Some(j)).map(|t| t.object as u64))
+            .collect();
+        let mut measurements = vec![];
+        let mut origins = vec![];
+        for (z, origin) in scan.measurements.iter().zip(origin_of) {
+            let in_file: Vec<f64> =
+                z.iter().enumerate().map(|(i, &v)| if measurement.is_angle(i) { v.to_degrees() } else { v }).collect();
+            // The test the tracker applies, to the value it will read back from the file.
+            let read_back = measurements_in_radians(measurement, std::slice::from_ref(&in_file));
+            if !check.sees(scan.sensor, scan.time, &read_back[0]) {
+                dropped_outside += 1;
+                continue;
+            }
+            measurements.push(in_file);
+            origins.push(origin);
+        }
+        truth_scans[k].origins = Some(origins);
+        scans.push(Scan3dSpec { time: scan.time, sensor: scan.sensor, measurements });
+    }
+    scenario.scans = scans;
+    scenario.truth = Some(Truth3dSpec {
+        objects: (0..sim.objects.len())
+            .map(|i| TruthObjectSpec { id: i as u64, in_prior: true, birth_time: None, death_time: None })
+            .collect(),
+        scans: truth_scans,
+    });
+    let figures = Generated {
+        objects: sim.objects.len(),
+        scans: scenario.scans.len(),
+        measurements: scenario.scans.iter().map(|s| s.measurements.len()).sum(),
+        max_measurements: scenario.max_measurements(),
+        dropped_outside,
+    };
+    // The file must load: check it as `run` will.
+    scenario.validate().map_err(|e| Error::internal(format!("generated scenario: {e}")))?;
+    Ok((scenario, figures))
+}
+
+/// Degrees of a configuration angle, rounded to 1e-9° (≈ 2e-11 rad) so that 15° reads 15, not 14.999999999999998.
+fn degrees(rad: f64) -> f64 {
+    (rad.to_degrees() * 1e9).round() / 1e9
+}
+
+fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
+    let arcsec = |rad: f64| (rad.to_degrees() * 3600.0 * 1e9).round() / 1e9;
+    let noise = match sensor.kind {
+        SensorKind::Radar => NoiseSpec {
+            range_km: Some(sensor.sigma[0]),
+            azimuth_arcsec: Some(arcsec(sensor.sigma[1])),
+            elevation_arcsec: Some(arcsec(sensor.sigma[2])),
+            ..NoiseSpec::default()
+        },
+        SensorKind::RadarRangeRate { .. } => NoiseSpec {
+            range_km: Some(sensor.sigma[0]),
+            azimuth_arcsec: Some(arcsec(sensor.sigma[1])),
+            elevation_arcsec: Some(arcsec(sensor.sigma[2])),
+            range_rate_km_s: Some(sensor.sigma[3]),
+            ..NoiseSpec::default()
+        },
+        SensorKind::Optical => NoiseSpec {
+            right_ascension_arcsec: Some(arcsec(sensor.sigma[0])),
+            declination_arcsec: Some(arcsec(sensor.sigma[1])),
+            ..NoiseSpec::default()
+        },
+    };
+    let shape = match sensor.fov.shape {
+        ssa::LookShape::Cone { azimuth, elevation, half_angle } => ShapeSpec::Cone {
+            azimuth_deg: degrees(azimuth),
+            elevation_deg: degrees(elevation),
+            half_angle_deg: degrees(half_angle),
+        },
+        ssa::LookShape::Box { azimuth_centre, azimuth_half_width, elevation_min, elevation_max } => ShapeSpec::Box {
+            azimuth_deg: degrees(azimuth_centre),
+            half_width_deg: degrees(azimuth_half_width).min(180.0),
+            elevation_deg: [degrees(elevation_min), degrees(elevation_max).min(90.0)],
+        },
+    };
+    Sensor3dSpec {
+        name: sensor.name.clone(),
+        site: SiteSpec {
+            latitude_deg: degrees(sensor.site.latitude),
+            longitude_deg: degrees(sensor.site.longitude),
+            height_km: sensor.site.height,
+        },
+        noise,
+        field_of_view: FieldOfView3dSpec {
+            shape,
+            min_elevation_deg: degrees(sensor.fov.min_elevation),
+            range_km: sensor.fov.range,
+            range_rate_km_s: match sensor.kind {
+                SensorKind::RadarRangeRate { max_range_rate } => Some([-max_range_rate, max_range_rate]),
+                _ => None,
+            },
+        },
+        detection_probability: sensor.detection_probability,
+        clutter_rate: sensor.clutter_rate,
+    }
+}
