@@ -19,6 +19,11 @@
 //! - `step_ms_fifty`: median over scans of the time of `step` of the default embedded R-FISST tracker
 //!   (`SsaTracker<f64>` with the scenario's sampled children, as `host-sim run --tracker rfisst` builds it) on `fifty-birth-death` seed 1, each scan's
 //!   time being the median over the passes.
+//! - `step_ms_radar_leo`, `step_ms_optical_geo`: median over scans of the time of `step_scan` of the 3-D
+//!   R-FISST tracker (`RadarTracker`-shaped, with the profile `run` chooses: `host` for radar-leo's 120
+//!   objects, `embedded` for optical-geo) on `host-sim generate radar-leo --seed 1` (its first
+//!   [`RADAR_LEO_SCANS`] scans, 100 min of the 6 h, in one pass) and `optical-geo --seed 1` (all 161 scans,
+//!   [`FIFTY_PASSES`] passes). `details.radar_leo` / `details.optical_geo` give the mean, max and profile.
 //! - `murty_over_mcmc_time_at_equal_mass`: on crossing matrices (16 × 32 with 4 objects per gate, 16 × 64
 //!   and 32 × 64 with 8; seeds 1..=4), the default child generator (`ClusteredChildren`, default sampler,
 //!   C = 32 = H∞) captures a fraction of the mass of the exact 32 best children (from Murty); Murty's
@@ -38,7 +43,7 @@ use crate::error::Error;
 use crate::murty::Murty;
 use crate::report::{
     PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsShape, PerfMachine, PerfMurty, PerfMurtyCase,
-    PerfMurtyShape, PerfReport,
+    PerfMurtyShape, PerfReport, PerfSsa,
 };
 use crate::setup;
 use nalgebra::{SMatrix, SVector};
@@ -434,6 +439,71 @@ impl MurtyBench {
     }
 }
 
+/// Scans of `radar-leo` seed 1 timed by `perf` (of 2,161): a full run takes 100 s.
+pub const RADAR_LEO_SCANS: usize = 600;
+
+/// A 3-D preset: per-scan times of the R-FISST tracker that `run` builds for it.
+struct SsaBench {
+    scenario: crate::scenario3d::Scenario3d,
+    profile: crate::runner::Profile,
+    scans: Vec<(usize, f64, Vec<Vec<f64>>)>,
+    times: Vec<Vec<f64>>,
+    rejected: usize,
+}
+
+impl SsaBench {
+    fn new(preset: crate::generate3d::Preset3d, scans: usize) -> Result<Self, Error> {
+        let simulated = preset.simulate(1).map_err(|e| Error::internal(format!("perf: {e}")))?;
+        let (scenario, _) =
+            crate::generate3d::to_scenario(&simulated).map_err(|e| Error::internal(format!("perf: {e}")))?;
+        let scans: Vec<(usize, f64, Vec<Vec<f64>>)> = scenario
+            .scans
+            .iter()
+            .take(scans)
+            .map(|scan| {
+                (
+                    scan.sensor,
+                    scan.time,
+                    crate::run3d::measurements_in_radians(scenario.measurement, &scan.measurements),
+                )
+            })
+            .collect();
+        let profile = crate::run3d::choose_profile(&scenario, None);
+        let times = vec![Vec::new(); scans.len()];
+        Ok(Self { scenario, profile, scans, times, rejected: 0 })
+    }
+
+    fn pass(&mut self) -> Result<(), Error> {
+        let mut runner = crate::run3d::build3d(crate::runner::TrackerKind::Rfisst, self.profile, &self.scenario)?;
+        self.rejected = 0;
+        for (index, (sensor, scan_time, measurements)) in self.scans.iter().enumerate() {
+            let (seconds, result) = time(|| runner.step(*sensor, *scan_time, measurements));
+            self.times[index].push(seconds);
+            if result.is_err() {
+                self.rejected += 1;
+            }
+        }
+        Ok(())
+    }
+
+    /// The per-scan figures, and the median per scan (ms).
+    fn report(&self) -> (f64, PerfSsa) {
+        let per_scan_ms: Vec<f64> = self.times.iter().map(|t| median(t) * 1e3).collect();
+        let m = median(&per_scan_ms);
+        let ssa = PerfSsa {
+            max_ms: per_scan_ms.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            mean_ms: per_scan_ms.iter().sum::<f64>() / per_scan_ms.len().max(1) as f64,
+            median_ms: m,
+            passes: self.times.first().map_or(0, Vec::len),
+            profile: self.profile.name().to_string(),
+            rejected_scans_last_pass: self.rejected,
+            scans: self.scans.len(),
+            scans_in_scenario: self.scenario.scans.len(),
+        };
+        (m, ssa)
+    }
+}
+
 /// The fifty-object scenario: per-scan times of the default embedded R-FISST tracker.
 struct FiftyBench {
     scenario: crate::scenario::Scenario,
@@ -515,6 +585,8 @@ pub fn run() -> Result<PerfReport, Error> {
         murty.cases.iter().map(|c| (label(c.shape), c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)),
     );
     let mut fifty = FiftyBench::new();
+    let mut radar_leo = SsaBench::new(crate::generate3d::Preset3d::RadarLeo, RADAR_LEO_SCANS)?;
+    let mut optical_geo = SsaBench::new(crate::generate3d::Preset3d::OpticalGeo, usize::MAX)?;
     // Warm-up (caches, frequency), not recorded.
     chains.sample();
     ekf_bench.sample();
@@ -530,9 +602,15 @@ pub fn run() -> Result<PerfReport, Error> {
         gibbs.sample();
         if round < FIFTY_PASSES {
             fifty.pass()?;
+            optical_geo.pass()?;
+        }
+        if round == 0 {
+            radar_leo.pass()?;
         }
     }
 
+    let (step_ms_radar_leo, radar_leo) = radar_leo.report();
+    let (step_ms_optical_geo, optical_geo) = optical_geo.report();
     let mcmc = median(&chains.samples[0]);
     let floor = median(&chains.samples[3]);
     let per_scan_ms: Vec<f64> = fifty.times.iter().map(|t| median(t) * 1e3).collect();
@@ -587,6 +665,8 @@ pub fn run() -> Result<PerfReport, Error> {
         mcmc_over_floor: mcmc / floor,
         ekf_update_ns: median(&ekf_bench.samples[0]),
         step_ms_fifty: median(&per_scan_ms),
+        step_ms_optical_geo,
+        step_ms_radar_leo,
         murty_over_mcmc_time_at_equal_mass: median(&ratios),
         gibbs_over_mcmc_time_at_equal_mass: median(&gibbs_ratios),
         exhaustive_over_mcmc_at_1e6_children: exhaustive_ratio,
@@ -619,6 +699,8 @@ pub fn run() -> Result<PerfReport, Error> {
                 ratio_max: ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                 cases: murty_cases,
             },
+            optical_geo,
+            radar_leo,
             gibbs: PerfGibbs {
                 matrices: "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
                 not_reached: gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
@@ -676,6 +758,8 @@ mod tests {
         "mcmc_over_floor",
         "ekf_update_ns",
         "step_ms_fifty",
+        "step_ms_radar_leo",
+        "step_ms_optical_geo",
         "murty_over_mcmc_time_at_equal_mass",
         "gibbs_over_mcmc_time_at_equal_mass",
         "exhaustive_over_mcmc_at_1e6_children",
@@ -741,6 +825,24 @@ mod tests {
         "details.exhaustive.sampler_us",
         "details.exhaustive.best_log_weight_exhaustive",
         "details.exhaustive.best_log_weight_sampler",
+        "details.radar_leo",
+        "details.radar_leo.max_ms",
+        "details.radar_leo.mean_ms",
+        "details.radar_leo.median_ms",
+        "details.radar_leo.passes",
+        "details.radar_leo.profile",
+        "details.radar_leo.rejected_scans_last_pass",
+        "details.radar_leo.scans",
+        "details.radar_leo.scans_in_scenario",
+        "details.optical_geo",
+        "details.optical_geo.max_ms",
+        "details.optical_geo.mean_ms",
+        "details.optical_geo.median_ms",
+        "details.optical_geo.passes",
+        "details.optical_geo.profile",
+        "details.optical_geo.rejected_scans_last_pass",
+        "details.optical_geo.scans",
+        "details.optical_geo.scans_in_scenario",
         "details.rounds",
         "details.seconds",
         "machine",
@@ -822,6 +924,26 @@ mod tests {
                     ratio_median_by_shape: vec![PerfMurtyShape { matrix: label((16, 32, 4)), ratio: next() }],
                     ratio_min: next(),
                 },
+                optical_geo: PerfSsa {
+                    max_ms: next(),
+                    mean_ms: next(),
+                    median_ms: next(),
+                    passes: 5,
+                    profile: "embedded".to_string(),
+                    rejected_scans_last_pass: 0,
+                    scans: 161,
+                    scans_in_scenario: 161,
+                },
+                radar_leo: PerfSsa {
+                    max_ms: next(),
+                    mean_ms: next(),
+                    median_ms: next(),
+                    passes: 1,
+                    profile: "host".to_string(),
+                    rejected_scans_last_pass: 0,
+                    scans: RADAR_LEO_SCANS,
+                    scans_in_scenario: 2161,
+                },
                 rounds: ROUNDS,
                 seconds: next(),
             },
@@ -841,6 +963,8 @@ mod tests {
             mcmc_over_floor: next(),
             murty_over_mcmc_time_at_equal_mass: next(),
             step_ms_fifty: next(),
+            step_ms_optical_geo: next(),
+            step_ms_radar_leo: next(),
             tracker_bytes_default: 344_848,
             tracker_bytes_f32: 197_808,
         }

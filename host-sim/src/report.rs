@@ -772,6 +772,10 @@ pub struct PerfReport {
     pub murty_over_mcmc_time_at_equal_mass: f64,
     /// Median over scans of the time of `step` on `fifty-birth-death` (ms).
     pub step_ms_fifty: f64,
+    /// Median over scans of the time of `step_scan` on an `optical-geo` scenario (ms).
+    pub step_ms_optical_geo: f64,
+    /// Median over scans of the time of `step_scan` on a `radar-leo` excerpt (ms).
+    pub step_ms_radar_leo: f64,
     /// `size_of::<SsaTracker<f64>>()`.
     pub tracker_bytes_default: usize,
     /// `size_of::<SsaTracker<f32>>()`.
@@ -812,6 +816,10 @@ pub struct PerfDetails {
     pub mcmc_samples: usize,
     /// Murty against the sampler.
     pub murty: PerfMurty,
+    /// The `optical-geo` scenario.
+    pub optical_geo: PerfSsa,
+    /// The `radar-leo` excerpt.
+    pub radar_leo: PerfSsa,
     /// Measurement rounds.
     pub rounds: usize,
     /// Wall-clock time of the whole run (s).
@@ -852,6 +860,29 @@ pub struct PerfFifty {
     pub rejected_scans_last_pass: usize,
     /// Scans of the scenario.
     pub scans: usize,
+}
+
+/// `details.radar_leo` and `details.optical_geo` of `perf.json`: per-scan times of the 3-D R-FISST tracker
+/// (each the median over the passes).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PerfSsa {
+    /// Largest per-scan time (ms).
+    pub max_ms: f64,
+    /// Mean per-scan time (ms).
+    pub mean_ms: f64,
+    /// Median per-scan time (ms).
+    pub median_ms: f64,
+    /// Passes over the scans.
+    pub passes: usize,
+    /// The capacity profile `run` chooses for the scenario.
+    pub profile: String,
+    /// Scans the tracker rejected in the last pass.
+    pub rejected_scans_last_pass: usize,
+    /// Scans timed (the first of the scenario).
+    pub scans: usize,
+    /// Scans of the whole scenario.
+    pub scans_in_scenario: usize,
 }
 
 /// `details.murty` of `perf.json`.
