@@ -280,16 +280,31 @@ fn cone_half_angle_zero_is_refused() {
             let sensor = ground_radar::<T>().with_view(cone(0.0, 90.0 * DEGREE, half_angle));
             assert!(network(&[sensor]).is_err(), "half angle {half_angle}");
         }
-        // A field of view of zero volume: everything under the elevation mask.
-        let under = Region::Look {
-            shape: LookShape::Box { azimuth: c(0.0), half_width: c(0.5), elevation: [c(0.0), c(0.1)] },
-            min_elevation: c(0.2),
-            range: Some([c(0.0), c(4000.0)]),
-            range_rate: None,
-        };
-        assert!(network(&[ground_radar::<T>().with_view(under)]).is_err());
         // 180° (every direction) is a valid cone.
         assert!(network(&[ground_radar::<T>().with_view(cone(0.0, 0.0, 180.0 * DEGREE))]).is_ok());
+    }
+    for_scalars!(check);
+}
+
+#[test]
+fn field_of_view_of_zero_volume_is_refused() {
+    fn check<T: Real>() {
+        let look = |shape, min_elevation: f64, range: [f64; 2]| Region::Look {
+            shape,
+            min_elevation: c(min_elevation),
+            range: Some(range.map(c::<T>)),
+            range_rate: None,
+        };
+        let cases = [
+            // Everything under the elevation mask: a box, and a cone about the nadir.
+            look(LookShape::Box { azimuth: c(0.0), half_width: c(0.5), elevation: [c(0.0), c(0.1)] }, 0.2, [0.0, 4e3]),
+            look(LookShape::Cone { azimuth: c(0.0), elevation: c(-1.5), half_angle: c(0.05) }, 0.0, [0.0, 4e3]),
+            // An empty range window.
+            look(LookShape::Cone { azimuth: c(0.0), elevation: c(1.0), half_angle: c(0.1) }, 0.0, [500.0, 500.0]),
+        ];
+        for view in cases {
+            assert_network_refused(&[ground_radar::<T>().with_view(view)], "volume");
+        }
     }
     for_scalars!(check);
 }
