@@ -161,7 +161,11 @@ fn network<T: Real>() -> Radars<T> {
         },
     };
     let ground = |site: GroundSite<f64>| {
-        Platform::Ground(GroundSite { latitude: c(site.latitude), longitude: c(site.longitude), height: c(site.height) })
+        Platform::Ground(GroundSite {
+            latitude: c(site.latitude),
+            longitude: c(site.longitude),
+            height: c(site.height),
+        })
     };
     let sensors = [
         radar(ground(SITES[0]), 80.0 * DEGREE, 4000.0),

@@ -201,6 +201,19 @@ fn assert_network_refused<T: Real>(sensors: &[SiteSensor<T, 3>], fragment: &str)
     }
 }
 
+#[test]
+fn non_finite_earth_rotation_is_refused() {
+    fn check<T: Real>() {
+        for bad in [f64::NAN, f64::INFINITY] {
+            let angle = EarthRotation::new(c::<T>(bad));
+            assert!(Radars::<T>::new(angle, &[ground_radar()]).unwrap_err().contains("Earth rotation"));
+            let rate = EarthRotation { angle_at_epoch: c::<T>(0.3), rate: c(bad) };
+            assert!(Radars::<T>::new(rate, &[ground_radar()]).unwrap_err().contains("Earth rotation"));
+        }
+    }
+    for_scalars!(check);
+}
+
 fn with_platform<T: Real>(platform: Platform<T>) -> SiteSensor<T, 3> {
     SiteSensor { platform, ..ground_radar() }
 }
