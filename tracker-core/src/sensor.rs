@@ -373,7 +373,9 @@ impl<T: Real> Region<T> {
                 }
                 for window in [range, range_rate].into_iter().flatten() {
                     if !(finite(window[0]) && finite(window[1]) && window[1] > window[0]) {
-                        return Err("field of view: range and range-rate windows must be finite with max > min");
+                        return Err(
+                            "field of view: zero volume or worse: range and range-rate windows must be finite with max > min",
+                        );
                     }
                 }
                 if let Some([low, _]) = range
@@ -382,7 +384,7 @@ impl<T: Real> Region<T> {
                     return Err("field of view: the range window must start at >= 0");
                 }
                 if shape.elevation_span(min_elevation).is_none() {
-                    return Err("field of view: nothing of the look shape is above the elevation mask");
+                    return Err("field of view: zero volume: nothing of the look shape is above the elevation mask");
                 }
             }
             Region::Sector { origin, look_direction, half_angle, max_range } => {
