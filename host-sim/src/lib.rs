@@ -15,6 +15,7 @@ pub mod assignment;
 pub mod digest;
 pub mod error;
 pub mod evaluate;
+pub mod exactness;
 pub mod experiment;
 pub mod gibbs;
 pub mod metrics;
