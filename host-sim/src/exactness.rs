@@ -89,7 +89,17 @@ fn keyed<'a, const S: usize>(weight: f64, tracks: impl Iterator<Item = (TrackLab
 /// Runs `core` and `reference` (built from the same configuration and prior) on `scans` and compares
 /// them after every scan. A scan either rejects is recorded with its error; the tracker that rejected it
 /// is unchanged and goes on with the next scan.
-pub fn compare_trackers<M, G, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+pub fn compare_trackers<
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
     core: &mut Tracker<f64, M, G, S, D, H, N, Z, K, B>,
     reference: &mut ReferenceTracker<M, G, S, D, B>,
     scans: &[Scan<D>],
@@ -112,8 +122,8 @@ where
         let pairs: Vec<(f64, Vec<u64>)> = approx.iter().map(|h| (h.weight, h.key.clone())).collect();
         let matched = match_keys(exact.iter().map(|h| (h.weight, h.key.clone())), &pairs);
         let reference_max = exact.first().map_or(0.0, |h| h.weight);
-        let map_agreement = reference_max > 0.0
-            && (matched.exact_weight_of_map - reference_max).abs() <= 1e-9 * reference_max;
+        let map_agreement =
+            reference_max > 0.0 && (matched.exact_weight_of_map - reference_max).abs() <= 1e-9 * reference_max;
         let twin = approx.first().and_then(|map| exact.iter().find(|h| h.key == map.key).map(|h| (map, h)));
         let map_labels_agree = twin.is_some_and(|(map, h)| map.labels == h.labels);
         let map_weight_difference =
@@ -158,7 +168,17 @@ fn summarise(scans: Vec<ScanFigures>) -> CompareFigures {
 ///
 /// # Errors
 /// A message when either tracker rejects the configuration or the prior.
-pub fn compare_scans<M, G, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+pub fn compare_scans<
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
     config: &Config<f64, M, G, S, B>,
     prior: &[(f64, Vec<PriorObject<f64, S>>)],
     time: f64,

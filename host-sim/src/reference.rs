@@ -370,8 +370,7 @@ where
     fn birth_cells(&self, placed: PlacedScan<f64, G>) -> Result<Scan<G, D>, StepError> {
         let mut births = Vec::with_capacity(self.config.birth.cells.len());
         for (cell, gaussian) in self.config.birth.cells.iter().enumerate() {
-            let innovation =
-                ekf::innovation(&placed.model, gaussian).map_err(|_| StepError::BirthCell { cell })?;
+            let innovation = ekf::innovation(&placed.model, gaussian).map_err(|_| StepError::BirthCell { cell })?;
             let in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
             births.push((innovation, in_view));
         }
