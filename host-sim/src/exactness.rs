@@ -32,6 +32,8 @@ pub struct ScanFigures {
     pub weight_l1: f64,
     /// Whether the core's MAP hypothesis has the reference's largest weight (to 1e-9 relative).
     pub map_agreement: bool,
+    /// The reference's largest weight.
+    pub reference_map_weight: f64,
     /// Whether the core's MAP hypothesis and the reference hypothesis with the same track states give
     /// every track the same label.
     pub map_labels_agree: bool,
@@ -134,6 +136,7 @@ where
             captured_mass: matched.captured_mass,
             weight_l1: matched.weight_l1,
             map_agreement,
+            reference_map_weight: reference_max,
             map_labels_agree,
             map_weight_difference,
             core_captured_mass: core_outcome.as_ref().ok().map(|r| r.captured_mass),

@@ -1,8 +1,11 @@
 //! The unbounded reference tracker: the same hypothesis-level FISST recursion as tracker-core, with `Vec`
 //! instead of capacities and **every** child of every parent kept.
 //!
-//! It calls the core's model, EKF ([`tracker_core::ekf`]) and weight code ([`WeightModel`]); only the
-//! bookkeeping is its own: a recursive enumeration of associations (independent of the core's iterative
+//! It works with any motion and measurement model, as the core does: each scan is checked and its sensor
+//! placed by the core's [`place_scan`] (the sensor the scan names, seen from where it was), and every
+//! innovation, field-of-view test ([`Region::sees`](tracker_core::Region::sees)), entry and update of the
+//! scan uses the placed model and its residual (angles wrapped). It calls the core's model, EKF
+//! ([`tracker_core::ekf`]) and weight code ([`WeightModel`]); only the bookkeeping is its own: a recursive enumeration of associations (independent of the core's iterative
 //! enumerator, so the two check each other), hash maps for shared tracks, and merging of identical
 //! hypotheses.
 //!
@@ -150,6 +153,9 @@ impl core::fmt::Display for ReferenceError {
 }
 
 impl std::error::Error for ReferenceError {}
+
+/// A track of [`ReferenceTracker::posterior`]: its label and Gaussian.
+pub type LabelledState<const S: usize> = (TrackLabel, Gaussian<f64, S>);
 
 /// The birth cells the reference's configuration holds when none is named: as many as `run` gives it.
 pub const BIRTH_CELLS: usize = 1024;
@@ -595,7 +601,7 @@ where
 
     /// The hypotheses, best first: each one's normalised log-weight and its tracks (label and Gaussian)
     /// in label order.
-    pub fn posterior(&self) -> Vec<(f64, Vec<(TrackLabel, Gaussian<f64, S>)>)> {
+    pub fn posterior(&self) -> Vec<(f64, Vec<LabelledState<S>>)> {
         let track = |&t: &u32| {
             let track = &self.tracks[t as usize];
             (TrackLabel(track.label), track.state)

@@ -178,10 +178,11 @@ fn compare(children: ChildGeneration) -> CompareFigures {
 fn print(name: &str, figures: &CompareFigures) {
     for s in &figures.scans {
         println!(
-            "{name} scan {} t {}: core {} reference {} hypotheses, captured {:.12}, core captured {:?}, map {} labels {} \
-             weight diff {:.3e}",
+            "{name} scan {} t {}: MAP weight {:.6}, core {} reference {} hypotheses, captured {:.12}, core captured {:?}, \
+             map {} labels {} weight diff {:.3e}",
             s.scan,
             s.time,
+            s.reference_map_weight,
             s.core_hypotheses,
             s.reference_hypotheses,
             s.captured_mass,
