@@ -17,6 +17,7 @@ pub mod assignment;
 pub mod digest;
 pub mod error;
 pub mod evaluate;
+pub mod exactness;
 pub mod experiment;
 pub mod generate3d;
 pub mod gibbs;

@@ -1,8 +1,11 @@
 //! The unbounded reference tracker: the same hypothesis-level FISST recursion as tracker-core, with `Vec`
 //! instead of capacities and **every** child of every parent kept.
 //!
-//! It calls the core's model, EKF ([`tracker_core::ekf`]) and weight code ([`WeightModel`]); only the
-//! bookkeeping is its own: a recursive enumeration of associations (independent of the core's iterative
+//! It works with any motion and measurement model, as the core does: each scan is checked and its sensor
+//! placed by the core's [`place_scan`] (the sensor the scan names, seen from where it was), and every
+//! innovation, field-of-view test ([`Region::sees`](tracker_core::Region::sees)), entry and update of the
+//! scan uses the placed model and its residual (angles wrapped). It calls the core's model, EKF
+//! ([`tracker_core::ekf`]) and weight code ([`WeightModel`]); only the bookkeeping is its own: a recursive enumeration of associations (independent of the core's iterative
 //! enumerator, so the two check each other), hash maps for shared tracks, and merging of identical
 //! hypotheses.
 //!
@@ -23,9 +26,11 @@ use std::collections::HashMap;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::mem::size_of;
 use tracker_core::ekf::{self, Gaussian, Innovation};
+use tracker_core::model::ScanGeometry;
 use tracker_core::real::{LogSumExp, log_add};
+use tracker_core::tracker::{PlacedScan, place_scan};
 use tracker_core::weight::{Event, WeightModel};
-use tracker_core::{Config, MotionModel, PositionMeasurement, PriorObject, Region, StepError, TrackLabel};
+use tracker_core::{Config, MeasurementModel, MotionModel, PositionMeasurement, PriorObject, StepError, TrackLabel};
 
 /// Row of a column left unassigned.
 const CLUTTER: u32 = u32::MAX;
@@ -48,8 +53,11 @@ const HYPOTHESIS_BYTES: usize = size_of::<Hypothesis>()
     + size_of::<Hypothesis>();
 /// Bytes charged per object of a hypothesis: its index here and in the snapshot.
 const OBJECT_BYTES: usize = size_of::<u32>() + size_of::<usize>();
-/// Bytes charged per track kept: the track, its snapshot record and its key in the sharing map.
-const TRACK_BYTES: usize = size_of::<Track>() + size_of::<TrackOut>() + map_entry(size_of::<(TrackKey, u32)>());
+/// Bytes charged per track of S states kept: the track, its snapshot record and its key in the sharing
+/// map.
+const fn track_bytes<const S: usize>() -> usize {
+    size_of::<Track<S>>() + size_of::<TrackOut>() + map_entry(size_of::<(TrackKey, u32)>())
+}
 /// Bytes charged per child besides its rows: its head, its weight while pruning, its place in the order.
 const CHILD_BYTES: usize = size_of::<Head>() + size_of::<f64>() + size_of::<u32>();
 
@@ -72,9 +80,9 @@ impl Shares {
 type TrackKey = (bool, u32, u32);
 
 #[derive(Debug, Clone)]
-struct Track {
+struct Track<const S: usize> {
     label: u32,
-    state: Gaussian<f64, 4>,
+    state: Gaussian<f64, S>,
 }
 
 /// A hypothesis: its tracks are `objects[start..start + len]`, sorted by label.
@@ -86,10 +94,17 @@ struct Hypothesis {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct Predicted {
-    state: Gaussian<f64, 4>,
-    innovation: Innovation<f64, 2>,
+struct Predicted<const S: usize, const D: usize> {
+    state: Gaussian<f64, S>,
+    innovation: Innovation<f64, D>,
     in_view: bool,
+}
+
+/// One scan's sensor: the measurement model placed at the scan ([`place_scan`]), and each birth cell's
+/// innovation under it and whether it lies in the placed field of view.
+struct Scan<G, const D: usize> {
+    placed: PlacedScan<f64, G>,
+    births: Vec<(Innovation<f64, D>, bool)>,
 }
 
 /// What one reference scan did.
@@ -139,14 +154,25 @@ impl core::fmt::Display for ReferenceError {
 
 impl std::error::Error for ReferenceError {}
 
-/// The unbounded exhaustive tracker.
-pub struct ReferenceTracker<M> {
-    motion: M,
-    measurement: PositionMeasurement<f64>,
-    region: Region<f64>,
-    weights: WeightModel<f64>,
-    births: Vec<(Gaussian<f64, 4>, Innovation<f64, 2>, bool)>,
-    tracks: Vec<Track>,
+/// A track of [`ReferenceTracker::posterior`]: its label and Gaussian.
+pub type LabelledState<const S: usize> = (TrackLabel, Gaussian<f64, S>);
+
+/// The birth cells the reference's configuration holds when none is named: as many as `run` gives it.
+pub const BIRTH_CELLS: usize = 1024;
+
+/// The unbounded exhaustive tracker for motion model `M` and measurement model `G` (S states, D
+/// measurement components); `B` is only the birth-cell capacity of its configuration. The defaults are
+/// the planar world of the scenario files.
+pub struct ReferenceTracker<
+    M,
+    G = PositionMeasurement<f64>,
+    const S: usize = 4,
+    const D: usize = 2,
+    const B: usize = BIRTH_CELLS,
+> {
+    /// The configuration: each scan is checked and its sensor placed from it, as in the core.
+    config: Box<Config<f64, M, G, S, B>>,
+    tracks: Vec<Track<S>>,
     hypotheses: Vec<Hypothesis>,
     objects: Vec<u32>,
     time: f64,
@@ -158,13 +184,14 @@ pub struct ReferenceTracker<M> {
 }
 
 /// One scan's predictions and association entries, for the tracks of the parents it processes.
-struct Tables {
+struct Tables<G, const S: usize, const D: usize> {
+    scan: Scan<G, D>,
     rows: usize,
     /// Parents processed (the best ones whose tables fit), in their order.
     parents: Vec<u32>,
     /// Old track → its slot below, or [`NO_SLOT`].
     slot: Vec<u32>,
-    predicted: Vec<Predicted>,
+    predicted: Vec<Predicted<S, D>>,
     /// `rows` entries per slot, then per birth cell.
     entries: Vec<f64>,
     /// `rows + 1` bounds per slot, then per birth cell: max(0, best entry from that row on).
@@ -178,7 +205,7 @@ struct Tables {
     bytes: usize,
 }
 
-impl Tables {
+impl<G, const S: usize, const D: usize> Tables<G, S, D> {
     fn column(&self, slot: usize) -> (&[f64], &[f64], &[u32]) {
         let (r, b) = (self.rows, self.rows + 1);
         let span = slot * r..(slot + 1) * r;
@@ -190,17 +217,22 @@ impl Tables {
     }
 }
 
-impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
+impl<M, G, const S: usize, const D: usize, const B: usize> ReferenceTracker<M, G, S, D, B>
+where
+    M: MotionModel<f64, S>,
+    G: MeasurementModel<f64, S, D> + Clone,
+{
     /// A reference tracker for `config` (its capacities do not apply), the prior hypotheses and a memory
     /// budget in bytes (see the module documentation). The first-order event model needs
     /// M_b α + M_d β < 1 for every parent with M_d objects in view: the reference has no object capacity,
     /// so it checks M_b α < 1 here and each parent's actual M_d at every scan.
     ///
     /// # Errors
-    /// A message when M_b α ≥ 1 or a birth cell's innovation cannot be factored.
-    pub fn new<const B: usize>(
-        config: &Config<f64, M, PositionMeasurement<f64>, 4, B>,
-        prior: &[(f64, Vec<PriorObject<f64, 4>>)],
+    /// A message when M_b α ≥ 1 or a birth cell's innovation cannot be factored by the configuration's
+    /// measurement model (each scan forms them again with the model placed at the scan).
+    pub fn new(
+        config: &Config<f64, M, G, S, B>,
+        prior: &[(f64, Vec<PriorObject<f64, S>>)],
         time: f64,
         budget_bytes: usize,
     ) -> Result<Self, String>
@@ -211,15 +243,10 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         if !(weights.event_log_probability(Event::None, 0) > f64::NEG_INFINITY) {
             return Err(format!("tracker configuration: {}", ReferenceError::EventProbabilities { in_view: 0 }));
         }
-        let region = config.sensor.field_of_view;
-        let mut births = vec![];
         for (cell, gaussian) in config.birth.cells.iter().enumerate() {
-            let innovation =
-                ekf::innovation(&config.measurement, gaussian).map_err(|e| format!("birth cell {cell}: {e}"))?;
-            let in_view = region.contains(&innovation.predicted);
-            births.push((*gaussian, innovation, in_view));
+            ekf::innovation(&config.measurement, gaussian).map_err(|e| format!("birth cell {cell}: {e}"))?;
         }
-        let mut tracks: Vec<Track> = vec![];
+        let mut tracks: Vec<Track<S>> = vec![];
         let (mut hypotheses, mut objects) = (vec![], vec![]);
         let total: f64 = prior.iter().map(|p| p.0).sum();
         let mut next_label = 0;
@@ -245,11 +272,7 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             }
         }
         Ok(Self {
-            motion: config.motion.clone(),
-            measurement: config.measurement,
-            region,
-            weights,
-            births,
+            config: Box::new(config.clone()),
             tracks,
             hypotheses,
             objects,
@@ -288,16 +311,34 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         &self.objects[hypothesis.start..hypothesis.start + hypothesis.len as usize]
     }
 
-    /// Processes one scan; on error the tracker is unchanged.
+    /// Processes one scan of the only sensor, taken at `time` ([`ReferenceTracker::step_scan`] with
+    /// [`ScanGeometry::single`]); on error the tracker is unchanged.
     ///
     /// # Errors
     /// The core's [`StepError`] for the same bad inputs (non-finite values, time, numerical failure,
     /// more children than [`ReferenceTracker::set_max_children`]), or
     /// [`ReferenceError::EventProbabilities`].
-    pub fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<ReferenceReport, ReferenceError> {
-        // The core's scan check, without a measurement capacity.
-        tracker_core::tracker::check_scan(&self.measurement, &self.region, self.time, time, measurements, usize::MAX)?;
-        let tables = self.tables(time - self.time, measurements)?;
+    pub fn step(&mut self, time: f64, measurements: &[SVector<f64, D>]) -> Result<ReferenceReport, ReferenceError> {
+        self.step_scan(&ScanGeometry::single(time), measurements)
+    }
+
+    /// Processes one scan of the sensor `geometry` names, at `geometry.time`, seen from its observer; on
+    /// error the tracker is unchanged. The scan is checked and its sensor placed by the core's
+    /// [`place_scan`] (without a measurement capacity), and every innovation, field-of-view test, entry and
+    /// update of the scan uses the placed model, as [`Tracker::step_scan`](tracker_core::Tracker::step_scan)
+    /// does.
+    ///
+    /// # Errors
+    /// As [`ReferenceTracker::step`], and [`StepError::Placement`] for a geometry the model cannot place.
+    pub fn step_scan(
+        &mut self,
+        geometry: &ScanGeometry<f64>,
+        measurements: &[SVector<f64, D>],
+    ) -> Result<ReferenceReport, ReferenceError> {
+        let time = geometry.time;
+        let placed = place_scan(&self.config, geometry, self.time, measurements, usize::MAX)?;
+        let scan = self.birth_cells(placed)?;
+        let tables = self.tables(scan, time - self.time, measurements)?;
         let mut budget_reached = tables.parents.len() < self.hypotheses.len();
         // The pruned search's candidate lists: at most every (row, column) pair at each depth.
         let candidates = size_of::<(u32, u32)>().saturating_mul(tables.rows * tables.widest * (tables.widest + 1));
@@ -331,12 +372,28 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         })
     }
 
+    /// The birth cells as the placed sensor sees them (as the core's `birth_cells`).
+    fn birth_cells(&self, placed: PlacedScan<f64, G>) -> Result<Scan<G, D>, StepError> {
+        let mut births = Vec::with_capacity(self.config.birth.cells.len());
+        for (cell, gaussian) in self.config.birth.cells.iter().enumerate() {
+            let innovation = ekf::innovation(&placed.model, gaussian).map_err(|_| StepError::BirthCell { cell })?;
+            let in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+            births.push((innovation, in_view));
+        }
+        Ok(Scan { placed, births })
+    }
+
     /// Predicts and scores the tracks of the best parents whose tables fit half the working share (at
     /// least the best parent).
-    fn tables(&self, dt: f64, measurements: &[SVector<f64, 2>]) -> Result<Tables, ReferenceError> {
+    fn tables(
+        &self,
+        scan: Scan<G, D>,
+        dt: f64,
+        measurements: &[SVector<f64, D>],
+    ) -> Result<Tables<G, S, D>, ReferenceError> {
         let rows = measurements.len();
-        let per_track = size_of::<Predicted>() + size_of::<f64>() * (2 * rows + 1) + size_of::<u32>() * rows;
-        let cells = self.births.len();
+        let per_track = size_of::<Predicted<S, D>>() + size_of::<f64>() * (2 * rows + 1) + size_of::<u32>() * rows;
+        let cells = scan.births.len();
         let fixed = size_of::<u32>() * self.tracks.len()
             + per_track * cells
             + size_of::<f64>() * (2 * rows + 1)
@@ -367,25 +424,31 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         for (next, s) in slot.iter_mut().filter(|s| **s != NO_SLOT).enumerate() {
             *s = next as u32;
         }
-        self.score(dt, measurements, parents, slot, fixed + per_track * used)
+        self.score(scan, dt, measurements, parents, slot, fixed + per_track * used)
     }
 
     /// Fills the tables for the tracks that have a slot and the birth cells.
     fn score(
         &self,
+        scan: Scan<G, D>,
         dt: f64,
-        measurements: &[SVector<f64, 2>],
+        measurements: &[SVector<f64, D>],
         parents: Vec<u32>,
         slot: Vec<u32>,
         bytes: usize,
-    ) -> Result<Tables, ReferenceError> {
+    ) -> Result<Tables<G, S, D>, ReferenceError> {
         let rows = measurements.len();
         let mut predicted = vec![];
         let (mut entries, mut bounds, mut order) = (vec![], vec![], vec![]);
-        let mut column = |innovation: &Innovation<f64, 2>, in_view: bool| {
+        let PlacedScan { model, detection, weights } = &scan.placed;
+        let mut column = |innovation: &Innovation<f64, D>, in_view: bool| {
             let (start, first) = (bounds.len(), entries.len());
             for z in measurements {
-                let entry = if in_view { self.weights.entry(innovation, z) } else { f64::NEG_INFINITY };
+                let entry = if in_view {
+                    weights.entry_of_residual(innovation, &model.residual(z, &innovation.predicted))
+                } else {
+                    f64::NEG_INFINITY
+                };
                 entries.push(entry);
                 bounds.push(entry.max(0.0));
             }
@@ -400,16 +463,16 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         };
         for (track, _) in self.tracks.iter().zip(&slot).filter(|(_, s)| **s != NO_SLOT) {
             let numerical = |error| StepError::Numerical { label: TrackLabel(track.label), error };
-            let state = ekf::predict(&self.motion, &track.state, dt).map_err(numerical)?;
-            let innovation = ekf::innovation(&self.measurement, &state).map_err(numerical)?;
-            let in_view = self.region.contains(&innovation.predicted);
+            let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
+            let innovation = ekf::innovation(model, &state).map_err(numerical)?;
+            let in_view = detection.field_of_view.sees(model, &innovation.predicted);
             column(&innovation, in_view);
             predicted.push(Predicted { state, innovation, in_view });
         }
-        for (_, innovation, in_view) in &self.births {
+        for (innovation, in_view) in &scan.births {
             column(innovation, *in_view);
         }
-        let births = usize::from(self.weights.births_possible() && self.births.iter().any(|b| b.2));
+        let births = usize::from(weights.births_possible() && scan.births.iter().any(|b| b.1));
         let widest = parents
             .iter()
             .map(|&p| {
@@ -420,12 +483,18 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             .unwrap_or(0)
             + births;
         let dead = (vec![f64::NEG_INFINITY; rows], vec![0.0; rows + 1]);
-        Ok(Tables { rows, parents, slot, predicted, entries, bounds, order, dead, widest, bytes })
+        Ok(Tables { scan, rows, parents, slot, predicted, entries, bounds, order, dead, widest, bytes })
     }
 
     /// Offers every child of `parent` (each event, each association) to `children`.
-    fn enumerate_parent(&self, tables: &Tables, parent: u32, children: &mut ChildBuffer) -> Result<(), ReferenceError> {
+    fn enumerate_parent(
+        &self,
+        tables: &Tables<G, S, D>,
+        parent: u32,
+        children: &mut ChildBuffer,
+    ) -> Result<(), ReferenceError> {
         let hypothesis = &self.hypotheses[parent as usize];
+        let (weights, births) = (&tables.scan.placed.weights, &tables.scan.births);
         // (position in the parent, slot) of the objects in view.
         let columns: Vec<(usize, usize)> = self
             .members(hypothesis)
@@ -435,11 +504,11 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             .filter(|&(_, s)| tables.predicted[s].in_view)
             .collect();
         let in_view = columns.len();
-        if !(self.weights.event_log_probability(Event::None, in_view) > f64::NEG_INFINITY) {
+        if !(weights.event_log_probability(Event::None, in_view) > f64::NEG_INFINITY) {
             return Err(ReferenceError::EventProbabilities { in_view });
         }
-        let detection_required = self.weights.detection_required();
-        for (event, child_in_view) in self.events(in_view, &columns) {
+        let detection_required = weights.detection_required();
+        for (event, child_in_view) in events(weights, births, in_view, &columns) {
             let mut matrix: Vec<Column<'_>> = columns
                 .iter()
                 .map(|&(position, s)| {
@@ -452,14 +521,14 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
                 })
                 .collect();
             if let Event::Birth { cell } = event
-                && self.births[cell as usize].2
+                && births[cell as usize].1
             {
                 let (entries, bounds, order) = tables.birth_column(cell as usize);
-                matrix.push(Column { entries, bounds, order, required: self.weights.birth_required() });
+                matrix.push(Column { entries, bounds, order, required: weights.birth_required() });
             }
-            let baseline = self.weights.baseline(
+            let baseline = weights.baseline(
                 hypothesis.log_weight,
-                self.weights.event_log_probability(event, in_view),
+                weights.event_log_probability(event, in_view),
                 child_in_view,
                 tables.rows,
             );
@@ -479,32 +548,14 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
         Ok(())
     }
 
-    /// The events of a parent with `in_view` objects in view, each with its child's objects in view.
-    fn events(&self, in_view: usize, columns: &[(usize, usize)]) -> Vec<(Event, usize)> {
-        let mut events = vec![(Event::None, in_view)];
-        if self.weights.births_possible() {
-            for (cell, (_, _, detectable)) in self.births.iter().enumerate() {
-                if *detectable || !self.weights.birth_required() {
-                    events.push((Event::Birth { cell: cell as u16 }, in_view + usize::from(*detectable)));
-                }
-            }
-        }
-        if self.weights.deaths_possible() {
-            for &(position, _) in columns {
-                events.push((Event::Death { object: position as u16 }, in_view - 1));
-            }
-        }
-        events
-    }
-
     /// Turns the kept children, best first, into hypotheses over shared tracks, merging identical ones,
     /// until the posterior's share is used.
     fn materialise(
         &self,
-        tables: &Tables,
+        tables: &Tables<G, S, D>,
         children: &ChildBuffer,
-        measurements: &[SVector<f64, 2>],
-    ) -> Result<Posterior, ReferenceError> {
+        measurements: &[SVector<f64, D>],
+    ) -> Result<Posterior<S>, ReferenceError> {
         let mut order: Vec<u32> = (0..children.heads.len() as u32).collect();
         // Best first; ties keep the enumeration order.
         order.sort_unstable_by(|&a, &b| {
@@ -526,7 +577,7 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
     }
 
     /// The track keys of child `index`: its parent's surviving objects and its birth, with their rows.
-    fn sources(&self, tables: &Tables, children: &ChildBuffer, index: usize, sources: &mut Vec<TrackKey>) {
+    fn sources(&self, tables: &Tables<G, S, D>, children: &ChildBuffer, index: usize, sources: &mut Vec<TrackKey>) {
         let head = &children.heads[index];
         let row_of = children.rows_of(index);
         sources.clear();
@@ -543,11 +594,50 @@ impl<M: MotionModel<f64, 4>> ReferenceTracker<M> {
             }
         }
         if let Event::Birth { cell } = head.event {
-            let row = if self.births[cell as usize].2 { row_of[column] } else { CLUTTER };
+            let row = if tables.scan.births[cell as usize].1 { row_of[column] } else { CLUTTER };
             sources.push((true, u32::from(cell), row));
         }
     }
 
+    /// The hypotheses, best first: each one's normalised log-weight and its tracks (label and Gaussian)
+    /// in label order.
+    pub fn posterior(&self) -> Vec<(f64, Vec<LabelledState<S>>)> {
+        let track = |&t: &u32| {
+            let track = &self.tracks[t as usize];
+            (TrackLabel(track.label), track.state)
+        };
+        self.hypotheses.iter().map(|h| (h.log_weight, self.members(h).iter().map(track).collect())).collect()
+    }
+}
+
+/// The events of a parent with `in_view` objects in view, each with its child's objects in view.
+fn events<const D: usize>(
+    weights: &WeightModel<f64>,
+    births: &[(Innovation<f64, D>, bool)],
+    in_view: usize,
+    columns: &[(usize, usize)],
+) -> Vec<(Event, usize)> {
+    let mut events = vec![(Event::None, in_view)];
+    if weights.births_possible() {
+        for (cell, (_, detectable)) in births.iter().enumerate() {
+            if *detectable || !weights.birth_required() {
+                events.push((Event::Birth { cell: cell as u16 }, in_view + usize::from(*detectable)));
+            }
+        }
+    }
+    if weights.deaths_possible() {
+        for &(position, _) in columns {
+            events.push((Event::Death { object: position as u16 }, in_view - 1));
+        }
+    }
+    events
+}
+
+impl<M, G, const D: usize, const B: usize> ReferenceTracker<M, G, 4, D, B>
+where
+    M: MotionModel<f64, 4>,
+    G: MeasurementModel<f64, 4, D> + Clone,
+{
     /// The hypotheses and tracks, best first, with existence per track.
     pub fn snapshot(&self) -> Snapshot {
         let mut tracks: Vec<TrackOut> = self
@@ -806,8 +896,8 @@ impl Search<'_, '_> {
 }
 
 /// The posterior being built from the kept children.
-struct Posterior {
-    tracks: Vec<Track>,
+struct Posterior<const S: usize> {
+    tracks: Vec<Track<S>>,
     hypotheses: Vec<Hypothesis>,
     objects: Vec<u32>,
     next_label: u32,
@@ -824,7 +914,7 @@ struct Posterior {
     log_mass: f64,
 }
 
-impl Posterior {
+impl<const S: usize> Posterior<S> {
     fn new(next_label: u32, share: usize) -> Self {
         Self {
             tracks: vec![],
@@ -844,16 +934,16 @@ impl Posterior {
 
     /// Adds a child of weight `log_weight` with tracks from `sources`; `false` (nothing added) when its
     /// new tracks and hypothesis would not fit the share.
-    fn add<M: MotionModel<f64, 4>>(
+    fn add<M, G: MeasurementModel<f64, S, D>, const D: usize, const B: usize>(
         &mut self,
-        tracker: &ReferenceTracker<M>,
-        tables: &Tables,
-        measurements: &[SVector<f64, 2>],
+        tracker: &ReferenceTracker<M, G, S, D, B>,
+        tables: &Tables<G, S, D>,
+        measurements: &[SVector<f64, D>],
         log_weight: f64,
         sources: &[TrackKey],
     ) -> Result<bool, ReferenceError> {
         let new = sources.iter().filter(|k| !self.keys.contains_key(k)).count();
-        let cost = new * TRACK_BYTES + HYPOTHESIS_BYTES + sources.len() * OBJECT_BYTES;
+        let cost = new * track_bytes::<S>() + HYPOTHESIS_BYTES + sources.len() * OBJECT_BYTES;
         if self.bytes + cost > self.share && !self.hypotheses.is_empty() {
             return Ok(false);
         }
@@ -876,7 +966,7 @@ impl Posterior {
                 self.objects.truncate(start);
                 let h = &mut self.hypotheses[existing as usize];
                 h.log_weight = log_add(h.log_weight, log_weight);
-                self.bytes += new * TRACK_BYTES;
+                self.bytes += new * track_bytes::<S>();
                 return Ok(true);
             }
             candidate = Some(self.same_hash[existing as usize]).filter(|&n| n != u32::MAX);
@@ -889,11 +979,11 @@ impl Posterior {
     }
 
     /// Makes the track of `key`: the old track predicted, or the birth cell's, updated with its row.
-    fn new_track<M: MotionModel<f64, 4>>(
+    fn new_track<M, G: MeasurementModel<f64, S, D>, const D: usize, const B: usize>(
         &mut self,
-        tracker: &ReferenceTracker<M>,
-        tables: &Tables,
-        measurements: &[SVector<f64, 2>],
+        tracker: &ReferenceTracker<M, G, S, D, B>,
+        tables: &Tables<G, S, D>,
+        measurements: &[SVector<f64, D>],
         key: TrackKey,
     ) -> Result<u32, ReferenceError> {
         let (is_birth, source, row) = key;
@@ -904,8 +994,8 @@ impl Posterior {
                 *next_label += 1;
                 *next_label - 1
             });
-            let (gaussian, innovation, _) = tracker.births[source as usize];
-            (label, gaussian, innovation)
+            let gaussian = tracker.config.birth.cells[source as usize];
+            (label, gaussian, tables.scan.births[source as usize].0)
         } else {
             let p = &tables.predicted[tables.slot[source as usize] as usize];
             (tracker.tracks[source as usize].label, p.state, p.innovation)
@@ -913,7 +1003,7 @@ impl Posterior {
         let state = if row == CLUTTER {
             prior
         } else {
-            ekf::update(&tracker.measurement, &prior, &innovation, &measurements[row as usize])
+            ekf::update(&tables.scan.placed.model, &prior, &innovation, &measurements[row as usize])
                 .map_err(|error| StepError::Numerical { label: TrackLabel(label), error })?
         };
         self.tracks.push(Track { label, state });

@@ -128,29 +128,35 @@ pub struct PosteriorMatch {
 pub fn match_posteriors(exact: &Snapshot, approx: &Snapshot) -> PosteriorMatch {
     // Only the approximation's keys are stored: the exact posterior (the reference's) may be large, and
     // its keys are made one at a time.
-    let approx_keys: Vec<Vec<u64>> = (0..approx.hypotheses.len()).map(|i| approx.hypothesis_key(i)).collect();
-    let in_approx: HashSet<&[u64]> = approx_keys.iter().map(Vec::as_slice).collect();
+    let approx: Vec<(f64, Vec<u64>)> =
+        approx.hypotheses.iter().enumerate().map(|(i, h)| (h.weight, approx.hypothesis_key(i))).collect();
+    let exact = exact.hypotheses.iter().enumerate().map(|(i, h)| (h.weight, exact.hypothesis_key(i)));
+    match_keys(exact, &approx)
+}
+
+/// [`match_posteriors`] for hypotheses given as (weight, key) pairs, best first, the keys made as
+/// [`Snapshot::hypothesis_key`] makes them (or any other function of the tracks' states alone).
+pub fn match_keys(exact: impl IntoIterator<Item = (f64, Vec<u64>)>, approx: &[(f64, Vec<u64>)]) -> PosteriorMatch {
+    let in_approx: HashSet<&[u64]> = approx.iter().map(|(_, k)| k.as_slice()).collect();
     let mut exact_weight: HashMap<&[u64], f64> = HashMap::new();
     let mut exact_only = -0.0; // the neutral element of `f64::sum`
-    for (i, h) in exact.hypotheses.iter().enumerate() {
-        let key = exact.hypothesis_key(i);
+    for (weight, key) in exact {
         match in_approx.get(key.as_slice()) {
             Some(&k) => {
-                exact_weight.insert(k, h.weight);
+                exact_weight.insert(k, weight);
             }
-            None => exact_only += h.weight,
+            None => exact_only += weight,
         }
     }
     let found = |k: &Vec<u64>| exact_weight.get(k.as_slice()).copied();
-    let captured_mass = approx_keys.iter().filter_map(found).sum();
-    let mut weight_l1: f64 =
-        approx_keys.iter().zip(&approx.hypotheses).map(|(k, h)| (h.weight - found(k).unwrap_or(0.0)).abs()).sum();
+    let captured_mass = approx.iter().filter_map(|(_, k)| found(k)).sum();
+    let mut weight_l1: f64 = approx.iter().map(|(w, k)| (w - found(k).unwrap_or(0.0)).abs()).sum();
     weight_l1 += exact_only;
     PosteriorMatch {
         captured_mass,
         weight_l1,
-        best_exact_weight_found: approx_keys.iter().filter_map(found).fold(0.0, f64::max),
-        exact_weight_of_map: approx_keys.first().and_then(found).unwrap_or(0.0),
+        best_exact_weight_found: approx.iter().filter_map(|(_, k)| found(k)).fold(0.0, f64::max),
+        exact_weight_of_map: approx.first().and_then(|(_, k)| found(k)).unwrap_or(0.0),
     }
 }
 
