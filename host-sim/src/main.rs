@@ -276,12 +276,30 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             if tracker == TrackerKind::Reference {
                 return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst").into());
             }
-            let AnyScenario::V1(scenario) = load_any(&file)? else {
-                return Err(Error::input(format!(
-                    "{}: compare is not yet supported on version 2 (3-D) scenario files",
-                    file.display()
-                ))
-                .into());
+            let scenario = match load_any(&file)? {
+                AnyScenario::V1(scenario) => *scenario,
+                AnyScenario::V2(scenario) => {
+                    let options = common.options();
+                    let profile = host_sim::run3d::choose_profile(&scenario, common.profile);
+                    let figures =
+                        host_sim::run3d::compare3d(&scenario, tracker, Some(profile), options.reference.bytes)?;
+                    let summary = host_sim::report::Compare3dSummary {
+                        tracker: tracker.name().to_string(),
+                        profile: profile.name().to_string(),
+                        sensors: scenario.sensors.len(),
+                        scans: figures.scans.len(),
+                        map_agreement: figures.map_agreement,
+                        min_captured_mass: figures.min_captured_mass,
+                        mean_captured_mass: figures.mean_captured_mass,
+                        max_weight_l1: figures.max_weight_l1,
+                        max_map_weight_difference: figures.max_map_weight_difference,
+                        min_core_captured_mass: figures.min_core_captured_mass,
+                        core_rejected_scans: figures.scans.iter().filter(|s| s.core_error.is_some()).count(),
+                        reference_rejected_scans: figures.scans.iter().filter(|s| s.reference_error.is_some()).count(),
+                    };
+                    std::fs::create_dir_all(&out).map_err(|e| Error::output(&out, e))?;
+                    return write_report(&out.join("compare.json"), &summary);
+                }
             };
             let result = evaluate::compare(&scenario, tracker, &common.options(), &out)?;
             println!("{}", serde_json::to_string_pretty(&result.summary).unwrap_or_default());

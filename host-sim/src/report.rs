@@ -1002,3 +1002,34 @@ pub struct PerfMachine {
     /// `rustc --version` (empty when unavailable).
     pub rustc: String,
 }
+
+/// `compare.json` of `host-sim compare` on a version 2 (3-D) file: the bounded tracker against the unbounded
+/// reference, scan by scan (`exactness::compare_scans`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Compare3dSummary {
+    /// The bounded tracker (`homht` or `rfisst`).
+    pub tracker: String,
+    /// Its capacity profile.
+    pub profile: String,
+    /// Sensors of the scenario.
+    pub sensors: usize,
+    /// Scans compared.
+    pub scans: usize,
+    /// Fraction of scans whose MAP hypotheses agree.
+    pub map_agreement: f64,
+    /// Smallest captured mass (the reference's mass on the bounded tracker's hypotheses).
+    pub min_captured_mass: f64,
+    /// Mean captured mass.
+    pub mean_captured_mass: f64,
+    /// Largest weight L1 distance.
+    pub max_weight_l1: f64,
+    /// Largest |w_core(MAP) − w_reference| relative to the reference's MAP weight.
+    pub max_map_weight_difference: f64,
+    /// Smallest captured mass the bounded tracker reported itself.
+    pub min_core_captured_mass: f64,
+    /// Scans the bounded tracker rejected.
+    pub core_rejected_scans: usize,
+    /// Scans the reference rejected.
+    pub reference_rejected_scans: usize,
+}

@@ -165,12 +165,17 @@ fn children(kind: TrackerKind, tracker: &TrackerSpec) -> ChildGeneration {
     }
 }
 
-fn core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+/// The core configuration and the prior of `scenario` for the tracker `kind` with `B` birth cells.
+///
+/// # Errors
+/// Bad input: a network the core refuses, more birth cells than `B`, no sensor.
+#[allow(clippy::type_complexity)]
+pub fn config3d<X, const D: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
-) -> Result<Box<dyn Runner3d>, Error>
+) -> Result<(Config<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, B>, Vec<(f64, Vec<PriorObject<f64, 6>>)>), Error>
 where
-    X: Placeable<f64, D> + Send + 'static,
+    X: Placeable<f64, D>,
 {
     let network = network::<X, D>(scenario)?;
     let mut cells = heapless::Vec::<Gaussian<f64, 6>, B>::new();
@@ -214,27 +219,111 @@ where
         },
         seed: spec.seed,
     };
-    let objects: Vec<Vec<PriorObject<f64, 6>>> = scenario
+    let prior = scenario
         .prior
         .hypotheses
         .iter()
         .map(|h| {
-            h.objects
+            let objects = h
+                .objects
                 .iter()
                 .map(|o| PriorObject { label: TrackLabel(o.label), state: gaussian6(&o.mean, &o.covariance) })
-                .collect()
+                .collect();
+            (h.weight, objects)
         })
         .collect();
-    let prior: Vec<PriorHypothesis<'_, f64, 6>> = scenario
-        .prior
-        .hypotheses
-        .iter()
-        .zip(&objects)
-        .map(|(h, objects)| PriorHypothesis { weight: h.weight, objects })
-        .collect();
+    Ok((config, prior))
+}
+
+fn core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+) -> Result<Box<dyn Runner3d>, Error>
+where
+    X: Placeable<f64, D> + Send + 'static,
+{
+    let (config, objects) = config3d::<X, D, B>(scenario, kind)?;
+    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
+        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, scenario.prior.time)
         .map_err(|e| Error::input(format!("tracker configuration: {e}")))?;
     Ok(Box::new(Core3d { tracker: Box::new(tracker) }))
+}
+
+/// The scans of `scenario` as the trackers take them (angles in radians).
+fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<crate::exactness::Scan<D>> {
+    scenario
+        .scans
+        .iter()
+        .map(|scan| {
+            let zs = measurements_in_radians(scenario.measurement, &scan.measurements)
+                .iter()
+                .map(|z| SVector::<f64, D>::from_column_slice(z))
+                .collect();
+            (ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None }, zs)
+        })
+        .collect()
+}
+
+fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    budget_bytes: usize,
+) -> Result<crate::exactness::CompareFigures, Error>
+where
+    X: Placeable<f64, D>,
+{
+    let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
+    crate::exactness::compare_scans::<_, _, 6, D, H, N, Z, K, B>(
+        &config,
+        &prior,
+        scenario.prior.time,
+        budget_bytes,
+        &scans3d::<D>(scenario),
+    )
+    .map_err(Error::input)
+}
+
+macro_rules! compare_for_profile {
+    ($x:ty, $d:literal, $profile:expr, $scenario:expr, $kind:expr, $budget:expr) => {
+        match $profile {
+            Profile::Embedded => compare_with::<
+                $x,
+                $d,
+                { ssa_caps::HYPOTHESES },
+                { ssa_caps::OBJECTS },
+                { ssa_caps::MEASUREMENTS },
+                { ssa_caps::TRACKS_3D },
+                { ssa_caps::BIRTH_CELLS },
+            >($scenario, $kind, $budget),
+            Profile::Host => compare_with::<$x, $d, 256, 128, 64, 4096, 16>($scenario, $kind, $budget),
+        }
+    };
+}
+
+/// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
+/// reference (memory budget `budget_bytes`) on the same scans, placed per sensor by the core's
+/// `place_scan` in both ([`crate::exactness::compare_scans`]).
+///
+/// # Errors
+/// Bad input: the configuration, or the reference tracker as bounded tracker.
+pub fn compare3d(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    budget_bytes: usize,
+) -> Result<crate::exactness::CompareFigures, Error> {
+    if kind == TrackerKind::Reference {
+        return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst"));
+    }
+    let profile = choose_profile(scenario, profile);
+    match scenario.measurement {
+        Measurement3dSpec::Radar => compare_for_profile!(RadarRangeAzEl<f64>, 3, profile, scenario, kind, budget_bytes),
+        Measurement3dSpec::RadarRangeRate => {
+            compare_for_profile!(RadarRangeRate<f64>, 4, profile, scenario, kind, budget_bytes)
+        }
+        Measurement3dSpec::Optical => compare_for_profile!(OpticalRaDec<f64>, 2, profile, scenario, kind, budget_bytes),
+    }
 }
 
 /// The capacities (H, N, Z, K, B) of a profile for 3-D trackers: `embedded` is tracker-core's
