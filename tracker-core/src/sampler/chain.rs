@@ -9,8 +9,13 @@ use crate::children::{ChildGenerator, ChildSink, GenerateError};
 use crate::index::{At, NONE, below};
 use crate::optimal::best_association;
 use crate::real::{Real, exp};
+use core::hint::select_unpredictable;
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// Buckets of the informed proposal's guide table per row, and the shift from a 32-bit draw to its bucket.
+const GUIDE: usize = 32;
+const GUIDE_SHIFT: u32 = 27;
 
 /// The first `count` of a row's possible columns.
 #[inline]
@@ -71,6 +76,10 @@ pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> 
     /// Per row: the cumulative distribution of the informed proposal over `row_columns`, in units of
     /// 2⁻³² (clutter takes the rest up to 2³²).
     cumulative: [[u32; N]; Z],
+    /// Per row, a guide to `cumulative` (Chen and Asau's guide table): entry b counts the bounds at or
+    /// below b 2³²⁻ᴳᴮ (capped at 255), a lower bound of the draw's index for every draw in bucket b, so
+    /// the draw starts its search there; the search finds the same index as a binary search.
+    guide: [[u8; GUIDE]; Z],
     /// Linear weights w_jc = e^{δ_jc − m_j} (m_j = max(0, max_c δ_jc)), clutter e^{−m_j}, and 1 / W_j
     /// with W_j the row total: acceptance ratios are products of weights, with no exp or log in a step.
     weights: [[T; N]; Z],
@@ -142,6 +151,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             row_columns: [[0; N]; Z],
             row_count: [0; Z],
             cumulative: [[0; N]; Z],
+            guide: [[0; GUIDE]; Z],
             weights: [[T::ZERO; N]; Z],
             clutter_weight: [T::ONE; Z],
             inverse_row_total: [T::ONE; Z],
@@ -320,6 +330,11 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 cumulative += *weights.at(usize::from(column));
                 let units = (cumulative * scale).as_f64();
                 *bound = if units >= 4_294_967_295.0 { u32::MAX } else { units as u32 };
+            }
+            let bounds = &self.cumulative[row][..count];
+            for (bucket, start) in (0u32..).zip(self.guide[row].iter_mut()) {
+                let below = bounds.partition_point(|&bound| bound <= bucket << GUIDE_SHIFT);
+                *start = below.min(usize::from(u8::MAX)) as u8;
             }
         }
     }
@@ -506,10 +521,25 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 if count > N {
                     return false; // never: a row has at most N possible columns
                 }
-                let k = if informed {
-                    self.cumulative[row][..count].partition_point(|&bound| bound <= bits)
+                let k = {
+                // Both draws, then a branch-free choice: the kind of step is a coin flip, which no branch
+                // predictor guesses (a misprediction every other step cost more than the second draw).
+                let uniform = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
+                if informed {
+                    // The bounds at or below `bits`: from the guide's lower bound, one compare unless a
+                    // bound falls in the draw's bucket (bounded by the row's columns).
+                    let bounds = &self.cumulative[row][..count];
+                    let mut k = usize::from(self.guide[row][(bits >> GUIDE_SHIFT) as usize]);
+                    for &bound in bounds.get(k..).unwrap_or_default() {
+                        if bound > bits {
+                            break;
+                        }
+                        k += 1;
+                    }
+                    k
                 } else {
-                    ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize
+                    uniform
+                }
                 };
                 if k >= count { CLUTTER } else { self.row_columns[row][k] }
             }
@@ -536,13 +566,11 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         // The acceptance ratio e^Δ q_reverse / q_forward as numerator / denominator of products of linear
         // weights (no exp, no log, no division), and the move.
         let (mut numerator, mut denominator, other_takes) = match other {
-            None => {
-                if informed {
-                    (T::one(), T::one(), NONE)
-                } else {
-                    (new_weight, old_weight, NONE)
-                }
-            }
+            None => (
+                select_unpredictable(informed, T::one(), new_weight),
+                select_unpredictable(informed, T::one(), old_weight),
+                NONE,
+            ),
             Some(other_row) => match proposal {
                 Proposal::MoveOrSwap | Proposal::Informed => {
                     let other_new_weight = self.weight(other_row, old);
@@ -561,17 +589,18 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     // proposes it ((k, clutter) would move k alone), and only (k, new) its reverse.
                     let (inverse_j, inverse_k) = (self.inverse_row_total[row], self.inverse_row_total[other_row]);
                     if old == CLUTTER {
-                        if informed {
-                            numerator *= other_old_weight * inverse_k;
-                            denominator *= new_weight * inverse_j;
-                        } else {
-                            // Uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
-                            numerator *= T::of_f64(f64::from(self.row_count[row]) + 1.0);
-                            denominator *= T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
-                        }
-                    } else if informed {
-                        numerator *= old_weight * inverse_j + other_old_weight * inverse_k;
-                        denominator *= new_weight * inverse_j + other_new_weight * inverse_k;
+                        // Informed, or uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
+                        let (informed_up, informed_down) = (other_old_weight * inverse_k, new_weight * inverse_j);
+                        let uniform_up = T::of_f64(f64::from(self.row_count[row]) + 1.0);
+                        let uniform_down = T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
+                        numerator *= select_unpredictable(informed, informed_up, uniform_up);
+                        denominator *= select_unpredictable(informed, informed_down, uniform_down);
+                    } else {
+                        // The uniform ratio is 1 (the same products, unmultiplied).
+                        let up = numerator * (old_weight * inverse_j + other_old_weight * inverse_k);
+                        let down = denominator * (new_weight * inverse_j + other_new_weight * inverse_k);
+                        numerator = select_unpredictable(informed, up, numerator);
+                        denominator = select_unpredictable(informed, down, denominator);
                     }
                     (numerator, denominator, old)
                 }
