@@ -495,12 +495,23 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     // The hot loop of the tracker (hundreds of thousands of moves per worst-case scan): proposal, the
     // Metropolis–Hastings ratio of each proposal kind and acceptance are kept in one function so that the
     // ratio's products stay in registers; splitting it measurably costs instructions.
-    #[inline]
     pub fn metropolis_move(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
+        let Some(mut rng) = self.rng.take() else {
+            self.steps_taken += 1;
+            return false;
+        };
+        let moved = self.step(matrix, &mut rng);
+        self.rng = Some(rng);
+        moved
+    }
+
+    /// [`MetropolisSampler::metropolis_move`] with the random stream held outside the sampler, so that
+    /// inlined in a loop its state stays in registers.
+    #[inline(always)]
+    fn step(&mut self, matrix: &AssociationMatrix<T, N, Z>, rng: &mut Xoshiro256PlusPlus) -> bool {
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
         let (rows, columns) = matrix.shape();
         self.steps_taken += 1;
-        let Some(rng) = self.rng.as_mut() else { return false };
         let draw = rng.next_u64();
         // Row from the high half of the draw (multiply-shift range), the rest picks the column.
         let row = ((((draw >> 32) * rows as u64) >> 32) as usize).min(Z - 1);
@@ -620,7 +631,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
         // Accept with probability min(1, numerator / denominator).
         if !(numerator >= denominator) {
-            let Some(rng) = self.rng.as_mut() else { return false };
             let uniform = T::of_f64((rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
             if !(uniform * denominator < numerator) {
                 return false;
@@ -817,15 +827,22 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             self.record(matrix);
         }
         let (burn_in, steps) = self.config.moves_within(max_moves);
+        let Some(mut rng) = self.rng.take() else {
+            // No random stream (an `empty` sampler never reseeded): the steps are no-ops.
+            self.steps_taken += u64::from(burn_in) + u64::from(steps);
+            self.record(matrix);
+            return;
+        };
         for _ in 0..burn_in {
-            self.metropolis_move(matrix);
+            self.step(matrix, &mut rng);
         }
         self.record(matrix);
         for _ in 0..steps {
-            if self.metropolis_move(matrix) {
+            if self.step(matrix, &mut rng) {
                 self.record(matrix);
             }
         }
+        self.rng = Some(rng);
     }
 }
 
