@@ -77,8 +77,8 @@ pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> 
     /// 2⁻³² (clutter takes the rest up to 2³²).
     cumulative: [[u32; N]; Z],
     /// Per row, a guide to `cumulative` (Chen and Asau's guide table): entry b counts the bounds at or
-    /// below b 2³²⁻ᴳᴮ (capped at 255), a lower bound of the draw's index for every draw in bucket b, so
-    /// the draw starts its search there; the search finds the same index as a binary search.
+    /// below b·2²⁷ (capped at 255), a lower bound of the index of every draw in bucket b (the draws in
+    /// [b·2²⁷, (b + 1)·2²⁷)), so the search starts there and finds the index a binary search finds.
     guide: [[u8; GUIDE]; Z],
     /// Linear weights w_jc = e^{δ_jc − m_j} (m_j = max(0, max_c δ_jc)), clutter e^{−m_j}, and 1 / W_j
     /// with W_j the row total: acceptance ratios are products of weights, with no exp or log in a step.
@@ -339,6 +339,22 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
     }
 
+    /// The informed proposal's index for the 32-bit draw `bits` in `row` (of `count` possible columns;
+    /// `count` for clutter): the number of the row's cumulative bounds at or below `bits`, counted from
+    /// the guide's lower bound (one comparison unless a bound falls in the draw's bucket).
+    #[inline(always)]
+    fn informed_index(&self, row: usize, count: usize, bits: u32) -> usize {
+        let bounds = &self.cumulative[row][..count];
+        let mut k = usize::from(self.guide[row][(bits >> GUIDE_SHIFT) as usize]);
+        for &bound in bounds.get(k..).unwrap_or_default() {
+            if bound > bits {
+                break;
+            }
+            k += 1;
+        }
+        k
+    }
+
     /// The possible columns of `row` (finite δ), in order.
     #[inline]
     fn possible_columns(&self, row: usize) -> &[u16] {
@@ -533,24 +549,10 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     return false; // never: a row has at most N possible columns
                 }
                 let k = {
-                // Both draws, then a branch-free choice: the kind of step is a coin flip, which no branch
-                // predictor guesses (a misprediction every other step cost more than the second draw).
-                let uniform = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
-                if informed {
-                    // The bounds at or below `bits`: from the guide's lower bound, one compare unless a
-                    // bound falls in the draw's bucket (bounded by the row's columns).
-                    let bounds = &self.cumulative[row][..count];
-                    let mut k = usize::from(self.guide[row][(bits >> GUIDE_SHIFT) as usize]);
-                    for &bound in bounds.get(k..).unwrap_or_default() {
-                        if bound > bits {
-                            break;
-                        }
-                        k += 1;
-                    }
-                    k
-                } else {
-                    uniform
-                }
+                    // Both draws, then a branch-free choice: the kind of step is a coin flip, which no branch
+                    // predictor guesses (a misprediction every other step cost more than the second draw).
+                    let uniform = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
+                    if informed { self.informed_index(row, count, bits) } else { uniform }
                 };
                 if k >= count { CLUTTER } else { self.row_columns[row][k] }
             }
@@ -930,6 +932,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The guide's start and scan give the binary search's index for every draw: at bucket edges, at
+    /// bounds and beside them, and past the guide's cap of 255 (a row of 300 columns).
+    fn guided_index_is_the_binary_search<const N: usize, const Z: usize>(m: &AssociationMatrix<f64, N, Z>) {
+        let mut sampler = MetropolisSampler::<f64, N, Z, 4>::new(SamplerConfig::default(), 1);
+        sampler.build_tables(m);
+        let mut s = crate::random::test_stream(9);
+        for row in 0..m.rows() {
+            let count = usize::from(sampler.row_count[row]);
+            let bounds = &sampler.cumulative[row][..count];
+            let mut draws: Vec<u32> = (0..2_000).map(|_| s.next_u64() as u32).collect();
+            draws.extend((0..=32u64).map(|b| ((b << GUIDE_SHIFT) as u32).wrapping_sub(1)));
+            draws.extend((0..32u32).map(|b| b << GUIDE_SHIFT));
+            for &bound in bounds {
+                draws.extend([bound.wrapping_sub(1), bound, bound.wrapping_add(1)]);
+            }
+            for bits in draws {
+                let expected = bounds.partition_point(|&bound| bound <= bits);
+                assert_eq!(sampler.informed_index(row, count, bits), expected, "row {row}, bits {bits}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_guide_table_finds_the_binary_search_index() {
+        for seed in 0..20 {
+            guided_index_is_the_binary_search(&random_matrix(seed, 6, 8));
+        }
+        // Rows of 300 columns: one with equal entries, one with a dominant entry (most bounds in the top
+        // bucket), one with tiny weights (bounds crowded in the first bucket).
+        let mut m = AssociationMatrix::<f64, 300, 3>::new(3, 300, -3.0);
+        for c in 0..300 {
+            let spread = if c == 150 { 40.0 } else { -0.01 * c as f64 };
+            m.set_column(c, &[0.5, spread, -30.0 - 0.01 * c as f64], false);
+        }
+        guided_index_is_the_binary_search(&m);
     }
 
     #[test]
