@@ -326,15 +326,24 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             let scale = T::of_f64(4_294_967_296.0) / total;
             let mut cumulative = T::zero();
             let (weights, possible) = (&self.weights[row], &self.row_columns[row]);
-            for (bound, &column) in self.cumulative[row].iter_mut().zip(possible).take(count) {
+            // The guide in the same pass (bounds and bucket starts both increase): O(GUIDE + count).
+            let guide = &mut self.guide[row];
+            let mut bucket = 0u32;
+            let cap = |below: usize| below.min(usize::from(u8::MAX)) as u8;
+            for (index, (bound, &column)) in self.cumulative[row].iter_mut().zip(possible).take(count).enumerate() {
                 cumulative += *weights.at(usize::from(column));
                 let units = (cumulative * scale).as_f64();
                 *bound = if units >= 4_294_967_295.0 { u32::MAX } else { units as u32 };
+                // Buckets starting below this bound have `index` bounds at or below their start.
+                while let Some(start) = guide.get_mut(bucket as usize)
+                    && bucket << GUIDE_SHIFT < *bound
+                {
+                    *start = cap(index);
+                    bucket += 1;
+                }
             }
-            let bounds = &self.cumulative[row][..count];
-            for (bucket, start) in (0u32..).zip(self.guide[row].iter_mut()) {
-                let below = bounds.partition_point(|&bound| bound <= bucket << GUIDE_SHIFT);
-                *start = below.min(usize::from(u8::MAX)) as u8;
+            for start in guide.iter_mut().skip(bucket as usize) {
+                *start = cap(count);
             }
         }
     }
