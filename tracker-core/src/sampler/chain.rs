@@ -648,13 +648,28 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             }
         }
         self.accepted += 1;
-        self.apply(matrix, row, new, other, other_takes);
+        self.apply_accepted(matrix, row, new, other, other_takes);
         true
+    }
+
+    /// [`MetropolisSampler::apply`] out of line, for an accepted Metropolis move.
+    #[inline(never)]
+    fn apply_accepted(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        row: usize,
+        new: u16,
+        other: Option<usize>,
+        other_takes: u16,
+    ) {
+        self.apply(matrix, row, new, other, other_takes);
     }
 
     /// Makes the move: `row` takes `new`; the measurement `other` that held `new` (if any) takes
     /// `other_takes`. Updates owners, hash, required count and the log-score by sums of entries.
-    #[inline]
+    // Inlined into the start's climb and the mode's neighbours (thousands of calls per chain on a dense
+    // matrix); the step calls it out of line through `apply_accepted`, which keeps the hot loop small.
+    #[inline(always)]
     fn apply(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
