@@ -9,8 +9,13 @@ use crate::children::{ChildGenerator, ChildSink, GenerateError};
 use crate::index::{At, NONE, below};
 use crate::optimal::best_association;
 use crate::real::{Real, exp};
+use core::hint::select_unpredictable;
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// Buckets of the informed proposal's guide table per row, and the shift from a 32-bit draw to its bucket.
+const GUIDE: usize = 32;
+const GUIDE_SHIFT: u32 = 27;
 
 /// The first `count` of a row's possible columns.
 #[inline]
@@ -71,6 +76,10 @@ pub struct MetropolisSampler<T, const N: usize, const Z: usize, const C: usize> 
     /// Per row: the cumulative distribution of the informed proposal over `row_columns`, in units of
     /// 2⁻³² (clutter takes the rest up to 2³²).
     cumulative: [[u32; N]; Z],
+    /// Per row, a guide to `cumulative` (Chen and Asau's guide table): entry b counts the bounds at or
+    /// below b·2²⁷ (capped at 255), a lower bound of the index of every draw in bucket b (the draws in
+    /// [b·2²⁷, (b + 1)·2²⁷)), so the search starts there and finds the index a binary search finds.
+    guide: [[u8; GUIDE]; Z],
     /// Linear weights w_jc = e^{δ_jc − m_j} (m_j = max(0, max_c δ_jc)), clutter e^{−m_j}, and 1 / W_j
     /// with W_j the row total: acceptance ratios are products of weights, with no exp or log in a step.
     weights: [[T; N]; Z],
@@ -142,6 +151,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             row_columns: [[0; N]; Z],
             row_count: [0; Z],
             cumulative: [[0; N]; Z],
+            guide: [[0; GUIDE]; Z],
             weights: [[T::ZERO; N]; Z],
             clutter_weight: [T::ONE; Z],
             inverse_row_total: [T::ONE; Z],
@@ -316,12 +326,42 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             let scale = T::of_f64(4_294_967_296.0) / total;
             let mut cumulative = T::zero();
             let (weights, possible) = (&self.weights[row], &self.row_columns[row]);
-            for (bound, &column) in self.cumulative[row].iter_mut().zip(possible).take(count) {
+            // The guide in the same pass (bounds and bucket starts both increase): O(GUIDE + count).
+            let guide = &mut self.guide[row];
+            let mut bucket = 0u32;
+            let cap = |below: usize| below.min(usize::from(u8::MAX)) as u8;
+            for (index, (bound, &column)) in self.cumulative[row].iter_mut().zip(possible).take(count).enumerate() {
                 cumulative += *weights.at(usize::from(column));
                 let units = (cumulative * scale).as_f64();
                 *bound = if units >= 4_294_967_295.0 { u32::MAX } else { units as u32 };
+                // Buckets starting below this bound have `index` bounds at or below their start.
+                while let Some(start) = guide.get_mut(bucket as usize)
+                    && bucket << GUIDE_SHIFT < *bound
+                {
+                    *start = cap(index);
+                    bucket += 1;
+                }
+            }
+            for start in guide.iter_mut().skip(bucket as usize) {
+                *start = cap(count);
             }
         }
+    }
+
+    /// The informed proposal's index for the 32-bit draw `bits` in `row` (of `count` possible columns;
+    /// `count` for clutter): the number of the row's cumulative bounds at or below `bits`, counted from
+    /// the guide's lower bound (one comparison unless a bound falls in the draw's bucket).
+    #[inline(always)]
+    fn informed_index(&self, row: usize, count: usize, bits: u32) -> usize {
+        let bounds = &self.cumulative[row][..count];
+        let mut k = usize::from(self.guide[row][(bits >> GUIDE_SHIFT) as usize]);
+        for &bound in bounds.get(k..).unwrap_or_default() {
+            if bound > bits {
+                break;
+            }
+            k += 1;
+        }
+        k
     }
 
     /// The possible columns of `row` (finite δ), in order.
@@ -480,12 +520,23 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     // The hot loop of the tracker (hundreds of thousands of moves per worst-case scan): proposal, the
     // Metropolis–Hastings ratio of each proposal kind and acceptance are kept in one function so that the
     // ratio's products stay in registers; splitting it measurably costs instructions.
-    #[inline]
     pub fn metropolis_move(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
+        let Some(mut rng) = self.rng.take() else {
+            self.steps_taken += 1;
+            return false;
+        };
+        let moved = self.step(matrix, &mut rng);
+        self.rng = Some(rng);
+        moved
+    }
+
+    /// [`MetropolisSampler::metropolis_move`] with the random stream held outside the sampler, so that
+    /// inlined in a loop its state stays in registers.
+    #[inline(always)]
+    fn step(&mut self, matrix: &AssociationMatrix<T, N, Z>, rng: &mut Xoshiro256PlusPlus) -> bool {
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
         let (rows, columns) = matrix.shape();
         self.steps_taken += 1;
-        let Some(rng) = self.rng.as_mut() else { return false };
         let draw = rng.next_u64();
         // Row from the high half of the draw (multiply-shift range), the rest picks the column.
         let row = ((((draw >> 32) * rows as u64) >> 32) as usize).min(Z - 1);
@@ -506,10 +557,11 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 if count > N {
                     return false; // never: a row has at most N possible columns
                 }
-                let k = if informed {
-                    self.cumulative[row][..count].partition_point(|&bound| bound <= bits)
-                } else {
-                    ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize
+                let k = {
+                    // Both draws, then a branch-free choice: the kind of step is a coin flip, which no branch
+                    // predictor guesses (a misprediction every other step cost more than the second draw).
+                    let uniform = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
+                    if informed { self.informed_index(row, count, bits) } else { uniform }
                 };
                 if k >= count { CLUTTER } else { self.row_columns[row][k] }
             }
@@ -536,13 +588,11 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         // The acceptance ratio e^Δ q_reverse / q_forward as numerator / denominator of products of linear
         // weights (no exp, no log, no division), and the move.
         let (mut numerator, mut denominator, other_takes) = match other {
-            None => {
-                if informed {
-                    (T::one(), T::one(), NONE)
-                } else {
-                    (new_weight, old_weight, NONE)
-                }
-            }
+            None => (
+                select_unpredictable(informed, T::one(), new_weight),
+                select_unpredictable(informed, T::one(), old_weight),
+                NONE,
+            ),
             Some(other_row) => match proposal {
                 Proposal::MoveOrSwap | Proposal::Informed => {
                     let other_new_weight = self.weight(other_row, old);
@@ -561,17 +611,18 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     // proposes it ((k, clutter) would move k alone), and only (k, new) its reverse.
                     let (inverse_j, inverse_k) = (self.inverse_row_total[row], self.inverse_row_total[other_row]);
                     if old == CLUTTER {
-                        if informed {
-                            numerator *= other_old_weight * inverse_k;
-                            denominator *= new_weight * inverse_j;
-                        } else {
-                            // Uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
-                            numerator *= T::of_f64(f64::from(self.row_count[row]) + 1.0);
-                            denominator *= T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
-                        }
-                    } else if informed {
-                        numerator *= old_weight * inverse_j + other_old_weight * inverse_k;
-                        denominator *= new_weight * inverse_j + other_new_weight * inverse_k;
+                        // Informed, or uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
+                        let (informed_up, informed_down) = (other_old_weight * inverse_k, new_weight * inverse_j);
+                        let uniform_up = T::of_f64(f64::from(self.row_count[row]) + 1.0);
+                        let uniform_down = T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
+                        numerator *= select_unpredictable(informed, informed_up, uniform_up);
+                        denominator *= select_unpredictable(informed, informed_down, uniform_down);
+                    } else {
+                        // The uniform ratio is 1 (the same products, unmultiplied).
+                        let up = numerator * (old_weight * inverse_j + other_old_weight * inverse_k);
+                        let down = denominator * (new_weight * inverse_j + other_new_weight * inverse_k);
+                        numerator = select_unpredictable(informed, up, numerator);
+                        denominator = select_unpredictable(informed, down, denominator);
                     }
                     (numerator, denominator, old)
                 }
@@ -591,20 +642,34 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
         // Accept with probability min(1, numerator / denominator).
         if !(numerator >= denominator) {
-            let Some(rng) = self.rng.as_mut() else { return false };
             let uniform = T::of_f64((rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
             if !(uniform * denominator < numerator) {
                 return false;
             }
         }
         self.accepted += 1;
-        self.apply(matrix, row, new, other, other_takes);
+        self.apply_accepted(matrix, row, new, other, other_takes);
         true
+    }
+
+    /// [`MetropolisSampler::apply`] out of line, for an accepted Metropolis move.
+    #[inline(never)]
+    fn apply_accepted(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        row: usize,
+        new: u16,
+        other: Option<usize>,
+        other_takes: u16,
+    ) {
+        self.apply(matrix, row, new, other, other_takes);
     }
 
     /// Makes the move: `row` takes `new`; the measurement `other` that held `new` (if any) takes
     /// `other_takes`. Updates owners, hash, required count and the log-score by sums of entries.
-    #[inline]
+    // Inlined into the start's climb and the mode's neighbours (thousands of calls per chain on a dense
+    // matrix); the step calls it out of line through `apply_accepted`, which keeps the hot loop small.
+    #[inline(always)]
     fn apply(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
@@ -788,15 +853,22 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             self.record(matrix);
         }
         let (burn_in, steps) = self.config.moves_within(max_moves);
+        let Some(mut rng) = self.rng.take() else {
+            // No random stream (an `empty` sampler never reseeded): the steps are no-ops.
+            self.steps_taken += u64::from(burn_in) + u64::from(steps);
+            self.record(matrix);
+            return;
+        };
         for _ in 0..burn_in {
-            self.metropolis_move(matrix);
+            self.step(matrix, &mut rng);
         }
         self.record(matrix);
         for _ in 0..steps {
-            if self.metropolis_move(matrix) {
+            if self.step(matrix, &mut rng) {
                 self.record(matrix);
             }
         }
+        self.rng = Some(rng);
     }
 }
 
@@ -884,6 +956,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The guide's start and scan give the binary search's index for every draw: at bucket edges, at
+    /// bounds and beside them, and past the guide's cap of 255 (a row of 300 columns).
+    fn guided_index_is_the_binary_search<const N: usize, const Z: usize>(m: &AssociationMatrix<f64, N, Z>) {
+        let mut sampler = MetropolisSampler::<f64, N, Z, 4>::new(SamplerConfig::default(), 1);
+        sampler.build_tables(m);
+        let mut s = crate::random::test_stream(9);
+        for row in 0..m.rows() {
+            let count = usize::from(sampler.row_count[row]);
+            let bounds = &sampler.cumulative[row][..count];
+            let mut draws: Vec<u32> = (0..2_000).map(|_| s.next_u64() as u32).collect();
+            draws.extend((0..=32u64).map(|b| ((b << GUIDE_SHIFT) as u32).wrapping_sub(1)));
+            draws.extend((0..32u32).map(|b| b << GUIDE_SHIFT));
+            for &bound in bounds {
+                draws.extend([bound.wrapping_sub(1), bound, bound.wrapping_add(1)]);
+            }
+            for bits in draws {
+                let expected = bounds.partition_point(|&bound| bound <= bits);
+                assert_eq!(sampler.informed_index(row, count, bits), expected, "row {row}, bits {bits}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_guide_table_finds_the_binary_search_index() {
+        for seed in 0..20 {
+            guided_index_is_the_binary_search(&random_matrix(seed, 6, 8));
+        }
+        // Rows of 300 columns: one with equal entries, one with a dominant entry (most bounds in the top
+        // bucket), one with tiny weights (bounds crowded in the first bucket).
+        let mut m = AssociationMatrix::<f64, 300, 3>::new(3, 300, -3.0);
+        for c in 0..300 {
+            let spread = if c == 150 { 40.0 } else { -0.01 * c as f64 };
+            m.set_column(c, &[0.5, spread, -30.0 - 0.01 * c as f64], false);
+        }
+        guided_index_is_the_binary_search(&m);
     }
 
     #[test]

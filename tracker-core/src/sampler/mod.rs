@@ -27,9 +27,9 @@
 //!     moves along ridges of good associations instead of falling into clutter.
 //!   - [`Proposal::Informed`] (default): as `MoveOrSwap`, but on every other step the column is drawn
 //!     from the row's own distribution q_j(c) ∝ e^{δ_jc} (clutter e⁰) through a per-row cumulative table
-//!     built once per matrix (a binary search per step). Such a move to a free column is always
-//!     accepted, so the chain rarely wastes a step on an impossible or poor column; the uniform steps in
-//!     between keep columns of small weight reachable.
+//!     built once per matrix (a guide table starts the search: usually one comparison per step). Such a
+//!     move to a free column is always accepted, so the chain rarely wastes a step on an impossible or
+//!     poor column; the uniform steps in between keep columns of small weight reachable.
 //! - **Acceptance**: Metropolis–Hastings, min(1, e^Δ q_reverse / q_forward), with Δ the O(1) change of
 //!   the log-score.
 //! - **Budget**: `burn_in` steps unrecorded, then `steps` recorded steps; every feasible state visited
