@@ -302,12 +302,14 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
             let speed = (mu / r).sqrt();
             let object = gaussian::<f64>([r, 0.0, 0.0, speed], 1.0);
             let t = Box::new(SsaTracker::<f64>::with_objects(config.clone(), &[object], 0.0).unwrap());
-            let too_long = StepError::Numerical {
-                label: tracker_core::TrackLabel(0),
-                error: NumericalError::Model(tracker_core::model::ModelError::TimeStepTooLarge),
-            };
-            // 20 s × 1000 sub-steps = 20,000 s: one second more is too long; exactly that is accepted.
+            // 20 s × 1000 sub-steps = 20,000 s: one second more is too long, refused before any
+            // propagation whatever the numerical-failure policy; exactly that is accepted.
+            let too_long = StepError::TimeStepTooLong { limit_seconds: 20_000 };
             assert_rejected(*t.clone(), |t| t.step(20_001.0, &[]), too_long, (60.0, &[]));
+            let mut lenient = config.clone();
+            lenient.numerical_failure = NumericalFailure::DropTrack;
+            let dropping = Box::new(SsaTracker::<f64>::with_objects(lenient, &[object], 0.0).unwrap());
+            assert_rejected(*dropping, |t| t.step(20_001.0, &[]), too_long, (60.0, &[]));
             let mut ok = t.clone();
             ok.step(20_000.0, &[]).unwrap();
             assert_healthy(&*ok);
