@@ -299,14 +299,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {
-            let AnyScenario::V1(scenario) = load_any(&file)? else {
-                return Err(Error::input(format!(
-                    "{}: digest is not yet supported on version 2 (3-D) scenario files",
-                    file.display()
-                ))
-                .into());
+            let digest = match load_any(&file)? {
+                AnyScenario::V1(scenario) => host_sim::digest::run(&scenario, scans)?,
+                AnyScenario::V2(scenario) => host_sim::digest3d::run(&scenario, scans)?,
             };
-            let digest = host_sim::digest::run(&scenario, scans)?;
             println!("{digest}");
             Ok(())
         }
