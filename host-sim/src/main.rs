@@ -138,7 +138,8 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
-    /// Replay a scenario with the embedded (f32) tracker and print the digest the QEMU firmware prints.
+    /// Replay a scenario with the embedded (f32) tracker and print the digest the QEMU firmware prints
+    /// (version 2: radar only, the prior restricted to the objects the scans detect).
     Digest {
         /// Scenario file.
         file: PathBuf,
