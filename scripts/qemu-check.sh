@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
-# QEMU check (issue 7): the tracker on a Cortex-M4F gives bit-identical results to the host.
+# QEMU check (issues 7 and 13): the trackers on a Cortex-M4F give bit-identical results to the host.
 #
-# 1. builds host-sim (release) and generates a fixed scenario (preset fifty-birth-death, seed 1);
-# 2. replays its first $SCANS scans on the host with `host-sim digest` (SsaTracker<f32>);
-# 3. builds firmware/qemu-m4 with the same scenario embedded and runs it on qemu-system-arm
-#    (mps2-an386, -icount shift=0, semihosting);
-# 4. compares the two digest texts byte for byte, prints both final digests, and exits non-zero unless
-#    they are identical (or on any failure above).
+# 1. builds host-sim (release) and generates two fixed scenarios: the planar preset fifty-birth-death and
+#    the 3-D radar preset radar-leo, seed 1;
+# 2. replays the first $SCANS planar scans on the host with `host-sim digest` (SsaTracker<f32>), and the
+#    first $RADAR_SCANS radar scans (RadarTracker<f32>, prior restricted to the objects they detect);
+# 3. builds firmware/qemu-m4 with both scenarios embedded and runs it on qemu-system-arm
+#    (mps2-an386, -icount shift=0, semihosting): the planar replay, then the radar replay;
+# 4. compares each pair of digest texts byte for byte, prints the final digests, and exits non-zero unless
+#    both are identical (or on any failure above).
 #
 # Needs: cargo with rustup (the thumbv7em-none-eabihf target is added if missing), qemu-system-arm.
 # Works with the default target dirs (./target, firmware/qemu-m4/target) or CARGO_TARGET_DIR.
-# QEMU_CHECK_SCANS overrides the number of scans (default 200).
+# QEMU_CHECK_SCANS overrides the number of planar scans (default 200), QEMU_CHECK_RADAR_SCANS the number of
+# radar scans (default 200).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -18,6 +21,8 @@ ROOT=$PWD
 PRESET=fifty-birth-death
 SEED=1
 SCANS=${QEMU_CHECK_SCANS:-200}
+RADAR_PRESET=radar-leo
+RADAR_SCANS=${QEMU_CHECK_RADAR_SCANS:-200}
 TIMEOUT_SECONDS=600
 FIRMWARE=$ROOT/firmware/qemu-m4
 
@@ -34,19 +39,28 @@ FIRMWARE_TARGET=${CARGO_TARGET_DIR:-$FIRMWARE/target}
 WORK=$HOST_TARGET/qemu-check
 mkdir -p "$WORK"
 SCENARIO=$WORK/$PRESET-seed$SEED.json
+RADAR_SCENARIO=$WORK/$RADAR_PRESET-seed$SEED.json
 
 echo "qemu-check: building host-sim (release)"
 cargo build --release --quiet -p host-sim
 HOST_SIM=$HOST_TARGET/release/host-sim
-"$HOST_SIM" generate "$PRESET" --seed "$SEED" --out "$SCENARIO.new"
-# Keep the old file when nothing changed, so that the firmware is not rebuilt for nothing.
-if cmp -s "$SCENARIO.new" "$SCENARIO"; then rm "$SCENARIO.new"; else mv "$SCENARIO.new" "$SCENARIO"; fi
+generate() {
+  "$HOST_SIM" generate "$1" --seed "$SEED" --out "$2.new" >/dev/null
+  # Keep the old file when nothing changed, so that the firmware is not rebuilt for nothing.
+  if cmp -s "$2.new" "$2"; then rm "$2.new"; else mv "$2.new" "$2"; fi
+}
+generate "$PRESET" "$SCENARIO"
+generate "$RADAR_PRESET" "$RADAR_SCENARIO"
 
 echo "qemu-check: host digest ($SCANS scans)"
 "$HOST_SIM" digest "$SCENARIO" --scans "$SCANS" >"$WORK/host.txt" || fail "host-sim digest failed"
+echo "qemu-check: host radar digest ($RADAR_SCANS scans)"
+"$HOST_SIM" digest "$RADAR_SCENARIO" --scans "$RADAR_SCANS" >"$WORK/host-radar.txt" ||
+  fail "host-sim digest (radar) failed"
 
 echo "qemu-check: building firmware/qemu-m4 (release, thumbv7em-none-eabihf)"
-(cd "$FIRMWARE" && RFISST_SCENARIO="$SCENARIO" RFISST_SCANS="$SCANS" cargo build --release --quiet) ||
+(cd "$FIRMWARE" && RFISST_SCENARIO="$SCENARIO" RFISST_SCANS="$SCANS" RFISST_SCENARIO_3D="$RADAR_SCENARIO" \
+  RFISST_SCANS_3D="$RADAR_SCANS" cargo build --release --quiet) ||
   fail "firmware build failed"
 ELF=$FIRMWARE_TARGET/thumbv7em-none-eabihf/release/qemu-m4
 
@@ -62,15 +76,29 @@ cat "$WORK/qemu-stderr.txt" >&2
 echo "qemu-check: QEMU wall time $(( (end - start) / 1000000 )) ms (exit status $status)"
 [ "$status" -eq 0 ] || fail "the firmware exited with status $status (124 = timeout after ${TIMEOUT_SECONDS}s)"
 
-grep -E '^(scan|final) ' "$WORK/firmware.txt" >"$WORK/firmware-digest.txt" || true
-host_final=$(grep '^final ' "$WORK/host.txt" || echo "(none)")
-firmware_final=$(grep '^final ' "$WORK/firmware-digest.txt" || echo "(none)")
-echo "qemu-check: host     $host_final"
-echo "qemu-check: firmware $firmware_final"
-if diff "$WORK/host.txt" "$WORK/firmware-digest.txt" >"$WORK/digest.diff"; then
-  echo "qemu-check: PASS: $SCANS scans, every per-scan digest and the final digest are identical"
-else
-  echo "qemu-check: first differences (< host, > firmware):" >&2
-  head -n 20 "$WORK/digest.diff" >&2
-  fail "the firmware's digests differ from the host's (files in $WORK)"
-fi
+# The digest lines before the radar header are the planar replay's, those after it the radar replay's.
+awk -v planar="$WORK/firmware-digest.txt" -v radar="$WORK/firmware-radar-digest.txt" '
+  BEGIN { printf "" > planar; printf "" > radar }
+  /^qemu-m4: radar scenario / { part = 2 }
+  /^(scan|final) / { if (part == 2) print > radar; else print > planar }' "$WORK/firmware.txt"
+
+# compare NAME HOST FIRMWARE DIFF: prints both final digests; 0 when the texts are identical.
+compare() {
+  local host_final firmware_final
+  host_final=$(grep '^final ' "$2" || echo "(none)")
+  firmware_final=$(grep '^final ' "$3" || echo "(none)")
+  echo "qemu-check: $1 host     $host_final"
+  echo "qemu-check: $1 firmware $firmware_final"
+  if diff "$2" "$3" >"$4"; then
+    return 0
+  fi
+  echo "qemu-check: $1: first differences (< host, > firmware):" >&2
+  head -n 20 "$4" >&2
+  return 1
+}
+ok=0
+compare planar "$WORK/host.txt" "$WORK/firmware-digest.txt" "$WORK/digest.diff" || ok=1
+compare radar "$WORK/host-radar.txt" "$WORK/firmware-radar-digest.txt" "$WORK/digest-radar.diff" || ok=1
+[ "$ok" -eq 0 ] || fail "the firmware's digests differ from the host's (files in $WORK)"
+echo "qemu-check: PASS: planar $SCANS scans and radar $RADAR_SCANS scans, every per-scan digest and both final" \
+  "digests are identical"

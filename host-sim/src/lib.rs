@@ -15,6 +15,7 @@
 
 pub mod assignment;
 pub mod digest;
+pub mod digest3d;
 pub mod error;
 pub mod evaluate;
 pub mod exactness;

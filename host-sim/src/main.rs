@@ -138,7 +138,8 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
-    /// Replay a scenario with the embedded (f32) tracker and print the digest the QEMU firmware prints.
+    /// Replay a scenario with the embedded (f32) tracker and print the digest the QEMU firmware prints
+    /// (version 2: radar only, the prior restricted to the objects the scans detect).
     Digest {
         /// Scenario file.
         file: PathBuf,
@@ -317,14 +318,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {
-            let AnyScenario::V1(scenario) = load_any(&file)? else {
-                return Err(Error::input(format!(
-                    "{}: digest is not yet supported on version 2 (3-D) scenario files",
-                    file.display()
-                ))
-                .into());
+            let digest = match load_any(&file)? {
+                AnyScenario::V1(scenario) => host_sim::digest::run(&scenario, scans)?,
+                AnyScenario::V2(scenario) => host_sim::digest3d::run(&scenario, scans)?,
             };
-            let digest = host_sim::digest::run(&scenario, scans)?;
             println!("{digest}");
             Ok(())
         }

@@ -1586,3 +1586,27 @@ fn v2_documented_example_is_the_fixture_and_runs() {
     assert_eq!(summary["final_map_cardinality"], json!(1), "{summary}");
     assert!(summary["mean_gospa"].as_f64().is_some_and(|g| g < 1.0), "{summary}");
 }
+
+#[test]
+fn v2_digest_replays_radar_scans_and_needs_the_truth() {
+    let dir = TempDir::new("v2-digest");
+    let file = tiny_3d(&dir);
+    let digest =
+        |file: &Path, scans: &str| host_sim(&["digest".as_ref(), file.as_os_str(), "--scans".as_ref(), scans.as_ref()]);
+    let output = digest(&file, "5");
+    assert_success(&output);
+    let text = stdout(&output);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 6, "{text}");
+    assert!(lines[0].starts_with("scan 0 hypotheses ") && lines[5].starts_with("final scans 5 digest "), "{text}");
+    assert_eq!(stdout(&digest(&file, "5")), text, "deterministic");
+    // Without the truth the prior cannot be restricted to the detected objects: one line, exit code 2.
+    let mut value = read_json(&file);
+    object(&mut value).remove("truth");
+    let bare = dir.join("no-truth.json");
+    write_json(&bare, &value);
+    let output = digest(&bare, "5");
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(stderr(&output).contains("truth"), "{}", describe(&output));
+    assert_eq!(stderr(&output).trim_end().lines().count(), 1, "{}", describe(&output));
+}

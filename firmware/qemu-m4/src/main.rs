@@ -10,30 +10,32 @@
 #![no_main]
 
 mod cycles;
+#[cfg(rfisst_radar)]
+mod radar;
 mod scenario;
 mod stack;
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{debug, hprintln};
-use tracker_core::{ConfigError, SsaTracker, StepError};
 use tracker_core::digest::Fnv1a;
+use tracker_core::{ConfigError, SsaTracker, StepError};
 
 /// Scans replayed.
 const SCANS: usize = scenario::SCANS.len();
 
 /// What one scan gave.
 #[derive(Clone, Copy)]
-struct Record {
+pub(crate) struct Record {
     /// `Tracker::digest` after the scan.
-    digest: u64,
+    pub(crate) digest: u64,
     /// Hypotheses and tracks kept, or why the scan was rejected.
-    outcome: Result<(usize, usize), StepError>,
+    pub(crate) outcome: Result<(usize, usize), StepError>,
     /// SysTick ticks taken by `step`.
-    ticks: u64,
+    pub(crate) ticks: u64,
 }
 
 impl Record {
-    const EMPTY: Record = Record { digest: 0, outcome: Ok((0, 0)), ticks: 0 };
+    pub(crate) const EMPTY: Record = Record { digest: 0, outcome: Ok((0, 0)), ticks: 0 };
 }
 
 /// Iterations of the calibration loop (2 instructions each).
@@ -94,6 +96,26 @@ fn run() -> debug::ExitStatus {
     }
     let scan_stack = stack::high_water();
 
+    print(records);
+    hprintln!(
+        "qemu-m4: stack ({} bytes): start-up with building the tracker {} bytes; scans {} bytes, of which step and \
+         digest {} bytes",
+        stack::size(),
+        build_stack,
+        scan_stack,
+        scan_stack.saturating_sub(call_depth)
+    );
+    #[cfg(rfisst_radar)]
+    if radar::run() != debug::EXIT_SUCCESS {
+        return debug::EXIT_FAILURE;
+    }
+    debug::EXIT_SUCCESS
+}
+
+/// Prints the digest text of `records` (one line per scan, then the final digest), each scan's ticks, and
+/// the ticks' min, median, max and total. Sorts `records` by ticks.
+pub(crate) fn print(records: &mut [Record]) {
+    let count = records.len();
     let mut running = Fnv1a::new();
     for (index, record) in records.iter().enumerate() {
         running.write(&record.digest.to_le_bytes());
@@ -105,32 +127,23 @@ fn run() -> debug::ExitStatus {
         }
         hprintln!("ticks {} {}", index, record.ticks);
     }
-    hprintln!("final scans {} digest {:016x}", SCANS, running.finish());
+    hprintln!("final scans {} digest {:016x}", count, running.finish());
 
-    if SCANS > 0 {
+    if count > 0 {
         let total: u64 = records.iter().map(|record| record.ticks).sum();
         // The records are printed: sort them by ticks for the median.
         records.sort_unstable_by_key(|record| record.ticks);
         let ticks = |index: usize| records[index].ticks;
-        let middle = SCANS / 2;
-        let median = if SCANS % 2 == 1 { ticks(middle) } else { (ticks(middle - 1) + ticks(middle)) / 2 };
+        let middle = count / 2;
+        let median = if count % 2 == 1 { ticks(middle) } else { (ticks(middle - 1) + ticks(middle)) / 2 };
         hprintln!(
             "qemu-m4: ticks per scan (step only): min {} median {} max {} total {}",
             ticks(0),
             median,
-            ticks(SCANS - 1),
+            ticks(count - 1),
             total
         );
     }
-    hprintln!(
-        "qemu-m4: stack ({} bytes): start-up with building the tracker {} bytes; scans {} bytes, of which step and \
-         digest {} bytes",
-        stack::size(),
-        build_stack,
-        scan_stack,
-        scan_stack.saturating_sub(call_depth)
-    );
-    debug::EXIT_SUCCESS
 }
 
 /// The tracker, built at compile time by the `const fn` `SsaTracker::empty`: it lives in a static and

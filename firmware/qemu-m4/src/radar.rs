@@ -1,0 +1,145 @@
+//! The radar replay: a recorded version 2 radar scenario (`RFISST_SCENARIO_3D`) through `RadarTracker<f32>`,
+//! after the planar one. `build.rs` turns the file into `$OUT_DIR/radar.rs`, included here; it defines
+//! `NAME`, `SCANS_IN_FILE`, `EPOCH_JD`, `MOTION`, `SENSORS`, `BIRTH`, `DEATH_PROBABILITY`, `GATE`, `CHILDREN`,
+//! `SELECTION`, `STORE_OVERFLOW`, `NUMERICAL_FAILURE`, `SEED`, `PRIOR_TIME`, `PRIOR` (restricted to the objects
+//! the replayed scans detect), `PRIOR_OBJECTS_IN_FILE` and `SCANS`, every value as the bits host-sim's
+//! `digest3d.rs` computes.
+//!
+//! The sensor network computes its clutter volumes when it is built, which is not `const`: the tracker is
+//! therefore built at run time, into a static (`cortex_m::singleton!`), not at compile time like the planar one.
+
+use crate::{Record, cycles, stack};
+use cortex_m_semihosting::{debug, hprintln};
+use nalgebra::{ArrayStorage, SMatrix, SVector};
+use tracker_core::config::Selection;
+use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor, gmst_iau82};
+use tracker_core::sampler::{Proposal, SamplerConfig};
+use tracker_core::{
+    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, PriorHypothesis,
+    PriorObject, RadarConfig, RadarTracker, Region, Sensor, SensorNetwork, StoreOverflow, TrackLabel, TwoBodyJ2,
+    ssa_caps,
+};
+
+/// One scan: its time, sensor and measurements.
+pub struct Scan {
+    /// Time (s after the epoch).
+    pub time: f64,
+    /// Index of the sensor.
+    pub sensor: usize,
+    /// Measurements (range km, azimuth rad, elevation rad).
+    pub measurements: &'static [SVector<f32, 3>],
+}
+
+/// A 3-vector.
+const fn vector3(v: [f32; 3]) -> SVector<f32, 3> {
+    SVector::from_array_storage(ArrayStorage([v]))
+}
+
+/// A Gaussian over the 6-state from its mean and its covariance's rows.
+const fn gaussian6(mean: [f32; 6], r: [[f32; 6]; 6]) -> Gaussian<f32, 6> {
+    let mut columns = [[0.0; 6]; 6];
+    let mut i = 0;
+    while i < 6 {
+        let mut j = 0;
+        while j < 6 {
+            columns[j][i] = r[i][j];
+            j += 1;
+        }
+        i += 1;
+    }
+    Gaussian {
+        mean: SVector::from_array_storage(ArrayStorage([mean])),
+        covariance: SMatrix::from_array_storage(ArrayStorage(columns)),
+    }
+}
+
+include!(concat!(env!("OUT_DIR"), "/radar.rs"));
+
+/// Scans replayed.
+const COUNT: usize = SCANS.len();
+
+/// The configuration: the sensor network (Earth rotation angle at the epoch computed in `f64`, rounded once)
+/// and the constants above.
+fn config() -> Result<RadarConfig<f32>, &'static str> {
+    let rotation = EarthRotation::new(gmst_iau82(EPOCH_JD) as f32);
+    let network = SensorNetwork::new(rotation, &SENSORS)?;
+    Ok(Config {
+        motion: MOTION,
+        measurement: network,
+        // As host-sim: the first sensor's (each scan uses its own sensor's).
+        sensor: SENSORS[0].detection,
+        birth: BIRTH,
+        death_probability: DEATH_PROBABILITY,
+        gate: GATE,
+        children: CHILDREN,
+        selection: SELECTION,
+        store_overflow: STORE_OVERFLOW,
+        numerical_failure: NUMERICAL_FAILURE,
+        seed: SEED,
+    })
+}
+
+/// Builds the tracker into a static and loads the prior. Not inlined, so that its frames are given back
+/// before the scans.
+#[inline(never)]
+fn build() -> Result<&'static mut RadarTracker<f32>, &'static str> {
+    let config = config()?;
+    let tracker = cortex_m::singleton!(: RadarTracker<f32> = RadarTracker::empty(config))
+        .ok_or("the radar tracker was already built")?;
+    tracker.reset(&PRIOR, PRIOR_TIME).map_err(|_| "tracker configuration rejected")?;
+    Ok(tracker)
+}
+
+/// The per-scan records, in a static.
+#[inline(never)]
+fn records() -> Option<&'static mut [Record; COUNT]> {
+    cortex_m::singleton!(: [Record; COUNT] = [Record::EMPTY; COUNT])
+}
+
+/// Replays the radar scans and prints their digest text, ticks and stack.
+pub fn run() -> debug::ExitStatus {
+    hprintln!(
+        "qemu-m4: radar scenario {:?}: replaying {} of {} scans through RadarTracker<f32> ({} bytes, static), prior \
+         restricted to the {} of {} objects they detect",
+        NAME,
+        COUNT,
+        SCANS_IN_FILE,
+        core::mem::size_of::<RadarTracker<f32>>(),
+        PRIOR.iter().map(|h| h.objects.len()).max().unwrap_or(0),
+        PRIOR_OBJECTS_IN_FILE
+    );
+    stack::paint();
+    let tracker = match build() {
+        Ok(tracker) => tracker,
+        Err(error) => {
+            hprintln!("qemu-m4: error: radar tracker: {}", error);
+            return debug::EXIT_FAILURE;
+        }
+    };
+    let build_stack = stack::high_water();
+    let Some(records) = records() else {
+        hprintln!("qemu-m4: error: the radar record table was already taken");
+        return debug::EXIT_FAILURE;
+    };
+    stack::paint();
+    let call_depth = stack::depth();
+    for (record, scan) in records.iter_mut().zip(&SCANS) {
+        let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
+        let start = cycles::now();
+        let outcome = tracker.step_scan(&geometry, scan.measurements);
+        record.ticks = cycles::now() - start;
+        record.outcome = outcome.map(|report| (report.hypotheses, report.tracks));
+        record.digest = tracker.digest();
+    }
+    let scan_stack = stack::high_water();
+    crate::print(records);
+    hprintln!(
+        "qemu-m4: radar stack ({} bytes): building the tracker {} bytes; scans {} bytes, of which step_scan and \
+         digest {} bytes",
+        stack::size(),
+        build_stack,
+        scan_stack,
+        scan_stack.saturating_sub(call_depth)
+    );
+    debug::EXIT_SUCCESS
+}
