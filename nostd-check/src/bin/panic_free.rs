@@ -24,8 +24,8 @@ use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
 use tracker_core::{
     BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
-    PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, SsaConfig,
-    SsaTracker, TrackLabel, TwoBody, TwoBodyJ2, ssa_caps,
+    PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, SsaConfig, SsaTracker,
+    TrackLabel, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 // The C runtime provides `_start`, which calls `main`.
@@ -255,7 +255,8 @@ fn radar<T: Real>(argc: i32) -> u64 {
     let mut digest = 0u64;
     for k in 1..=argc as usize {
         let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
-        let observer = if argc > 6 { Some([c(7000.0) * x, T::zero(), T::zero(), T::zero(), c(7.5), T::zero()]) } else { None };
+        let observer =
+            if argc > 6 { Some([c(7000.0) * x, T::zero(), T::zero(), T::zero(), c(7.5), T::zero()]) } else { None };
         let geometry = black_box(ScanGeometry { sensor: k % 4, time: 10.0 * k as f64, observer });
         if tracker.step_scan(&geometry, scan).is_err() {
             digest ^= 1;

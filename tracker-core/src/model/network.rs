@@ -31,10 +31,9 @@ pub enum Platform<T> {
     Spacecraft,
 }
 
-/// One sensor of a [`SensorNetwork`].
+/// One sensor of a [`SensorNetwork`] (not serde: serde has no arrays of a const-generic length).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SiteSensor<T, const D: usize> {
     /// Where it is.
     pub platform: Platform<T>,
