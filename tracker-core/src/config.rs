@@ -321,7 +321,9 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub motion: M,
     /// How the sensor measures an object.
     pub measurement: G,
-    /// Detection, clutter and field of view.
+    /// Detection, clutter and field of view. Not used (and not checked) when the measurement model's
+    /// sensors carry their own ([`MeasurementModel::detection`](crate::MeasurementModel::detection), e.g. a
+    /// [`SensorNetwork`](crate::SensorNetwork)).
     pub sensor: Sensor<T>,
     /// Births.
     pub birth: BirthModel<T, S, B>,
