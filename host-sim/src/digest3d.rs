@@ -187,6 +187,7 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         measurement: network,
         sensor,
         birth: BirthModel {
+            events: Default::default(),
             probability: of(scenario.birth.probability),
             cells,
             detection: match scenario.birth.detection {

@@ -103,6 +103,7 @@ fn random_case(seed: u64, index: u64) -> Case {
                 field_of_view: Region::Rectangle { min: [-30.0, -30.0], max: [30.0, 30.0] },
             },
             birth: BirthModel {
+                events: Default::default(),
                 probability: birth_probability,
                 cells: birth_cells,
                 detection: BirthDetection::AllDetected,

@@ -82,6 +82,7 @@ pub fn config<M, const B: usize>(
         measurement: measurement(&scenario.measurement),
         sensor: sensor(&scenario.sensor),
         birth: BirthModel {
+            events: Default::default(),
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

@@ -113,6 +113,7 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
             field_of_view: region(&f64_config.sensor.field_of_view),
         },
         birth: BirthModel {
+            events: Default::default(),
             probability: of(f64_config.birth.probability),
             cells,
             detection: f64_config.birth.detection,

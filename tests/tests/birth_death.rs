@@ -12,7 +12,7 @@ fn config_with_births(
     detection: BirthDetection,
 ) -> LinearConfig<f64, 3> {
     let mut config = linear_config::<3>(0.9, 1.0, 400.0);
-    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection };
+    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection, events: Default::default() };
     config.death_probability = beta;
     config
 }
@@ -143,4 +143,47 @@ fn births_are_reported_when_a_parent_is_full() {
     let mut t = Tracker::with_objects(config, &objects, 0.0).unwrap();
     let report = t.step(1.0, &[V2::new(10.0, 10.0)]).unwrap();
     assert_eq!(report.births_beyond_object_capacity, 1);
+}
+
+#[test]
+fn independent_births_bring_several_objects_in_one_scan_with_the_exact_weight() {
+    // docs/maths.md §5.6: each cell gives birth with probability α, independently; a child with births in
+    // cells l₁ and l₂ that take z₁ and z₂ weighs, against the child where both are clutter,
+    // (α p_D ĝ₁ / ((1 − α) λ_C)) (α p_D ĝ₂ / ((1 − α) λ_C)).
+    let alpha = 0.2;
+    let cells = [birth_cell(), gaussian([-10.0, 5.0, 0.0, 0.0], 4.0)];
+    let mut config = config_with_births(alpha, 0.0, &cells, BirthDetection::AllDetected);
+    config.birth.events = tracker_core::BirthEvents::Independent;
+    let object = gaussian([0.0, 0.0, 1.0, 0.0], 0.5);
+    let zs = [V2::new(1.05, 0.1), V2::new(10.8, 9.4), V2::new(-9.5, 5.5)];
+    let mut t = Tracker::with_objects(config.clone(), &[object], 0.0).unwrap();
+    let report = t.step(1.0, &zs).unwrap();
+    // Three columns (the object, two cells) and three rows: Σ_k C(3,k)² k! = 34 associations.
+    assert_eq!(report.children, 34);
+    assert_eq!(report.captured_mass, 1.0);
+    let kf = TextbookKf { config: &config };
+    let object_posterior = kf.update(&kf.predict(&object, 1.0), &zs[0]);
+    let holds_updated_object = |h: &tracker_core::HypothesisView<'_, f64, 4, 4>| {
+        h.tracks().any(|tr| tr.label == TrackLabel(0) && (tr.state.mean - object_posterior.mean).abs().max() < 1e-12)
+    };
+    let both = t.hypotheses().find(|h| h.len() == 3 && holds_updated_object(h)).unwrap();
+    let none = t.hypotheses().find(|h| h.len() == 1 && holds_updated_object(h)).unwrap();
+    let lambda = 1.0 / 400.0;
+    let odds = |cell: &Gaussian<f64, 4>, z: &V2| alpha * 0.9 * kf.likelihood(cell, z) / ((1.0 - alpha) * lambda);
+    let expected = odds(&cells[0], &zs[1]) * odds(&cells[1], &zs[2]);
+    assert!(relative_difference(both.weight() / none.weight(), expected) < 1e-12);
+    // Each born track is its cell's pdf updated with its measurement, with a fresh label.
+    for (cell, z) in cells.iter().zip(&zs[1..]) {
+        let updated = kf.update(cell, z).mean;
+        assert!(both.tracks().any(|tr| tr.label != TrackLabel(0) && (tr.state.mean - updated).abs().max() < 1e-12));
+    }
+    assert_eq!(t.map_hypothesis().len(), 3, "both births are in the MAP hypothesis");
+}
+
+#[test]
+fn independent_births_must_be_detected() {
+    let mut config = config_with_births(0.02, 0.0, &[birth_cell()], BirthDetection::AllowUndetected);
+    config.birth.events = tracker_core::BirthEvents::Independent;
+    let result = Tracker::with_objects(config, &[], 0.0);
+    assert!(matches!(result, Err(tracker_core::ConfigError::IndependentBirthsUndetected)), "{result:?}");
 }

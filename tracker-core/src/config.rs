@@ -24,8 +24,25 @@ pub enum BirthDetection {
     AllowUndetected,
 }
 
-/// R-FISST's first-order birth model: per scan at most one birth, in one of the cells, each with
-/// probability α ([003] §II-C; docs/maths.md §5.1).
+/// How many objects a scan may bring, and with what probability (docs/maths.md §5.1, §5.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum BirthEvents {
+    /// R-FISST's first-order model ([003] §II-C): at most one birth or one death per scan, P(birth in a
+    /// cell) = α, P(no event) = 1 − M_b α − M_d β. **The default.**
+    #[default]
+    FirstOrder,
+    /// Each cell gives birth independently with probability α, so a scan may bring as many objects as it
+    /// has measurements (a launch, a break-up); at most one death per scan, P(no death) = 1 − M_d β. Every
+    /// cell is a column of every parent's matrix that a measurement may take (docs/maths.md §5.6). Births
+    /// must be detected ([`BirthDetection::AllDetected`]).
+    Independent,
+}
+
+/// The birth model: cells with a Gaussian birth pdf each, α per cell and scan, and how births combine
+/// ([`BirthEvents`]; by default R-FISST's first-order model, at most one birth per scan, [003] §II-C;
+/// docs/maths.md §5.1).
 ///
 /// # Examples
 /// One birth cell around (30, 30): a measurement there that no object explains becomes a new object.
@@ -54,7 +71,7 @@ pub enum BirthDetection {
 /// let cell = Gaussian { mean: SVector::from([30.0, 30.0, 0.0, 0.0]), covariance: SMatrix::identity() * 25.0 };
 /// let mut cells = heapless::Vec::new();
 /// cells.push(cell).unwrap();
-/// let birth = BirthModel { probability: 0.05, cells, detection: BirthDetection::AllDetected };
+/// let birth = BirthModel { probability: 0.05, cells, detection: BirthDetection::AllDetected, events: Default::default() };
 /// let config = Config { birth, ..config };
 /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
 /// tracker.step(1.0, &[SVector::from([1.0, 0.0]), SVector::from([31.0, 29.0])])?;
@@ -72,6 +89,9 @@ pub struct BirthModel<T: Real, const S: usize, const B: usize> {
     pub cells: heapless::Vec<Gaussian<T, S>, B>,
     /// Whether births must be detected at birth.
     pub detection: BirthDetection,
+    /// At most one birth per scan, or independent births in every cell.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub events: BirthEvents,
 }
 
 impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
@@ -85,7 +105,12 @@ impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
     /// assert!(births.cells.is_empty());
     /// ```
     pub fn none() -> Self {
-        Self { probability: T::zero(), cells: heapless::Vec::new(), detection: BirthDetection::AllDetected }
+        Self {
+            probability: T::zero(),
+            cells: heapless::Vec::new(),
+            detection: BirthDetection::AllDetected,
+            events: BirthEvents::FirstOrder,
+        }
     }
 }
 
@@ -371,7 +396,7 @@ mod tests {
                 clutter_rate: 1.0,
                 field_of_view: Region::Rectangle { min: [0.0, 0.0], max: [1.0, 1.0] },
             },
-            birth: BirthModel { probability: 0.01, cells, detection: BirthDetection::AllowUndetected },
+            birth: BirthModel { probability: 0.01, cells, detection: BirthDetection::AllowUndetected, events: Default::default() },
             death_probability: 0.001,
             gate: Some(25.0),
             children: ChildGeneration::Sampled(crate::sampler::SamplerConfig::default()),

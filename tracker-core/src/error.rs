@@ -59,6 +59,9 @@ pub enum ConfigError {
     DeathProbability,
     /// M_b α + N β ≥ 1, so "no event" would have no probability (N is the object capacity).
     EventProbabilities,
+    /// Independent births ([`BirthEvents::Independent`](crate::BirthEvents)) with births allowed to go
+    /// undetected: every cell would need an undetected-birth child of its own.
+    IndependentBirthsUndetected,
     /// The gate is not finite and positive.
     Gate,
     /// The child budget is zero.
@@ -125,7 +128,12 @@ impl core::fmt::Display for ConfigError {
                 "birth cell {cell}: mean and covariance must be finite, covariance symmetric positive definite"
             ),
             ConfigError::DeathProbability => f.write_str("death probability beta must be in [0, 1]"),
-            ConfigError::EventProbabilities => f.write_str("M_b alpha + N beta must be < 1 (N = object capacity)"),
+            ConfigError::EventProbabilities => f.write_str(
+                "M_b alpha + N beta must be < 1 (N = object capacity; independent births: alpha < 1 and N beta < 1)",
+            ),
+            ConfigError::IndependentBirthsUndetected => {
+                f.write_str("independent births must be detected (birth detection AllDetected)")
+            }
             ConfigError::Gate => f.write_str("gate must be finite and > 0"),
             ConfigError::ChildBudget => f.write_str("child budget must be > 0"),
             ConfigError::AboveLimit { parameter, limit } => write!(f, "{parameter} must be at most {limit}"),

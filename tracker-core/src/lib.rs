@@ -64,7 +64,7 @@ pub mod store;
 pub mod tracker;
 pub mod weight;
 
-pub use config::{BirthDetection, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
+pub use config::{BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
 pub use ekf::{Gaussian, NumericalError};
 pub use error::{ConfigError, StepError};
 pub use model::{

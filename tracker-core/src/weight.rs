@@ -13,7 +13,7 @@
 //!   every object in the field of view becomes a required column instead (a child that misses it has
 //!   weight 0).
 
-use crate::config::{BirthDetection, Config};
+use crate::config::{BirthDetection, BirthEvents, Config};
 use crate::ekf::Innovation;
 use crate::model::MeasurementModel;
 use crate::real::{Real, ln};
@@ -72,6 +72,7 @@ pub struct WeightModel<T> {
     birth_probability: T,
     birth_cells: usize,
     birth_detection: BirthDetection,
+    birth_events: BirthEvents,
     death_probability: T,
 }
 
@@ -115,6 +116,7 @@ impl<T: Real> WeightModel<T> {
             config.birth.detection,
             config.death_probability,
         )
+        .with_birth_events(config.birth.events)
     }
 
     /// The weight model of a scan whose sensor is `model` placed at the scan, with `detection` its p_D,
@@ -164,8 +166,57 @@ impl<T: Real> WeightModel<T> {
             birth_probability,
             birth_cells,
             birth_detection,
+            birth_events: BirthEvents::FirstOrder,
             death_probability,
         }
+    }
+
+    /// This model with births combining as `events` (the default of [`WeightModel::new`] is
+    /// [`BirthEvents::FirstOrder`]).
+    ///
+    /// # Examples
+    /// Independent births: P(no birth and no death) = (1 − α)^{M_b} (1 − M_d β) (docs/maths.md §5.6).
+    /// ```
+    /// # use tracker_core::{BirthDetection, BirthEvents, Region, Sensor};
+    /// # use tracker_core::weight::{Event, WeightModel};
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 100.0 } };
+    /// let model = WeightModel::new(&sensor, None, 0.05, 2, BirthDetection::AllDetected, 0.1)
+    ///     .with_birth_events(BirthEvents::Independent);
+    /// let expected = (0.95f64 * 0.95 * (1.0 - 3.0 * 0.1)).ln();
+    /// assert!((model.event_log_probability(Event::None, 3) - expected).abs() < 1e-15);
+    /// assert!(model.independent_births());
+    /// ```
+    pub fn with_birth_events(self, birth_events: BirthEvents) -> Self {
+        Self { birth_events, ..self }
+    }
+
+    /// Whether every birth cell is a column of every matrix ([`BirthEvents::Independent`]).
+    pub fn independent_births(&self) -> bool {
+        self.birth_events == BirthEvents::Independent && self.births_possible()
+    }
+
+    /// δ_{z,l} of birth cell l for measurement z, from the cell's object entry `object_entry` (as
+    /// [`WeightModel::entry_of_residual`] gives it). First-order births: the entry itself (the birth is the
+    /// child's event, its α in the baseline). Independent births: ln(α p_D ĝ / ((1 − α) λ_C)), the odds of
+    /// the cell giving birth to an object that takes z against no birth (docs/maths.md §5.6).
+    ///
+    /// # Examples
+    /// ```
+    /// # use tracker_core::{BirthDetection, BirthEvents, Region, Sensor};
+    /// # use tracker_core::weight::WeightModel;
+    /// # let sensor = Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: Region::Everywhere { volume: 100.0 } };
+    /// let first_order = WeightModel::new(&sensor, None, 0.05, 2, BirthDetection::AllDetected, 0.1);
+    /// assert_eq!(first_order.birth_entry(1.5), 1.5);
+    /// let independent = first_order.with_birth_events(BirthEvents::Independent);
+    /// let expected = 1.5 + 0.1f64.ln() + (0.05f64 / 0.95).ln(); // without the 1 / (1 − p_D), with the odds
+    /// assert!((independent.birth_entry(1.5) - expected).abs() < 1e-15);
+    /// assert_eq!(independent.birth_entry(f64::NEG_INFINITY), f64::NEG_INFINITY);
+    /// ```
+    pub fn birth_entry(&self, object_entry: T) -> T {
+        if !self.independent_births() {
+            return object_entry;
+        }
+        object_entry + self.finite_miss() + ln(self.birth_probability) - ln(T::one() - self.birth_probability)
     }
 
     /// δ_{z,o} = ln(p_D ĝ / ((1 − p_D) λ_C)) for a track (or birth cell) with `innovation` and measurement
@@ -320,6 +371,18 @@ impl<T: Real> WeightModel<T> {
     /// assert_eq!(model.event_log_probability(Event::Death { object: 0 }, 3), 0.1f64.ln());
     /// ```
     pub fn event_log_probability(&self, event: Event, parent_in_view: usize) -> T {
+        if self.independent_births() {
+            // No birth in any cell, times the first-order death model (docs/maths.md §5.6).
+            let no_birth = T::of_f64(self.birth_cells as f64) * ln(T::one() - self.birth_probability);
+            let in_view = T::of_f64(parent_in_view as f64);
+            return no_birth
+                + match event {
+                    Event::None => ln(T::one() - in_view * self.death_probability),
+                    Event::Death { .. } => ln(self.death_probability),
+                    // A birth is a column of every matrix, never an event.
+                    Event::Birth { .. } => T::NEG_INFINITY,
+                };
+        }
         match event {
             Event::None => {
                 let cells = T::of_f64(self.birth_cells as f64);

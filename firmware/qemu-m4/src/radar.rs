@@ -15,7 +15,7 @@ use tracker_core::config::Selection;
 use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor, gmst_iau82};
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::{
-    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, PriorHypothesis,
+    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, PriorHypothesis,
     PriorObject, RadarConfig, RadarTracker, Region, Sensor, SensorNetwork, StoreOverflow, TrackLabel, TwoBodyJ2,
     ssa_caps,
 };

@@ -10,7 +10,7 @@ use nalgebra::{ArrayStorage, SMatrix, SVector};
 use tracker_core::config::Selection;
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::{
-    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorHypothesis, PriorObject,
+    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorHypothesis, PriorObject,
     Region, Sensor, SsaConfig, StoreOverflow, TrackLabel, TwoBody, ssa_caps,
 };
 

@@ -1,10 +1,11 @@
 //! Column layouts: what each column of a (parent, event) association matrix stands for.
 //!
 //! A parent's no-event matrix has one column per object of the parent in the field of view, in the
-//! parent's (label) order. Every event's matrix follows from it with the same numbering: the death of an
-//! object leaves its column in place but impossible (it can take no measurement); a birth in a cell that
-//! the sensor can see appends the cell's column (an undetectable birth adds none). [`ParentColumns`]
-//! records the first; [`ColumnLayout`] derives the second.
+//! parent's (label) order, followed, with independent births (docs/maths.md §5.6), by one column per birth
+//! cell a measurement may take. Every event's matrix follows from it with the same numbering: the death of
+//! an object leaves its column in place but impossible (it can take no measurement); a first-order birth
+//! in a cell that the sensor can see appends the cell's column (an undetectable birth adds none).
+//! [`ParentColumns`] records the first; [`ColumnLayout`] derives the second.
 
 use crate::weight::Event;
 
@@ -24,7 +25,8 @@ pub enum Column {
     },
 }
 
-/// The columns of one parent's no-event matrix: the positions of its objects in the field of view.
+/// The columns of one parent's no-event matrix: the positions of its objects in the field of view, then
+/// the birth cells of independent births.
 ///
 /// # Examples
 /// ```
@@ -46,6 +48,8 @@ pub enum Column {
 #[derive(Debug, Clone)]
 pub struct ParentColumns<const N: usize> {
     positions: heapless::Vec<u16, N>,
+    /// Birth cells whose columns follow the objects (independent births).
+    births: heapless::Vec<u16, N>,
 }
 
 impl<const N: usize> Default for ParentColumns<N> {
@@ -63,7 +67,7 @@ impl<const N: usize> ParentColumns<N> {
     /// assert!(EMPTY.is_empty());
     /// ```
     pub const fn new() -> Self {
-        Self { positions: heapless::Vec::new() }
+        Self { positions: heapless::Vec::new(), births: heapless::Vec::new() }
     }
 
     /// Removes every column.
@@ -82,6 +86,7 @@ impl<const N: usize> ParentColumns<N> {
     /// ```
     pub fn clear(&mut self) {
         self.positions.clear();
+        self.births.clear();
     }
 
     /// Appends the column of the parent's object at `position`; returns its column index, or hands the
@@ -100,8 +105,34 @@ impl<const N: usize> ParentColumns<N> {
     /// assert_eq!(columns.push(6), Err(6)); // N = 4 columns taken
     /// ```
     pub fn push(&mut self, position: u16) -> Result<usize, u16> {
+        if !self.births.is_empty() || self.positions.len() >= N {
+            return Err(position); // objects come first
+        }
         let column = self.positions.len();
         self.positions.push(position).map(|()| column)
+    }
+
+    /// Appends the column of birth cell `cell` after the objects (independent births); returns its column
+    /// index, or hands the cell back when `N` columns are taken.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::association::{Column, ParentColumns};
+    /// use tracker_core::weight::Event;
+    /// let mut columns = ParentColumns::<4>::new();
+    /// columns.push(3).unwrap();
+    /// assert_eq!(columns.push_birth(7), Ok(1));
+    /// let layout = columns.layout(Event::None, None);
+    /// assert_eq!(layout.column(1), Some(Column::Birth { cell: 7 }));
+    /// assert_eq!(columns.len(), 1); // objects in view
+    /// assert_eq!(layout.columns(), 2);
+    /// ```
+    pub fn push_birth(&mut self, cell: u16) -> Result<usize, u16> {
+        let column = self.positions.len() + self.births.len();
+        if column >= N {
+            return Err(cell);
+        }
+        self.births.push(cell).map(|()| column)
     }
 
     /// Number of columns (objects in the field of view).
@@ -177,7 +208,7 @@ impl<const N: usize> ParentColumns<N> {
             Event::Death { object } => self.positions.iter().position(|&position| position == object),
             Event::None | Event::Birth { .. } => None,
         };
-        ColumnLayout { objects: &self.positions, dead, birth: birth_column }
+        ColumnLayout { objects: &self.positions, births: &self.births, dead, birth: birth_column }
     }
 }
 
@@ -185,6 +216,8 @@ impl<const N: usize> ParentColumns<N> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ColumnLayout<'a> {
     objects: &'a [u16],
+    /// Birth cells of independent births, one column each after the objects.
+    births: &'a [u16],
     /// The column of the object that dies, which takes no measurement.
     dead: Option<usize>,
     /// The birth cell whose column comes after the objects.
@@ -207,7 +240,7 @@ impl ColumnLayout<'_> {
     /// assert_eq!(columns.layout(Event::Death { object: 2 }, None).columns(), 3); // the dead column stays
     /// ```
     pub fn columns(&self) -> usize {
-        self.objects.len() + usize::from(self.birth.is_some())
+        self.objects.len() + self.births.len() + usize::from(self.birth.is_some())
     }
 
     /// The column of the object that dies, if the event is a death.
@@ -250,9 +283,13 @@ impl ColumnLayout<'_> {
         if self.dead == Some(column) {
             return None;
         }
-        match self.objects.get(column) {
-            Some(&position) => Some(Column::Object { position }),
-            None if column == self.objects.len() => self.birth.map(|cell| Column::Birth { cell }),
+        if let Some(&position) = self.objects.get(column) {
+            return Some(Column::Object { position });
+        }
+        let after = column - self.objects.len();
+        match self.births.get(after) {
+            Some(&cell) => Some(Column::Birth { cell }),
+            None if after == self.births.len() => self.birth.map(|cell| Column::Birth { cell }),
             None => None,
         }
     }

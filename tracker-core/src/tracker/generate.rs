@@ -56,9 +56,11 @@ pub(super) struct Generated {
 struct Parent<T> {
     index: u16,
     log_weight: T,
-    /// Objects in the field of view: the no-event matrix's columns.
+    /// Objects in the field of view: the no-event matrix's object columns.
     in_view: usize,
     rows: usize,
+    /// Independent-birth cells left out of its matrices because a child would exceed `N` objects.
+    births_skipped: u64,
 }
 
 /// What every parent's children need to know about the scan (read-only).
@@ -109,12 +111,13 @@ impl<T: Real> Parent<T> {
         hypothesis: &Hypothesis<T, N>,
     ) -> Self {
         build_no_event_matrix(scratch.objects, scratch.columns, hypothesis, scan.scores, scan.rows, scan.weight_model);
-        Parent {
-            index: index as u16,
-            log_weight: hypothesis.log_weight,
-            in_view: scratch.objects.columns(),
-            rows: scan.rows,
-        }
+        let in_view = scratch.objects.columns();
+        let births_skipped = if scan.weight_model.independent_births() {
+            push_birth_columns(scratch.objects, scratch.columns, scan, N.saturating_sub(hypothesis.len()))
+        } else {
+            0
+        };
+        Parent { index: index as u16, log_weight: hypothesis.log_weight, in_view, rows: scan.rows, births_skipped }
     }
 
     /// The number of the parent's events that get a matrix (no event, births, deaths not derived).
@@ -123,7 +126,7 @@ impl<T: Real> Parent<T> {
         scan: &ScanInputs<'_, T, S, D, Z, K, B>,
         hypothesis: &Hypothesis<T, N>,
     ) -> usize {
-        let births = if hypothesis.len() >= N {
+        let births = if hypothesis.len() >= N || scan.weight_model.independent_births() {
             0
         } else {
             let cells = scan.birth_cells.in_field_of_view.iter().take(scan.birth_cell_count);
@@ -282,7 +285,9 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
             let parent = Parent::new(&mut scratch, &scan, index, hypothesis);
             let mut moves = scan_moves.parent_share(hypothesis.log_weight, parent.events(&scan, hypothesis));
             offer_no_event(&mut scratch, &mut generator, &scan, &parent, &mut moves)?;
-            if hypothesis.len() >= N {
+            if weight_model.independent_births() {
+                births_skipped += parent.births_skipped;
+            } else if hypothesis.len() >= N {
                 births_skipped += birth_cell_count as u64;
             } else {
                 offer_births(&mut scratch, &mut generator, &scan, &parent, &mut moves)?;
@@ -354,6 +359,33 @@ fn build_no_event_matrix<
             }
         }
     }
+}
+
+/// Independent births (docs/maths.md §5.6): appends a column for each birth cell that some measurement may
+/// take, at most `room` of them (a child holds at most `N` objects); returns how many such cells found no
+/// room. A cell no measurement can take is born in no child with non-zero weight and needs no column.
+fn push_birth_columns<T: Real, const S: usize, const D: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    matrix: &mut AssociationMatrix<T, N, Z>,
+    columns: &mut ParentColumns<N>,
+    scan: &ScanInputs<'_, T, S, D, Z, K, B>,
+    room: usize,
+) -> u64 {
+    let mut skipped = 0u64;
+    let mut added = 0usize;
+    for cell in 0..scan.birth_cell_count.min(B) {
+        let Some(entries) = scan.scores.birth_entries(cell, scan.rows) else { break };
+        if !entries.iter().any(|&entry| entry > T::NEG_INFINITY) {
+            continue;
+        }
+        if added >= room || columns.push_birth(cell as u16).is_err() {
+            skipped += 1;
+            continue;
+        }
+        // `push_birth` succeeded, so the matrix (same width) has room too.
+        let _ = matrix.push_column(entries, false);
+        added += 1;
+    }
+    skipped
 }
 
 /// Sets the baseline of `event`'s matrix: ln w_i + ln P(e) + N'_F ln(1 − p_D) + m ln λ_C (docs/maths.md

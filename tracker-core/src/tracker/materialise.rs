@@ -182,12 +182,10 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
     ) -> usize {
         // Which measurement each column's object takes.
         self.row_of_position[..parent.len()].fill(NONE);
-        let mut birth_row = NONE;
-        for (row, &column) in candidate.assignment.iter().enumerate().take(rows) {
-            match layout.column(usize::from(column)) {
-                Some(Column::Object { position }) => *self.row_of_position.at_mut(usize::from(position)) = row as u16,
-                Some(Column::Birth { .. }) => birth_row = row as u16,
-                None => {}
+        let assigned = candidate.assignment.iter().enumerate().take(rows);
+        for (row, &column) in assigned.clone() {
+            if let Some(Column::Object { position }) = layout.column(usize::from(column)) {
+                *self.row_of_position.at_mut(usize::from(position)) = row as u16;
             }
         }
         let mut count = 0usize;
@@ -199,8 +197,25 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             *self.child_sources.at_mut(count) = (Source::Track(slot), *self.row_of_position.at(position));
             count += 1;
         }
-        if let Event::Birth { cell } = candidate.event {
-            *self.child_sources.at_mut(count) = (Source::Birth(cell), birth_row);
+        // Born objects last, in the order of the measurements they take; a first-order birth that takes
+        // none is an undetected birth.
+        let mut event_birth = match candidate.event {
+            Event::Birth { cell } => Some(cell),
+            Event::None | Event::Death { .. } => None,
+        };
+        for (row, &column) in assigned {
+            if let Some(Column::Birth { cell }) = layout.column(usize::from(column)) {
+                if event_birth == Some(cell) {
+                    event_birth = None;
+                }
+                if let Some(source) = self.child_sources.get_mut(count) {
+                    *source = (Source::Birth(cell), row as u16);
+                    count += 1;
+                }
+            }
+        }
+        if let (Some(cell), Some(source)) = (event_birth, self.child_sources.get_mut(count)) {
+            *source = (Source::Birth(cell), NONE);
             count += 1;
         }
         // A child holds at most N objects; the clamp shows it to the optimiser.

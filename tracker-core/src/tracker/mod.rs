@@ -480,7 +480,7 @@ where
     ///         clutter_rate: 1.0,
     ///         field_of_view: Region::Everywhere { volume: 1e4 },
     ///     },
-    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected },
+    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected, events: Default::default() },
     ///     death_probability: 0.0,
     ///     gate: None,
     ///     children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000 },

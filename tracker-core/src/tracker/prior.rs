@@ -2,7 +2,7 @@
 
 use super::PriorHypothesis;
 use super::finish_hypotheses;
-use crate::config::{ChildGeneration, Config};
+use crate::config::{BirthDetection, BirthEvents, ChildGeneration, Config};
 use crate::ekf;
 use crate::error::ConfigError;
 use crate::hypothesis::{Hypothesis, HypothesisSet};
@@ -58,7 +58,7 @@ where
 }
 
 /// α and β in [0, 1], and P(no event) = 1 − M_b α − M_d β > 0 for every parent: M_d ≤ N
-/// (docs/maths.md §5.1).
+/// (docs/maths.md §5.1); for independent births 1 − α > 0 and 1 − M_d β > 0 (§5.6).
 fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, const B: usize>(
     config: &Config<T, M, G, S, B>,
 ) -> Result<(), ConfigError> {
@@ -70,8 +70,21 @@ fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, cons
     if !(beta.is_finite_value() && beta >= T::zero() && beta <= T::one()) {
         return Err(ConfigError::DeathProbability);
     }
-    let cells = T::of_f64(config.birth.cells.len() as f64);
-    if !(T::one() - cells * alpha - T::of_f64(N as f64) * beta > T::zero()) {
+    let deaths = T::of_f64(N as f64) * beta;
+    let first_order_births = match config.birth.events {
+        BirthEvents::FirstOrder => T::of_f64(config.birth.cells.len() as f64) * alpha,
+        // Independent births: 1 − α > 0 per cell, and births always detected (docs/maths.md §5.6).
+        BirthEvents::Independent => {
+            if config.birth.detection != BirthDetection::AllDetected {
+                return Err(ConfigError::IndependentBirthsUndetected);
+            }
+            if !(alpha < T::one()) {
+                return Err(ConfigError::EventProbabilities);
+            }
+            T::zero()
+        }
+    };
+    if !(T::one() - first_order_births - deaths > T::zero()) {
         return Err(ConfigError::EventProbabilities);
     }
     Ok(())

@@ -109,6 +109,9 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
             self.birth_entries.iter_mut().zip(birth_cells.innovations.iter().zip(&birth_cells.in_field_of_view));
         for (entries, (innovation, &in_field_of_view)) in cells.take(config.birth.cells.len()) {
             score_row(entries, placed, innovation, in_field_of_view, measurements);
+            for entry in entries.iter_mut() {
+                *entry = placed.weights.birth_entry(*entry);
+            }
         }
         Ok(drops)
     }
