@@ -200,8 +200,11 @@ struct Tables<G, const S: usize, const D: usize> {
     order: Vec<u32>,
     /// `rows` impossible entries and `rows + 1` zero bounds: the column of a dying object.
     dead: (Vec<f64>, Vec<f64>),
-    /// Columns of the widest child (objects in view plus a birth).
+    /// Columns of the widest child (objects in view plus a birth, or plus every independent-birth column).
     widest: usize,
+    /// Independent births: the cells some measurement may take, a column each in every matrix
+    /// (docs/maths.md §5.6).
+    birth_columns: Vec<usize>,
     bytes: usize,
 }
 
@@ -441,7 +444,7 @@ where
         let mut predicted = vec![];
         let (mut entries, mut bounds, mut order) = (vec![], vec![], vec![]);
         let PlacedScan { model, detection, weights } = &scan.placed;
-        let mut column = |innovation: &Innovation<f64, D>, in_view: bool| {
+        let mut column = |innovation: &Innovation<f64, D>, in_view: bool, birth: bool| {
             let (start, first) = (bounds.len(), entries.len());
             for z in measurements {
                 let entry = if in_view {
@@ -449,6 +452,7 @@ where
                 } else {
                     f64::NEG_INFINITY
                 };
+                let entry = if birth { weights.birth_entry(entry) } else { entry };
                 entries.push(entry);
                 bounds.push(entry.max(0.0));
             }
@@ -466,13 +470,23 @@ where
             let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
             let innovation = ekf::innovation(model, &state).map_err(numerical)?;
             let in_view = detection.field_of_view.sees(model, &innovation.predicted);
-            column(&innovation, in_view);
+            column(&innovation, in_view, false);
             predicted.push(Predicted { state, innovation, in_view });
         }
         for (innovation, in_view) in &scan.births {
-            column(innovation, *in_view);
+            column(innovation, *in_view, true);
         }
-        let births = usize::from(weights.births_possible() && scan.births.iter().any(|b| b.1));
+        let cell_entries = |cell: usize| &entries[(predicted.len() + cell) * rows..(predicted.len() + cell + 1) * rows];
+        let birth_columns: Vec<usize> = if weights.independent_births() {
+            (0..scan.births.len()).filter(|&cell| cell_entries(cell).iter().any(|&e| e > f64::NEG_INFINITY)).collect()
+        } else {
+            vec![]
+        };
+        let births = if weights.independent_births() {
+            birth_columns.len()
+        } else {
+            usize::from(weights.births_possible() && scan.births.iter().any(|b| b.1))
+        };
         let widest = parents
             .iter()
             .map(|&p| {
@@ -483,7 +497,7 @@ where
             .unwrap_or(0)
             + births;
         let dead = (vec![f64::NEG_INFINITY; rows], vec![0.0; rows + 1]);
-        Ok(Tables { scan, rows, parents, slot, predicted, entries, bounds, order, dead, widest, bytes })
+        Ok(Tables { scan, rows, parents, slot, predicted, entries, bounds, order, dead, widest, birth_columns, bytes })
     }
 
     /// Offers every child of `parent` (each event, each association) to `children`.
@@ -520,6 +534,10 @@ where
                     }
                 })
                 .collect();
+            for &cell in &tables.birth_columns {
+                let (entries, bounds, order) = tables.birth_column(cell);
+                matrix.push(Column { entries, bounds, order, required: false });
+            }
             if let Event::Birth { cell } = event
                 && births[cell as usize].1
             {
@@ -593,6 +611,14 @@ where
                 sources.push((false, track, row));
             }
         }
+        // Independent births, in the order of the rows they take (as the core makes their labels).
+        let first_birth = sources.len();
+        for (&cell, &row) in tables.birth_columns.iter().zip(&row_of[column..]) {
+            if row != CLUTTER {
+                sources.push((true, cell as u32, row));
+            }
+        }
+        sources[first_birth..].sort_unstable_by_key(|&(_, _, row)| row);
         if let Event::Birth { cell } = head.event {
             let row = if tables.scan.births[cell as usize].1 { row_of[column] } else { CLUTTER };
             sources.push((true, u32::from(cell), row));
@@ -618,7 +644,8 @@ fn events<const D: usize>(
     columns: &[(usize, usize)],
 ) -> Vec<(Event, usize)> {
     let mut events = vec![(Event::None, in_view)];
-    if weights.births_possible() {
+    // Independent births are columns of every event's matrix, not events.
+    if weights.births_possible() && !weights.independent_births() {
         for (cell, (_, detectable)) in births.iter().enumerate() {
             if *detectable || !weights.birth_required() {
                 events.push((Event::Birth { cell: cell as u16 }, in_view + usize::from(*detectable)));

@@ -195,7 +195,7 @@ where
         // Ignored: every sensor of the network has its own detection model.
         sensor: first.ok_or_else(|| Error::input("sensors: needs at least one sensor"))?,
         birth: BirthModel {
-            events: Default::default(),
+            events: scenario.birth.events.core(),
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

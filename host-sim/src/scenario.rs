@@ -225,6 +225,32 @@ pub enum BirthDetectionSpec {
     AllowUndetected,
 }
 
+/// Whether `value` is its type's default (left out of written files).
+pub(crate) fn is_default<T: Default + PartialEq>(value: &T) -> bool {
+    *value == T::default()
+}
+
+/// How births combine in a scan (`tracker_core::BirthEvents`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum BirthEventsSpec {
+    /// At most one birth per scan (R-FISST's first-order model; the default).
+    #[default]
+    FirstOrder,
+    /// Each cell gives birth independently: several births per scan (docs/maths.md §5.6).
+    Independent,
+}
+
+impl BirthEventsSpec {
+    /// The core's value.
+    pub fn core(self) -> tracker_core::BirthEvents {
+        match self {
+            BirthEventsSpec::FirstOrder => tracker_core::BirthEvents::FirstOrder,
+            BirthEventsSpec::Independent => tracker_core::BirthEvents::Independent,
+        }
+    }
+}
+
 /// Birth model.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -234,6 +260,9 @@ pub struct BirthSpec {
     /// Detection rule.
     #[serde(default)]
     pub detection: BirthDetectionSpec,
+    /// At most one birth per scan, or independent births in every cell.
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub events: BirthEventsSpec,
     /// Birth pdf of each cell.
     pub cells: Vec<GaussianSpec>,
 }

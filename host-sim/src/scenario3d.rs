@@ -336,6 +336,9 @@ pub struct Birth3dSpec {
     /// Detection rule.
     #[serde(default)]
     pub detection: BirthDetectionSpec,
+    /// At most one birth per scan, or independent births in every cell.
+    #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
+    pub events: crate::scenario::BirthEventsSpec,
     /// Birth pdf of each cell (may be empty).
     pub cells: Vec<Gaussian6Spec>,
 }

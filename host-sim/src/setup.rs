@@ -82,7 +82,7 @@ pub fn config<M, const B: usize>(
         measurement: measurement(&scenario.measurement),
         sensor: sensor(&scenario.sensor),
         birth: BirthModel {
-            events: Default::default(),
+            events: scenario.birth.events.core(),
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {
