@@ -17,9 +17,9 @@
 //! refraction (docs/maths.md §6.8).
 
 use super::admissible::optical_births;
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use super::frames::wrap_angle;
 use super::radar::topocentric;
+use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use crate::real::Real;
 use nalgebra::{SMatrix, SVector};
 

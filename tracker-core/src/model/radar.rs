@@ -19,8 +19,8 @@
 //! refraction and the Earth-model terms of [`GroundSite`] (docs/maths.md §6.8).
 
 use super::admissible::radar_births;
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
+use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use crate::real::Real;
 use crate::sensor::{Look, LookAxes};
 use nalgebra::{SMatrix, SVector};
