@@ -385,7 +385,7 @@ fn cell<T: Real>(
         return None;
     }
     let volume = total * width[0] * width[1] / (q * q);
-    let extent = [0, 1].map(|axis| (real::<T>(last[axis] - first[axis]) + T::one()) * width[axis] / q);
+    let extent = [0, 1].map(|axis| (real::<T>(last[axis].saturating_sub(first[axis])) + T::one()) * width[axis] / q);
     let (mx, my) = (sx / total, sy / total);
     if admits(mx, my) {
         return Some(Cell { volume, mean: [mx, my], extent });
