@@ -12,7 +12,9 @@
 //! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
 //! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
 //! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
-//! sensor index and observer per scan).
+//! sensor index and observer per scan), and the birth geometry `MeasurementModel::birth_components` of the
+//! radar (with and without range-rate), optical and planar models in f64 and f32 (any measurement, region,
+//! observer and output length).
 #![no_std]
 #![no_main]
 
@@ -267,9 +269,48 @@ fn radar<T: Real>(argc: i32) -> u64 {
     digest
 }
 
+/// `birth_components` of every model with one, on opaque models, measurements, regions and output slices.
+fn births<T: Real>(argc: i32) -> u64 {
+    use tracker_core::model::{AdmissibleRegion, BirthComponent, OpticalRaDec, RadarRangeAzEl, RadarRangeRate};
+    use tracker_core::{MeasurementModel, model::MAX_BIRTH_COMPONENTS};
+    let c = T::of_f64;
+    let x = c(f64::from(argc));
+    let mut out = [BirthComponent::<T, 6>::ZERO; MAX_BIRTH_COMPONENTS];
+    let length = black_box(argc as usize * 97) % (MAX_BIRTH_COMPONENTS + 1);
+    let region = black_box(if argc > 2 { AdmissibleRegion::<T>::geo() } else { AdmissibleRegion::leo() });
+    let observer = black_box([c(6000.0) * x, c(1000.0), c(2000.0), c(0.1), c(0.4), T::zero()]);
+    let enu = black_box([[T::zero(), T::one(), T::zero()], [-T::one(), T::zero(), T::zero()], [T::zero(); 3]]);
+    let mut digest = 0u64;
+    let mut fold = |result: Result<usize, tracker_core::model::BirthError>| match result {
+        Ok(n) => digest ^= n as u64,
+        Err(_) => digest ^= 1,
+    };
+    let radar = RadarRangeAzEl { observer, enu, sigma: black_box([c(0.02), c(1e-3), c(1e-3)]) };
+    fold(radar.birth_components(
+        &black_box(SVector::from([c(900.0) * x, c(0.3), c(0.9)])),
+        &region,
+        &mut out[..length],
+    ));
+    let rate = RadarRangeRate { observer, enu, sigma: black_box([c(0.02), c(1e-3), c(1e-3), c(1e-4)]) };
+    let z = black_box(SVector::from([c(900.0) * x, c(0.3), c(0.9), c(-1.0)]));
+    fold(rate.birth_components(&z, &region, &mut out[..length]));
+    let optical = OpticalRaDec { observer, sigma: black_box([c(5e-6), c(5e-6)]) };
+    fold(optical.birth_components(&black_box(SVector::from([c(0.3) * x, c(0.1)])), &region, &mut out[..length]));
+    let mut planar = [BirthComponent::<T, 4>::ZERO; 2];
+    let sensor = PositionMeasurement::isotropic(c(0.5) * x);
+    fold(sensor.birth_components(&black_box(SVector::from([x, c(2.0)])), &region, &mut planar[..length % 3]));
+    digest
+}
+
 /// Inputs come from the command line so the optimiser cannot fold them: argc picks values.
 #[unsafe(no_mangle)]
 pub extern "C" fn main(argc: i32, _argv: *const *const u8) -> i32 {
-    let digest = ssa::<f64>(argc) ^ ssa::<f32>(argc) ^ linear(argc) ^ radar::<f64>(argc) ^ radar::<f32>(argc);
+    let digest = ssa::<f64>(argc)
+        ^ ssa::<f32>(argc)
+        ^ linear(argc)
+        ^ radar::<f64>(argc)
+        ^ radar::<f32>(argc)
+        ^ births::<f64>(argc)
+        ^ births::<f32>(argc);
     (digest & 0x7f) as i32
 }

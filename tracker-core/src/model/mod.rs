@@ -17,9 +17,12 @@
 //!   from a ground site, topocentric right ascension and declination, of a 3-D inertial state; with the
 //!   site geometry of `frames.rs` ([`GroundSite`], [`EarthRotation`]); their residuals wrap angles
 //!   ([`wrap_angle`]).
+//! - [`AdmissibleRegion`], [`MeasurementModel::birth_components`]: the birth density of a new object
+//!   from one measurement, a weighted Gaussian mixture over its admissible states.
 //! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each with
 //!   its own noise, field of view, p_D and clutter, placed at every scan ([`ScanGeometry`]).
 
+mod admissible;
 mod constant_velocity;
 mod frames;
 mod network;
@@ -29,6 +32,7 @@ mod radar;
 mod two_body;
 mod two_body_j2;
 
+pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
 pub use frames::{EARTH_ROTATION_RATE, EarthRotation, GroundSite, WGS84_FLATTENING, gmst_iau82, wrap_angle};
 pub use network::{Placeable, PlacementError, Platform, ScanGeometry, SensorNetwork, SiteSensor};
@@ -235,6 +239,24 @@ pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
     /// uses the configuration's [`Sensor`](crate::Sensor).
     fn detection(&self) -> Option<crate::sensor::Sensor<T>> {
         None
+    }
+
+    /// The birth density of a new object seen by measurement `z` at the current placement: a weighted
+    /// Gaussian mixture over the states of `region` that explain `z` (docs/maths.md §5.7), written to
+    /// `out`; returns how many components were written (their weights sum to 1). At most
+    /// [`AdmissibleRegion::max_components`] are written. The default has no birth geometry.
+    ///
+    /// # Errors
+    /// [`BirthError::Unsupported`] without a birth geometry, [`BirthError::InvalidRegion`],
+    /// [`BirthError::Degenerate`] when no admissible state explains `z`, [`BirthError::NonFinite`],
+    /// [`BirthError::TooManyComponents`] when `out` is too short (its contents are then unspecified).
+    fn birth_components(
+        &self,
+        _z: &SVector<T, D>,
+        _region: &AdmissibleRegion<T>,
+        _out: &mut [BirthComponent<T, S>],
+    ) -> Result<usize, BirthError> {
+        Err(BirthError::Unsupported)
     }
 }
 

@@ -15,7 +15,10 @@
 //! turns a ground site's frame about the pole, which leaves the density unchanged.
 
 use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
-use super::{MeasurementModel, OpticalRaDec, RadarRangeAzEl, RadarRangeRate, WGS84_FLATTENING};
+use super::{
+    AdmissibleRegion, BirthComponent, BirthError, MeasurementModel, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
+    WGS84_FLATTENING,
+};
 use crate::real::{Real, c, cos, sin, sqrt};
 use crate::sensor::{Look, LookAxes, Region, Sensor};
 use nalgebra::{SMatrix, SVector};
@@ -414,6 +417,15 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
 
     fn detection(&self) -> Option<Sensor<T>> {
         self.sensors().get(self.current).map(|sensor| sensor.detection)
+    }
+
+    fn birth_components(
+        &self,
+        z: &SVector<T, D>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        self.placed.birth_components(z, region, out)
     }
 }
 

@@ -16,9 +16,10 @@
 //! annual and diurnal aberration (≲ 20.5″ and 0.3″: the catalogue reduction is the caller's), atmospheric
 //! refraction (docs/maths.md §6.8).
 
-use super::MeasurementModel;
+use super::admissible::optical_births;
 use super::frames::wrap_angle;
 use super::radar::topocentric;
+use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use crate::real::Real;
 use nalgebra::{SMatrix, SVector};
 
@@ -99,6 +100,17 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
 
     fn residual(&self, z: &SVector<T, 2>, predicted: &SVector<T, 2>) -> SVector<T, 2> {
         OpticalRaDec::residual(self, z, predicted)
+    }
+
+    /// Ranges from the line of sight against the region's shell, velocity over its cells
+    /// (docs/maths.md §5.7).
+    fn birth_components(
+        &self,
+        z: &SVector<T, 2>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        optical_births(&self.observer, [z[0], z[1]], self.sigma, region, out)
     }
 }
 

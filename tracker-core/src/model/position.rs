@@ -1,6 +1,7 @@
 //! Position measurement of a planar state: z = (x, y) + v, v ~ N(0, R). Linear: H = [I 0].
 
-use super::MeasurementModel;
+use super::admissible::planar_birth;
+use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use crate::real::Real;
 use nalgebra::{SMatrix, SVector};
 
@@ -50,5 +51,15 @@ impl<T: Real> MeasurementModel<T, 4, 2> for PositionMeasurement<T> {
 
     fn noise_covariance(&self) -> SMatrix<T, 2, 2> {
         self.noise
+    }
+
+    /// One component: position z with covariance R, velocity N(0, `velocity_sigma`² I).
+    fn birth_components(
+        &self,
+        z: &SVector<T, 2>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 4>],
+    ) -> Result<usize, BirthError> {
+        planar_birth(z, &self.noise, region, out)
     }
 }

@@ -18,8 +18,9 @@
 //! **Neglected.** Light time (ρ / c: 3.3 ms at 1000 km, ≈ 25 m along track in LEO), atmospheric
 //! refraction and the Earth-model terms of [`GroundSite`] (docs/maths.md §6.8).
 
-use super::MeasurementModel;
+use super::admissible::radar_births;
 use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
+use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
 use crate::real::Real;
 use crate::sensor::{Look, LookAxes};
 use nalgebra::{SMatrix, SVector};
@@ -138,6 +139,16 @@ impl<T: Real> MeasurementModel<T, 6, 3> for RadarRangeAzEl<T> {
     fn look(&self, z: &SVector<T, 3>) -> Option<Look<T>> {
         Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None })
     }
+
+    /// Position from (ρ, A, E), velocity over the admissible region's cells (docs/maths.md §5.7).
+    fn birth_components(
+        &self,
+        z: &SVector<T, 3>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        radar_births(&self.observer, &self.enu, [z[0], z[1], z[2]], None, self.sigma, region, out)
+    }
 }
 
 /// Range (km), azimuth, elevation (rad) and range-rate (km/s, positive receding) of a 3-D inertial state
@@ -214,6 +225,18 @@ impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
 
     fn look(&self, z: &SVector<T, 4>) -> Option<Look<T>> {
         Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) })
+    }
+
+    /// Position from (ρ, A, E), velocity along the line of sight from ρ̇, across it over the admissible
+    /// region's cells (docs/maths.md §5.7).
+    fn birth_components(
+        &self,
+        z: &SVector<T, 4>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        let [a, b, c, d] = self.sigma;
+        radar_births(&self.observer, &self.enu, [z[0], z[1], z[2]], Some((z[3], d)), [a, b, c], region, out)
     }
 }
 
