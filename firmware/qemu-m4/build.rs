@@ -151,7 +151,7 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
     w(
         &mut o,
         format!(
-            "        birth: BirthModel {{ probability: {}, cells, detection: BirthDetection::{detection}, events: BirthEvents::FirstOrder }},\n",
+            "        birth: BirthModel {{ probability: {}, cells, detection: BirthDetection::{detection}, events: BirthEvents::FirstOrder, measured: None }},\n",
             f32_of(number(birth, "birth.probability")?)
         ),
     );
@@ -359,7 +359,7 @@ fn generate_radar(s: &Value, scans: Option<usize>, path: &Path) -> Result<String
     w(
         &mut o,
         format!(
-            "/// The birth model.\npub const BIRTH: BirthModel<f32, 6, {{ ssa_caps::BIRTH_CELLS }}> = BirthModel {{ probability: {}, cells: heapless::Vec::from_array(BIRTH_CELLS), detection: BirthDetection::{detection}, events: BirthEvents::FirstOrder }};\n",
+            "/// The birth model.\npub const BIRTH: BirthModel<f32, 6, {{ ssa_caps::BIRTH_CELLS }}> = BirthModel {{ probability: {}, cells: heapless::Vec::from_array(BIRTH_CELLS), detection: BirthDetection::{detection}, events: BirthEvents::FirstOrder, measured: None }};\n",
             f32_of(number(birth, "birth.probability")?)
         ),
     );

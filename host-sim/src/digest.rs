@@ -112,7 +112,7 @@ pub fn ssa_config<T: Real>(
             clutter_rate: of(config.sensor.clutter_rate),
             field_of_view: region(&config.sensor.field_of_view),
         },
-        birth: BirthModel { probability: of(config.birth.probability), cells, detection: config.birth.detection, events: Default::default() },
+        birth: BirthModel { probability: of(config.birth.probability), cells, detection: config.birth.detection, events: Default::default(), measured: None },
         death_probability: of(config.death_probability),
         gate: config.gate.map(of),
         children: config.children,

@@ -188,6 +188,7 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         sensor,
         birth: BirthModel {
             events: Default::default(),
+            measured: None,
             probability: of(scenario.birth.probability),
             cells,
             detection: match scenario.birth.detection {

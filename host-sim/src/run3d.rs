@@ -196,6 +196,7 @@ where
         sensor: first.ok_or_else(|| Error::input("sensors: needs at least one sensor"))?,
         birth: BirthModel {
             events: scenario.birth.events.core(),
+            measured: None,
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

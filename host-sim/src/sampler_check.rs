@@ -104,6 +104,7 @@ fn random_case(seed: u64, index: u64) -> Case {
             },
             birth: BirthModel {
                 events: Default::default(),
+                measured: None,
                 probability: birth_probability,
                 cells: birth_cells,
                 detection: BirthDetection::AllDetected,

@@ -83,6 +83,7 @@ pub fn config<M, const B: usize>(
         sensor: sensor(&scenario.sensor),
         birth: BirthModel {
             events: scenario.birth.events.core(),
+            measured: None,
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

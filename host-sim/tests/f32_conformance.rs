@@ -114,6 +114,7 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
         },
         birth: BirthModel {
             events: Default::default(),
+            measured: None,
             probability: of(f64_config.birth.probability),
             cells,
             detection: f64_config.birth.detection,

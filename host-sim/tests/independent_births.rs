@@ -71,6 +71,7 @@ fn config(children: ChildGeneration) -> Linear {
             cells,
             detection: BirthDetection::AllDetected,
             events: BirthEvents::Independent,
+            measured: None,
         },
         death_probability: 0.01,
         gate: Some(25.0),

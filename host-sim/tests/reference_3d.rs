@@ -134,7 +134,7 @@ fn config(network: Network, children: ChildGeneration) -> Radar3d {
         motion: TwoBodyJ2::<f64>::earth(ProcessNoise::Isotropic(1e-8), 10.0, 100),
         measurement: network,
         sensor: network.sensors()[0].detection,
-        birth: BirthModel { probability: 0.005, cells, detection: BirthDetection::AllDetected, events: Default::default() },
+        birth: BirthModel { probability: 0.005, cells, detection: BirthDetection::AllDetected, events: Default::default(), measured: None },
         death_probability: 0.005,
         gate: Some(25.0),
         children,

@@ -12,7 +12,7 @@ fn config_with_births(
     detection: BirthDetection,
 ) -> LinearConfig<f64, 3> {
     let mut config = linear_config::<3>(0.9, 1.0, 400.0);
-    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection, events: Default::default() };
+    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection, events: Default::default(), measured: None };
     config.death_probability = beta;
     config
 }
@@ -186,4 +186,37 @@ fn independent_births_must_be_detected() {
     config.birth.events = tracker_core::BirthEvents::Independent;
     let result = Tracker::with_objects(config, &[], 0.0);
     assert!(matches!(result, Err(tracker_core::ConfigError::IndependentBirthsUndetected)), "{result:?}");
+}
+
+#[test]
+fn measured_births_confirm_new_objects_anywhere_within_three_detections() {
+    // docs/maths.md §5.8: no birth cell is given; the tracker makes cells from the measurements no track
+    // explains and predicts them to the next scans, where they are independent-birth cells (§5.6).
+    use tracker_core::model::AdmissibleRegion;
+    use tracker_core::pool::MeasuredBirths;
+    let mut config = config_with_births(0.0, 0.01, &[], BirthDetection::AllDetected);
+    config.birth.events = tracker_core::BirthEvents::Independent;
+    config.birth.measured = Some(MeasuredBirths {
+        expected_births: 1.0,
+        max_probability: 0.5,
+        ..MeasuredBirths::new(AdmissibleRegion::planar(2.0))
+    });
+    let mut t = Tracker::with_objects(config, &[], 0.0).unwrap();
+    let truth = |k: f64| [V2::new(-8.0 + 1.5 * k, 3.0), V2::new(6.0, -7.0 + 0.5 * k)];
+    // Scan 1 makes two cells (nothing explains either measurement); nothing is born yet.
+    let report = t.step(1.0, &truth(1.0)).unwrap();
+    assert_eq!(report.birth_pool.added, 2);
+    assert_eq!(t.map_hypothesis().len(), 0);
+    // Scan 2: both cells give birth in the MAP hypothesis; scan 3 confirms both (existence ≥ 0.5).
+    t.step(2.0, &truth(2.0)).unwrap();
+    t.step(3.0, &truth(3.0)).unwrap();
+    let map = t.map_hypothesis();
+    assert_eq!(map.len(), 2, "both objects born");
+    for z in truth(3.0) {
+        let track = map.tracks().find(|tr| (tr.state.mean.xy() - z).norm() < 1.0).expect("a track on each object");
+        assert!(t.label_existence(track.label) >= 0.5, "confirmed by the third detection");
+    }
+    // The measurements now explained by tracks make no new cells.
+    let report = t.step(4.0, &truth(4.0)).unwrap();
+    assert_eq!(report.birth_pool.added, 0, "{:?}", report.birth_pool);
 }

@@ -56,6 +56,7 @@ fn config(children: ChildGeneration) -> LinearConfig<f64, 2> {
     let mut config = linear_config::<2>(0.85, 20.0, 100.0);
     config.birth = BirthModel {
         events: Default::default(),
+        measured: None,
         probability: 0.05,
         cells: [gaussian([1.5, 1.0, 0.0, 0.0], 4.0)].into_iter().collect(),
         detection: Default::default(),

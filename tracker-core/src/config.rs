@@ -71,7 +71,7 @@ pub enum BirthEvents {
 /// let cell = Gaussian { mean: SVector::from([30.0, 30.0, 0.0, 0.0]), covariance: SMatrix::identity() * 25.0 };
 /// let mut cells = heapless::Vec::new();
 /// cells.push(cell).unwrap();
-/// let birth = BirthModel { probability: 0.05, cells, detection: BirthDetection::AllDetected, events: Default::default() };
+/// let birth = BirthModel { probability: 0.05, cells, detection: BirthDetection::AllDetected, events: Default::default(), measured: None };
 /// let config = Config { birth, ..config };
 /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
 /// tracker.step(1.0, &[SVector::from([1.0, 0.0]), SVector::from([31.0, 29.0])])?;
@@ -92,6 +92,10 @@ pub struct BirthModel<T: Real, const S: usize, const B: usize> {
     /// At most one birth per scan, or independent births in every cell.
     #[cfg_attr(feature = "serde", serde(default))]
     pub events: BirthEvents,
+    /// Birth cells made from earlier scans' unexplained measurements, besides `cells`
+    /// (docs/maths.md §5.8); they need [`BirthEvents::Independent`].
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub measured: Option<crate::pool::MeasuredBirths<T>>,
 }
 
 impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
@@ -110,6 +114,7 @@ impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
             cells: heapless::Vec::new(),
             detection: BirthDetection::AllDetected,
             events: BirthEvents::FirstOrder,
+            measured: None,
         }
     }
 }
@@ -396,7 +401,7 @@ mod tests {
                 clutter_rate: 1.0,
                 field_of_view: Region::Rectangle { min: [0.0, 0.0], max: [1.0, 1.0] },
             },
-            birth: BirthModel { probability: 0.01, cells, detection: BirthDetection::AllowUndetected, events: Default::default() },
+            birth: BirthModel { probability: 0.01, cells, detection: BirthDetection::AllowUndetected, events: Default::default(), measured: None },
             death_probability: 0.001,
             gate: Some(25.0),
             children: ChildGeneration::Sampled(crate::sampler::SamplerConfig::default()),

@@ -62,6 +62,8 @@ pub enum ConfigError {
     /// Independent births ([`BirthEvents::Independent`](crate::BirthEvents)) with births allowed to go
     /// undetected: every cell would need an undetected-birth child of its own.
     IndependentBirthsUndetected,
+    /// The settings of measurement-driven births are invalid (the reason).
+    MeasuredBirths(&'static str),
     /// The gate is not finite and positive.
     Gate,
     /// The child budget is zero.
@@ -131,6 +133,7 @@ impl core::fmt::Display for ConfigError {
             ConfigError::EventProbabilities => f.write_str(
                 "M_b alpha + N beta must be < 1 (N = object capacity; independent births: alpha < 1 and N beta < 1)",
             ),
+            ConfigError::MeasuredBirths(reason) => f.write_str(reason),
             ConfigError::IndependentBirthsUndetected => {
                 f.write_str("independent births must be detected (birth detection AllDetected)")
             }

@@ -54,6 +54,7 @@ pub mod hypothesis;
 mod index;
 pub mod model;
 pub mod optimal;
+pub mod pool;
 mod random;
 pub mod real;
 pub mod report;

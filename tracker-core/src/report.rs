@@ -71,6 +71,8 @@ pub struct StepReport<T> {
     pub children_dropped_for_store: usize,
     /// Birth events not generated because their parent already held `N` objects.
     pub births_beyond_object_capacity: u64,
+    /// What the scan did to the pool of measurement-driven birth cells (all zero without measured births).
+    pub birth_pool: crate::pool::PoolUpdate,
     /// Metropolis moves made in this scan (0 with exhaustive children); never more than the budget given
     /// to [`crate::Tracker::step_with_budget`].
     pub sampler_steps: u64,

@@ -73,6 +73,8 @@ pub struct WeightModel<T> {
     birth_cells: usize,
     birth_detection: BirthDetection,
     birth_events: BirthEvents,
+    /// Independent births: Σ_l ln(1 − α_l) over the scan's cells.
+    no_birth: T,
     death_probability: T,
 }
 
@@ -167,6 +169,7 @@ impl<T: Real> WeightModel<T> {
             birth_cells,
             birth_detection,
             birth_events: BirthEvents::FirstOrder,
+            no_birth: T::zero(),
             death_probability,
         }
     }
@@ -187,12 +190,23 @@ impl<T: Real> WeightModel<T> {
     /// assert!(model.independent_births());
     /// ```
     pub fn with_birth_events(self, birth_events: BirthEvents) -> Self {
-        Self { birth_events, ..self }
+        let no_birth = match birth_events {
+            BirthEvents::FirstOrder => T::zero(),
+            BirthEvents::Independent => T::of_f64(self.birth_cells as f64) * ln(T::one() - self.birth_probability),
+        };
+        Self { birth_events, no_birth, ..self }
+    }
+
+    /// The scan's birth cells, when they are not the configuration's (measured births, docs/maths.md §5.8):
+    /// `cells` cells with `no_birth` = Σ_l ln(1 − α_l).
+    pub fn set_birth_cells(&mut self, cells: usize, no_birth: T) {
+        self.birth_cells = cells;
+        self.no_birth = no_birth;
     }
 
     /// Whether every birth cell is a column of every matrix ([`BirthEvents::Independent`]).
     pub fn independent_births(&self) -> bool {
-        self.birth_events == BirthEvents::Independent && self.births_possible()
+        self.birth_events == BirthEvents::Independent && self.birth_cells > 0
     }
 
     /// δ_{z,l} of birth cell l for measurement z, from the cell's object entry `object_entry` (as
@@ -213,10 +227,15 @@ impl<T: Real> WeightModel<T> {
     /// assert_eq!(independent.birth_entry(f64::NEG_INFINITY), f64::NEG_INFINITY);
     /// ```
     pub fn birth_entry(&self, object_entry: T) -> T {
+        self.birth_entry_with(object_entry, self.birth_probability)
+    }
+
+    /// [`WeightModel::birth_entry`] for a cell of birth probability `alpha`.
+    pub fn birth_entry_with(&self, object_entry: T, alpha: T) -> T {
         if !self.independent_births() {
             return object_entry;
         }
-        object_entry + self.finite_miss() + ln(self.birth_probability) - ln(T::one() - self.birth_probability)
+        object_entry + self.finite_miss() + ln(alpha) - ln(T::one() - alpha)
     }
 
     /// δ_{z,o} = ln(p_D ĝ / ((1 − p_D) λ_C)) for a track (or birth cell) with `innovation` and measurement
@@ -336,7 +355,7 @@ impl<T: Real> WeightModel<T> {
     /// assert!(!model(0.0, 1).births_possible()); // α = 0
     /// ```
     pub fn births_possible(&self) -> bool {
-        self.birth_probability > T::zero() && self.birth_cells > 0
+        self.birth_cells > 0 && (self.birth_probability > T::zero() || self.birth_events == BirthEvents::Independent)
     }
 
     /// Whether deaths can happen (β > 0).
@@ -373,9 +392,8 @@ impl<T: Real> WeightModel<T> {
     pub fn event_log_probability(&self, event: Event, parent_in_view: usize) -> T {
         if self.independent_births() {
             // No birth in any cell, times the first-order death model (docs/maths.md §5.6).
-            let no_birth = T::of_f64(self.birth_cells as f64) * ln(T::one() - self.birth_probability);
             let in_view = T::of_f64(parent_in_view as f64);
-            return no_birth
+            return self.no_birth
                 + match event {
                     Event::None => ln(T::one() - in_view * self.death_probability),
                     Event::Death { .. } => ln(self.death_probability),

@@ -114,6 +114,7 @@ fn ssa<T: Real>(argc: i32) -> u64 {
         },
         birth: BirthModel {
             events: Default::default(),
+            measured: None,
             probability: c(1e-3) * x,
             cells,
             detection: if argc > 2 { BirthDetection::AllowUndetected } else { BirthDetection::AllDetected },

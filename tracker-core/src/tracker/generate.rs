@@ -66,7 +66,7 @@ struct Parent<T> {
 /// What every parent's children need to know about the scan (read-only).
 struct ScanInputs<'a, T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, const B: usize> {
     weight_model: &'a WeightModel<T>,
-    birth_cells: &'a BirthCells<T, D, B>,
+    birth_cells: &'a BirthCells<T, S, D, B>,
     scores: &'a Scores<T, S, D, Z, K, B>,
     rows: usize,
     scan_seed: u64,
@@ -252,7 +252,7 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
         &mut self,
         config: &Config<T, M, G, S, B>,
         weight_model: &WeightModel<T>,
-        birth_cells: &BirthCells<T, D, B>,
+        birth_cells: &BirthCells<T, S, D, B>,
         scores: &Scores<T, S, D, Z, K, B>,
         parents: &[Hypothesis<T, N>],
         rows: usize,
@@ -272,7 +272,7 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
         let derive_deaths = matches!(generator, Generator::Sampled(_))
             && weight_model.deaths_possible()
             && !weight_model.detection_required();
-        let birth_cell_count = if weight_model.births_possible() { config.birth.cells.len() } else { 0 };
+        let birth_cell_count = if weight_model.births_possible() { birth_cells.count } else { 0 };
         match config.selection {
             Selection::TopWeight => top.clear(),
             Selection::SampledByWeight => top.clear_sampling(selection_seed(scan_seed)),
@@ -309,11 +309,11 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
 
     /// The column layout of the matrix of (`parent`, `event`) in the last scan (`None`: no such parent
     /// or birth cell).
-    pub(super) fn layout<const D: usize, const B: usize>(
+    pub(super) fn layout<const S: usize, const D: usize, const B: usize>(
         &self,
         parent: u16,
         event: Event,
-        birth_cells: &BirthCells<T, D, B>,
+        birth_cells: &BirthCells<T, S, D, B>,
     ) -> Option<ColumnLayout<'_>> {
         let columns = self.columns.get(usize::from(parent))?;
         let birth_column = match event {

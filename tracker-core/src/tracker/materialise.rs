@@ -81,7 +81,7 @@ pub(super) struct Inputs<
     pub(super) config: &'a Config<T, M, G, S, B>,
     /// The measurement model placed at this scan.
     pub(super) model: &'a G,
-    pub(super) birth_cells: &'a BirthCells<T, D, B>,
+    pub(super) birth_cells: &'a BirthCells<T, S, D, B>,
     pub(super) scores: &'a Scores<T, S, D, Z, K, B>,
     pub(super) generation: &'a Generation<T, H, N, Z>,
     pub(super) store: &'a TrackStore<T, S, K>,
@@ -299,7 +299,7 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             }
             Source::Birth(cell) => {
                 let cell = usize::from(cell);
-                let prior = inputs.config.birth.cells.get(cell).copied().unwrap_or(Gaussian::ZERO);
+                let prior = inputs.birth_cells.states.get(cell).copied().unwrap_or(Gaussian::ZERO);
                 let innovation = inputs.birth_cells.innovations.get(cell).copied().unwrap_or(Innovation::EMPTY);
                 // One new object per measurement (or per cell when undetected): the same birth explained by
                 // different cells' pdfs is one object with one label.

@@ -43,17 +43,19 @@ use crate::digest::Fnv1a;
 use crate::ekf::Gaussian;
 use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
-use crate::index::{At, insertion_sort_by};
+use crate::association::Column;
+use crate::index::{At, NONE, insertion_sort_by};
+use crate::pool::{BirthPool, PoolUpdate};
 use crate::model::{MeasurementModel, MotionModel, ScanGeometry};
 use crate::random::scan_seed;
-use crate::real::{Real, exp};
+use crate::real::{LogSumExp, Real, exp};
 use crate::report::StepReport;
 use crate::sampler::SamplerConfig;
 use crate::store::{Track, TrackLabel, TrackStore};
 use generate::Generation;
 use materialise::{Inputs, Materialisation};
 use nalgebra::SVector;
-use score::Scores;
+use score::{BirthCells, Scores};
 
 /// One object of a prior hypothesis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,6 +135,8 @@ pub struct Tracker<
     scores: Scores<T, S, D, Z, K, B>,
     generation: Generation<T, H, N, Z>,
     materialisation: Materialisation<H, N, Z, K, B>,
+    /// Birth cells made from measurements (docs/maths.md §5.8).
+    pool: BirthPool<T, S, B>,
 }
 
 /// A read-only view of one hypothesis and the tracks it holds.
@@ -480,7 +484,7 @@ where
     ///         clutter_rate: 1.0,
     ///         field_of_view: Region::Everywhere { volume: 1e4 },
     ///     },
-    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected, events: Default::default() },
+    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected, events: Default::default(), measured: None },
     ///     death_probability: 0.0,
     ///     gate: None,
     ///     children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000 },
@@ -519,6 +523,7 @@ where
             scores: Scores::new(),
             generation: Generation::new(sampler),
             materialisation: Materialisation::new(),
+            pool: BirthPool::new(),
         }
     }
 
@@ -576,6 +581,7 @@ where
         self.scans = 0;
         self.next_label = next_label;
         self.initialised = true;
+        self.pool.clear();
         self.generation.reset(self.config.children);
         Ok(())
     }
@@ -767,8 +773,8 @@ where
             return Err(StepError::NotInitialised);
         }
         let time = geometry.time;
-        let placed = place_scan(&self.config, geometry, self.time, measurements, Z)?;
-        let birth_cells = score::birth_cells(&self.config, &placed)?;
+        let mut placed = place_scan(&self.config, geometry, self.time, measurements, Z)?;
+        let birth_cells = score::birth_cells(&self.config, &self.pool, &mut placed, time)?;
         let live = self.live();
         let dt = T::of_f64(time - self.time);
         let (store, next_store) = split_pair(&mut self.stores, self.active);
@@ -804,6 +810,15 @@ where
         self.time = time;
         self.scans += 1;
         self.next_label = outcome.next_label;
+        let birth_pool = match &self.config.birth.measured {
+            Some(measured) => {
+                let (unexplained, born) = measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
+                let capacity = B.saturating_sub(self.config.birth.cells.len());
+                let rows = measurements.len().min(Z);
+                self.pool.update(measured, capacity, &placed.model, time, measurements, &unexplained[..rows], &born)
+            }
+            None => PoolUpdate::default(),
+        };
         let top = &self.generation.top;
         Ok(StepReport {
             scan: self.scans,
@@ -816,6 +831,7 @@ where
             merged_children: outcome.merged,
             children_dropped_for_store: outcome.dropped_for_store,
             births_beyond_object_capacity: generated.births_skipped,
+            birth_pool,
             sampler_steps: generated.sampler_moves,
             numerical_drops,
             expected_cardinality: self.expected_cardinality(),
@@ -1234,4 +1250,39 @@ fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, co
             }
         }
     }
+}
+
+/// Per measurement, the posterior probability r_U that no object took it; per pool cell, the posterior
+/// probability that it gave birth: sums over the kept children of the scan, with weights normalised over
+/// them (docs/maths.md §5.8).
+fn measurement_use<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const B: usize>(
+    generation: &Generation<T, H, N, Z>,
+    birth_cells: &BirthCells<T, S, D, B>,
+    rows: usize,
+) -> ([T; Z], [T; B]) {
+    let kept = generation.top.kept();
+    let mut total = LogSumExp::new();
+    for child in kept {
+        total.add(child.log_weight);
+    }
+    let mut taken = [T::zero(); Z];
+    let mut born = [T::zero(); B];
+    for child in kept {
+        let weight = exp(total.normalise(child.log_weight));
+        let Some(layout) = generation.layout(child.parent, child.event, birth_cells) else { continue };
+        for (row, &column) in child.assignment.iter().enumerate().take(rows.min(Z)) {
+            match layout.column(usize::from(column)) {
+                Some(Column::Object { .. }) => *taken.at_mut(row) += weight,
+                Some(Column::Birth { cell }) => {
+                    *taken.at_mut(row) += weight;
+                    let pool_cell = birth_cells.pool_cell.get(usize::from(cell)).copied().unwrap_or(NONE);
+                    if let Some(born) = born.get_mut(usize::from(pool_cell)) {
+                        *born += weight;
+                    }
+                }
+                None => {}
+            }
+        }
+    }
+    (taken.map(|taken| T::one() - taken), born)
 }

@@ -87,6 +87,16 @@ fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, cons
     if !(T::one() - first_order_births - deaths > T::zero()) {
         return Err(ConfigError::EventProbabilities);
     }
+    if let Some(measured) = &config.birth.measured {
+        // Cells from measurements are independent-birth cells (docs/maths.md §5.8).
+        if config.birth.events != BirthEvents::Independent {
+            return Err(ConfigError::MeasuredBirths("measured births need independent birth events"));
+        }
+        measured.validate().map_err(ConfigError::MeasuredBirths)?;
+        if config.birth.cells.len() >= B {
+            return Err(ConfigError::MeasuredBirths("measured births need room in the B cells besides the fixed ones"));
+        }
+    }
     Ok(())
 }
 

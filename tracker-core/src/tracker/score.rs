@@ -6,7 +6,9 @@ use super::scan::PlacedScan;
 use crate::config::{Config, NumericalFailure};
 use crate::ekf::{self, Gaussian, Innovation, NumericalError};
 use crate::error::StepError;
-use crate::index::At;
+use crate::index::{At, NONE};
+use crate::pool::BirthPool;
+use crate::real::ln;
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::Real;
 use crate::report::NumericalDrops;
@@ -23,16 +25,30 @@ pub(super) struct Predicted<T: Real, const S: usize, const D: usize> {
     pub(super) dropped: bool,
 }
 
-/// The birth cells as the sensor sees them, fixed by the configuration: each cell's predicted
-/// measurement and whether it lies in the field of view.
+/// The scan's birth cells as its sensor sees them: the configuration's cells, then the pool's cells
+/// predicted to the scan (docs/maths.md §5.8); each one's density, α, predicted measurement and whether
+/// it lies in the field of view.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct BirthCells<T: Real, const D: usize, const B: usize> {
+pub(super) struct BirthCells<T: Real, const S: usize, const D: usize, const B: usize> {
+    pub(super) states: [Gaussian<T, S>; B],
     pub(super) innovations: [Innovation<T, D>; B],
     pub(super) in_field_of_view: [bool; B],
+    /// α of each cell.
+    pub(super) probabilities: [T; B],
+    /// The pool cell each cell was predicted from (`NONE`: a cell of the configuration).
+    pub(super) pool_cell: [u16; B],
+    pub(super) count: usize,
 }
 
-impl<T: Real, const D: usize, const B: usize> BirthCells<T, D, B> {
-    pub(super) const EMPTY: Self = Self { innovations: [Innovation::EMPTY; B], in_field_of_view: [false; B] };
+impl<T: Real, const S: usize, const D: usize, const B: usize> BirthCells<T, S, D, B> {
+    pub(super) const EMPTY: Self = Self {
+        states: [Gaussian::ZERO; B],
+        innovations: [Innovation::EMPTY; B],
+        in_field_of_view: [false; B],
+        probabilities: [T::ZERO; B],
+        pool_cell: [NONE; B],
+        count: 0,
+    };
 
     /// Whether cell `cell` lies in the field of view (`None`: no such cell).
     pub(super) fn in_field_of_view(&self, cell: usize) -> Option<bool> {
@@ -75,7 +91,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
         &mut self,
         config: &Config<T, M, G, S, B>,
         placed: &PlacedScan<T, G>,
-        birth_cells: &BirthCells<T, D, B>,
+        birth_cells: &BirthCells<T, S, D, B>,
         tracks: &[Track<T, S>],
         dt: T,
         measurements: &[SVector<T, D>],
@@ -105,12 +121,13 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
             };
             score_row(entries, placed, &predicted.innovation, predicted.in_field_of_view, measurements);
         }
-        let cells =
-            self.birth_entries.iter_mut().zip(birth_cells.innovations.iter().zip(&birth_cells.in_field_of_view));
-        for (entries, (innovation, &in_field_of_view)) in cells.take(config.birth.cells.len()) {
+        let cells = birth_cells.innovations.iter().zip(&birth_cells.in_field_of_view).zip(&birth_cells.probabilities);
+        for (entries, ((innovation, &in_field_of_view), &alpha)) in
+            self.birth_entries.iter_mut().zip(cells).take(birth_cells.count)
+        {
             score_row(entries, placed, innovation, in_field_of_view, measurements);
             for entry in entries.iter_mut() {
-                *entry = placed.weights.birth_entry(*entry);
+                *entry = placed.weights.birth_entry_with(*entry, alpha);
             }
         }
         Ok(drops)
@@ -157,23 +174,46 @@ where
     Ok(Predicted { state, innovation, in_field_of_view, dropped: false })
 }
 
-/// The birth cells as this scan's sensor sees them: each cell's innovation and whether its predicted
-/// measurement lies in the field of view.
+/// The scan's birth cells as its sensor sees them (the configuration's, then `pool`'s predicted to `time`),
+/// and `placed`'s weight model set to them (docs/maths.md §5.6, §5.8). A pool cell whose prediction or
+/// innovation fails is left out of this scan.
 ///
 /// # Errors
-/// [`StepError::BirthCell`] when a cell's innovation cannot be formed.
+/// [`StepError::BirthCell`] when the innovation of a cell of the configuration cannot be formed.
 pub(super) fn birth_cells<T: Real, M, G, const S: usize, const D: usize, const B: usize>(
     config: &Config<T, M, G, S, B>,
-    placed: &PlacedScan<T, G>,
-) -> Result<BirthCells<T, D, B>, StepError>
+    pool: &BirthPool<T, S, B>,
+    placed: &mut PlacedScan<T, G>,
+    time: f64,
+) -> Result<BirthCells<T, S, D, B>, StepError>
 where
+    M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D>,
 {
     let mut cells = BirthCells::EMPTY;
-    let views = cells.innovations.iter_mut().zip(cells.in_field_of_view.iter_mut());
-    for (cell, (birth, (innovation, in_view))) in config.birth.cells.iter().zip(views).enumerate() {
-        *innovation = ekf::innovation(&placed.model, birth).map_err(|_| StepError::BirthCell { cell })?;
-        *in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+    let fixed = config.birth.cells.iter().enumerate().map(|(cell, state)| (NONE, cell, *state, config.birth.probability));
+    let from_pool = pool.predicted(&config.motion, time).map(|(index, state, alpha)| (index as u16, usize::MAX, state, alpha));
+    let mut no_birth = T::zero();
+    for (pool_cell, fixed_cell, state, alpha) in fixed.chain(from_pool) {
+        if cells.count >= B {
+            break;
+        }
+        let innovation = match ekf::innovation(&placed.model, &state) {
+            Ok(innovation) => innovation,
+            Err(_) if pool_cell == NONE => return Err(StepError::BirthCell { cell: fixed_cell }),
+            Err(_) => continue,
+        };
+        let cell = cells.count;
+        *cells.states.at_mut(cell) = state;
+        *cells.innovations.at_mut(cell) = innovation;
+        *cells.in_field_of_view.at_mut(cell) = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+        *cells.probabilities.at_mut(cell) = alpha;
+        *cells.pool_cell.at_mut(cell) = pool_cell;
+        cells.count += 1;
+        no_birth += ln(T::one() - alpha);
+    }
+    if config.birth.measured.is_some() {
+        placed.weights.set_birth_cells(cells.count, no_birth);
     }
     Ok(cells)
 }

@@ -1,0 +1,269 @@
+//! The measurement-driven birth pool (docs/maths.md §5.8): birth cells made from the measurements of
+//! earlier scans that no track explains, so that new objects are born wherever a sensor sees them, without
+//! birth cells fixed in advance.
+//!
+//! After every scan, each measurement z gets r_U(z), the posterior probability that no object took it
+//! (the weight of the kept hypotheses that call it clutter). A measurement with r_U(z) at least
+//! `min_unexplained` becomes the cells of its birth density ([`MeasurementModel::birth_components`]: the
+//! measurement's admissible region as a Gaussian mixture), with a birth probability
+//!
+//! ```text
+//! α_z = min(max_probability, expected_births · r_U(z) / Σ_z' r_U(z'))
+//! ```
+//!
+//! shared among its components by their weights. At the next scans the cells are predicted to the scan's
+//! time and are birth cells of the independent birth model (§5.6): the birth model of a scan is known
+//! before the scan, so the recursion's weights are those of §4 and §5.6 unchanged. A cell lives for
+//! `lifetime` seconds after its measurement; each scan its α is multiplied by the probability that it gave
+//! no birth in that scan. When the pool is full the cells with the smallest α give way.
+
+use crate::ekf::{self, Gaussian};
+use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionModel};
+use crate::real::Real;
+use nalgebra::SVector;
+
+/// The settings of measurement-driven births.
+///
+/// # Examples
+/// ```
+/// use tracker_core::model::AdmissibleRegion;
+/// use tracker_core::pool::MeasuredBirths;
+/// let births = MeasuredBirths::new(AdmissibleRegion::<f64>::planar(2.0));
+/// assert!(births.validate().is_ok());
+/// assert!(MeasuredBirths { max_probability: 1.0, ..births }.validate().is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MeasuredBirths<T> {
+    /// The admissible region each measurement's birth density is cut from.
+    pub region: AdmissibleRegion<T>,
+    /// Expected births per scan, λ_B, shared among the scan's unexplained measurements by their r_U.
+    pub expected_births: T,
+    /// The largest α of one measurement's cells together, in (0, 1).
+    pub max_probability: T,
+    /// The smallest r_U for a measurement to make cells, in [0, 1].
+    pub min_unexplained: T,
+    /// Seconds a cell lives after its measurement.
+    pub lifetime: f64,
+}
+
+impl<T: Real> MeasuredBirths<T> {
+    /// Settings with `region`: λ_B = 0.1, α at most 0.1 per measurement, r_U ≥ 0.5, cells living 600 s.
+    pub fn new(region: AdmissibleRegion<T>) -> Self {
+        Self {
+            region,
+            expected_births: T::of_f64(0.1),
+            max_probability: T::of_f64(0.1),
+            min_unexplained: T::of_f64(0.5),
+            lifetime: 600.0,
+        }
+    }
+
+    /// Checks the settings.
+    ///
+    /// # Errors
+    /// A static description of the first invalid field.
+    pub fn validate(&self) -> Result<(), &'static str> {
+        self.region.validate()?;
+        if !(self.expected_births.is_finite_value() && self.expected_births > T::zero()) {
+            return Err("measured births: expected_births must be finite and > 0");
+        }
+        if !(self.max_probability > T::zero() && self.max_probability < T::one()) {
+            return Err("measured births: max_probability must be in (0, 1)");
+        }
+        if !(self.min_unexplained >= T::zero() && self.min_unexplained <= T::one()) {
+            return Err("measured births: min_unexplained must be in [0, 1]");
+        }
+        if !(self.lifetime.is_finite() && self.lifetime > 0.0) {
+            return Err("measured births: lifetime must be finite and > 0");
+        }
+        Ok(())
+    }
+}
+
+/// One cell of the pool: a birth density at the time of the measurement it was made from, and its α.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PoolCell<T: Real, const S: usize> {
+    /// The birth density at `time`.
+    pub state: Gaussian<T, S>,
+    /// Time of the measurement (seconds since the tracker's epoch).
+    pub time: f64,
+    /// α: the probability that the cell gives birth at a scan.
+    pub probability: T,
+}
+
+/// What one pool update did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PoolUpdate {
+    /// Cells made from this scan's measurements and kept.
+    pub added: usize,
+    /// Cells that gave way (or were not kept) because the pool was full.
+    pub evicted: usize,
+    /// Cells past their lifetime, or whose α fell to zero.
+    pub expired: usize,
+    /// Unexplained measurements that gave no birth density (an empty admissible region, a non-finite
+    /// result, more components than the pool holds).
+    pub without_density: usize,
+}
+
+/// At most `B` birth cells made from measurements (docs/maths.md §5.8).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BirthPool<T: Real, const S: usize, const B: usize> {
+    cells: heapless::Vec<PoolCell<T, S>, B>,
+}
+
+impl<T: Real, const S: usize, const B: usize> Default for BirthPool<T, S, B> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
+    /// An empty pool.
+    pub const fn new() -> Self {
+        Self { cells: heapless::Vec::new() }
+    }
+
+    /// The cells, oldest first.
+    pub fn cells(&self) -> &[PoolCell<T, S>] {
+        &self.cells
+    }
+
+    /// Removes every cell.
+    pub fn clear(&mut self) {
+        self.cells.clear();
+    }
+
+    /// The cells predicted to `time` with `motion`, with their α; a cell whose prediction fails is left
+    /// out of this scan (it stays in the pool).
+    pub fn predicted<'a, M: MotionModel<T, S>>(
+        &'a self,
+        motion: &'a M,
+        time: f64,
+    ) -> impl Iterator<Item = (usize, Gaussian<T, S>, T)> + 'a {
+        self.cells.iter().enumerate().filter_map(move |(index, cell)| {
+            let state = ekf::predict(motion, &cell.state, T::of_f64(time - cell.time)).ok()?;
+            Some((index, state, cell.probability))
+        })
+    }
+
+    /// Updates the pool after the scan at `time`: each cell's α times 1 − `born[l]` (the posterior
+    /// probability that cell l gave birth in this scan; missing entries count as 0), cells past their
+    /// lifetime removed, then the cells of every measurement whose `unexplained[z]` (r_U) is at least the
+    /// settings' minimum added, made by `model` (the measurement model placed at this scan). At most
+    /// `capacity` (≤ `B`) cells are kept: the smallest α give way, the older first among equals.
+    pub fn update<G: MeasurementModel<T, S, D>, const D: usize>(
+        &mut self,
+        settings: &MeasuredBirths<T>,
+        capacity: usize,
+        model: &G,
+        time: f64,
+        measurements: &[SVector<T, D>],
+        unexplained: &[T],
+        born: &[T],
+    ) -> PoolUpdate {
+        let capacity = capacity.min(B);
+        let mut update = PoolUpdate::default();
+        // Age the old cells.
+        let mut index = 0;
+        let mut old_index = 0;
+        while index < self.cells.len() {
+            let given_birth = unit(born.get(old_index).copied().unwrap_or(T::zero()));
+            old_index += 1;
+            let Some(cell) = self.cells.get_mut(index) else { break };
+            cell.probability = cell.probability * (T::one() - given_birth);
+            if !(time - cell.time <= settings.lifetime && cell.probability > T::zero()) {
+                self.cells.remove(index);
+                update.expired += 1;
+            } else {
+                index += 1;
+            }
+        }
+        while self.cells.len() > capacity {
+            self.remove_smallest();
+            update.evicted += 1;
+        }
+        // Σ_z r_U(z) over the measurements that make cells.
+        let minimum = settings.min_unexplained;
+        let total = unexplained.iter().take(measurements.len()).fold(T::zero(), |sum, &r_u| {
+            if r_u >= minimum && r_u > T::zero() { sum + r_u } else { sum }
+        });
+        if !(total > T::zero()) {
+            return update;
+        }
+        let mut components = [BirthComponent::<T, S>::ZERO; B];
+        for (z, &r_u) in measurements.iter().zip(unexplained) {
+            if !(r_u >= minimum && r_u > T::zero()) {
+                continue;
+            }
+            let share = settings.expected_births * r_u / total;
+            let alpha = if share < settings.max_probability { share } else { settings.max_probability };
+            let count = match model.birth_components(z, &settings.region, &mut components) {
+                Ok(count) if count > 0 => count.min(B),
+                _ => {
+                    update.without_density += 1;
+                    continue;
+                }
+            };
+            for component in components.iter().take(count) {
+                let cell = PoolCell { state: component.state, time, probability: alpha * component.weight };
+                if !(cell.probability > T::zero()) {
+                    continue;
+                }
+                if self.insert(cell, capacity) {
+                    update.added += 1;
+                } else {
+                    update.evicted += 1;
+                }
+            }
+        }
+        update
+    }
+
+    /// Adds `cell`, making room by removing the cell of smallest α when it is smaller than the new one's;
+    /// returns whether `cell` was kept (a cell that gives way is counted by the caller either way).
+    fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> bool {
+        if self.cells.len() < capacity {
+            return self.cells.push(cell).is_ok();
+        }
+        match self.smallest() {
+            Some((index, probability)) if probability < cell.probability => {
+                self.cells.remove(index);
+                self.cells.push(cell).is_ok()
+            }
+            _ => false,
+        }
+    }
+
+    /// The first cell of smallest α (the oldest among equals) and its α.
+    fn smallest(&self) -> Option<(usize, T)> {
+        let mut smallest: Option<(usize, T)> = None;
+        for (index, cell) in self.cells.iter().enumerate() {
+            if smallest.is_none_or(|(_, probability)| cell.probability < probability) {
+                smallest = Some((index, cell.probability));
+            }
+        }
+        smallest
+    }
+
+    fn remove_smallest(&mut self) {
+        if let Some((index, _)) = self.smallest() {
+            self.cells.remove(index);
+        }
+    }
+}
+
+/// `x` clamped into [0, 1] (NaN to 0).
+fn unit<T: Real>(x: T) -> T {
+    if x > T::one() {
+        T::one()
+    } else if x > T::zero() {
+        x
+    } else {
+        T::zero()
+    }
+}
