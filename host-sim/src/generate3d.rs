@@ -176,7 +176,13 @@ pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> 
         },
         measurement,
         sensors,
-        birth: Birth3dSpec { probability: 0.0, detection: BirthDetectionSpec::AllDetected, events: Default::default(), cells: vec![] },
+        birth: Birth3dSpec {
+            probability: 0.0,
+            detection: BirthDetectionSpec::AllDetected,
+            events: Default::default(),
+            measured: None,
+            cells: vec![],
+        },
         death_probability: 0.0,
         tracker: TrackerSpec {
             gate: Some(25.0),

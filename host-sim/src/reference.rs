@@ -27,6 +27,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use std::mem::size_of;
 use tracker_core::ekf::{self, Gaussian, Innovation};
 use tracker_core::model::ScanGeometry;
+use tracker_core::pool::BirthPool;
 use tracker_core::real::{LogSumExp, log_add};
 use tracker_core::tracker::{PlacedScan, place_scan};
 use tracker_core::weight::{Event, WeightModel};
@@ -102,9 +103,11 @@ struct Predicted<const S: usize, const D: usize> {
 
 /// One scan's sensor: the measurement model placed at the scan ([`place_scan`]), and each birth cell's
 /// innovation under it and whether it lies in the placed field of view.
-struct Scan<G, const D: usize> {
+struct Scan<G, const S: usize, const D: usize> {
     placed: PlacedScan<f64, G>,
     births: Vec<(Innovation<f64, D>, bool)>,
+    /// Each birth cell's density at the scan, its α, and the pool cell it was predicted from.
+    cells: Vec<(Gaussian<f64, S>, f64, Option<usize>)>,
 }
 
 /// What one reference scan did.
@@ -181,11 +184,13 @@ pub struct ReferenceTracker<
     max_children: u64,
     budget_scans: Vec<usize>,
     scans: usize,
+    /// Birth cells made from measurements, as the core's (docs/maths.md §5.8).
+    pool: BirthPool<f64, S, B>,
 }
 
 /// One scan's predictions and association entries, for the tracks of the parents it processes.
 struct Tables<G, const S: usize, const D: usize> {
-    scan: Scan<G, D>,
+    scan: Scan<G, S, D>,
     rows: usize,
     /// Parents processed (the best ones whose tables fit), in their order.
     parents: Vec<u32>,
@@ -285,6 +290,7 @@ where
             max_children: u64::MAX,
             budget_scans: vec![],
             scans: 0,
+            pool: BirthPool::new(),
         })
     }
 
@@ -340,7 +346,7 @@ where
     ) -> Result<ReferenceReport, ReferenceError> {
         let time = geometry.time;
         let placed = place_scan(&self.config, geometry, self.time, measurements, usize::MAX)?;
-        let scan = self.birth_cells(placed)?;
+        let scan = self.birth_cells(placed, time)?;
         let tables = self.tables(scan, time - self.time, measurements)?;
         let mut budget_reached = tables.parents.len() < self.hypotheses.len();
         // The pruned search's candidate lists: at most every (row, column) pair at each depth.
@@ -358,6 +364,11 @@ where
         let posterior = self.materialise(&tables, &children, measurements)?;
         budget_reached |= posterior.truncated;
         let log_kept = posterior.log_mass;
+        if let Some(measured) = &self.config.birth.measured {
+            let capacity = B.saturating_sub(self.config.birth.cells.len());
+            let model = &tables.scan.placed.model;
+            self.pool.update(measured, capacity, model, time, measurements, &posterior.unexplained, &posterior.born);
+        }
         self.tracks = posterior.tracks;
         self.hypotheses = posterior.hypotheses;
         self.objects = posterior.objects;
@@ -376,21 +387,34 @@ where
     }
 
     /// The birth cells as the placed sensor sees them (as the core's `birth_cells`).
-    fn birth_cells(&self, placed: PlacedScan<f64, G>) -> Result<Scan<G, D>, StepError> {
-        let mut births = Vec::with_capacity(self.config.birth.cells.len());
-        for (cell, gaussian) in self.config.birth.cells.iter().enumerate() {
-            let innovation = ekf::innovation(&placed.model, gaussian).map_err(|_| StepError::BirthCell { cell })?;
+    fn birth_cells(&self, mut placed: PlacedScan<f64, G>, time: f64) -> Result<Scan<G, S, D>, StepError> {
+        let (mut births, mut cells) = (vec![], vec![]);
+        let alpha = self.config.birth.probability;
+        let fixed = self.config.birth.cells.iter().enumerate().map(|(cell, g)| (Some(cell), *g, alpha, None));
+        let from_pool = self.pool.predicted(&self.config.motion, time).map(|(index, g, a)| (None, g, a, Some(index)));
+        let mut no_birth = 0.0;
+        for (fixed_cell, gaussian, alpha, pool_cell) in fixed.chain(from_pool).take(B) {
+            let innovation = match (ekf::innovation(&placed.model, &gaussian), fixed_cell) {
+                (Ok(innovation), _) => innovation,
+                (Err(_), Some(cell)) => return Err(StepError::BirthCell { cell }),
+                (Err(_), None) => continue, // a pool cell is left out of this scan, as in the core
+            };
             let in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
             births.push((innovation, in_view));
+            cells.push((gaussian, alpha, pool_cell));
+            no_birth += (1.0 - alpha).ln();
         }
-        Ok(Scan { placed, births })
+        if self.config.birth.measured.is_some() {
+            placed.weights.set_birth_cells(cells.len(), no_birth);
+        }
+        Ok(Scan { placed, births, cells })
     }
 
     /// Predicts and scores the tracks of the best parents whose tables fit half the working share (at
     /// least the best parent).
     fn tables(
         &self,
-        scan: Scan<G, D>,
+        scan: Scan<G, S, D>,
         dt: f64,
         measurements: &[SVector<f64, D>],
     ) -> Result<Tables<G, S, D>, ReferenceError> {
@@ -433,7 +457,7 @@ where
     /// Fills the tables for the tracks that have a slot and the birth cells.
     fn score(
         &self,
-        scan: Scan<G, D>,
+        scan: Scan<G, S, D>,
         dt: f64,
         measurements: &[SVector<f64, D>],
         parents: Vec<u32>,
@@ -444,7 +468,7 @@ where
         let mut predicted = vec![];
         let (mut entries, mut bounds, mut order) = (vec![], vec![], vec![]);
         let PlacedScan { model, detection, weights } = &scan.placed;
-        let mut column = |innovation: &Innovation<f64, D>, in_view: bool, birth: bool| {
+        let mut column = |innovation: &Innovation<f64, D>, in_view: bool, birth: Option<f64>| {
             let (start, first) = (bounds.len(), entries.len());
             for z in measurements {
                 let entry = if in_view {
@@ -452,7 +476,7 @@ where
                 } else {
                     f64::NEG_INFINITY
                 };
-                let entry = if birth { weights.birth_entry(entry) } else { entry };
+                let entry = birth.map_or(entry, |alpha| weights.birth_entry_with(entry, alpha));
                 entries.push(entry);
                 bounds.push(entry.max(0.0));
             }
@@ -470,11 +494,11 @@ where
             let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
             let innovation = ekf::innovation(model, &state).map_err(numerical)?;
             let in_view = detection.field_of_view.sees(model, &innovation.predicted);
-            column(&innovation, in_view, false);
+            column(&innovation, in_view, None);
             predicted.push(Predicted { state, innovation, in_view });
         }
-        for (innovation, in_view) in &scan.births {
-            column(innovation, *in_view, true);
+        for ((innovation, in_view), &(_, alpha, _)) in scan.births.iter().zip(&scan.cells) {
+            column(innovation, *in_view, Some(alpha));
         }
         let cell_entries = |cell: usize| &entries[(predicted.len() + cell) * rows..(predicted.len() + cell + 1) * rows];
         let birth_columns: Vec<usize> = if weights.independent_births() {
@@ -582,6 +606,10 @@ where
         });
         let mut posterior = Posterior::new(self.next_label, self.shares.posterior);
         let mut sources: Vec<TrackKey> = vec![];
+        // Σ w over the kept children, and per row and per pool cell the part of it that takes the row or
+        // gives birth in the cell, relative to the best child (docs/maths.md §5.8).
+        let (mut mass, mut taken, mut born) = (0.0, vec![0.0; tables.rows], vec![0.0; self.pool.cells().len()]);
+        let best = order.first().map_or(0.0, |&i| children.heads[i as usize].log_weight);
         for index in order {
             self.sources(tables, children, index as usize, &mut sources);
             let head = &children.heads[index as usize];
@@ -589,7 +617,20 @@ where
                 posterior.truncated = true;
                 break;
             }
+            let weight = (head.log_weight - best).exp();
+            mass += weight;
+            for &(is_birth, source, row) in &sources {
+                if row == CLUTTER {
+                    continue;
+                }
+                taken[row as usize] += weight;
+                if is_birth && let Some(pool_cell) = tables.scan.cells[source as usize].2 {
+                    born[pool_cell] += weight;
+                }
+            }
         }
+        posterior.unexplained = taken.iter().map(|t| 1.0 - t / mass).collect();
+        posterior.born = born.iter().map(|b| b / mass).collect();
         posterior.normalise();
         Ok(posterior)
     }
@@ -939,6 +980,10 @@ struct Posterior<const S: usize> {
     share: usize,
     truncated: bool,
     log_mass: f64,
+    /// Per measurement, r_U: the kept children's weight that leaves it to clutter (measured births).
+    unexplained: Vec<f64>,
+    /// Per pool cell, the kept children's weight in which it gives birth.
+    born: Vec<f64>,
 }
 
 impl<const S: usize> Posterior<S> {
@@ -956,6 +1001,8 @@ impl<const S: usize> Posterior<S> {
             share,
             truncated: false,
             log_mass: f64::NEG_INFINITY,
+            unexplained: vec![],
+            born: vec![],
         }
     }
 
@@ -1021,8 +1068,7 @@ impl<const S: usize> Posterior<S> {
                 *next_label += 1;
                 *next_label - 1
             });
-            let gaussian = tracker.config.birth.cells[source as usize];
-            (label, gaussian, tables.scan.births[source as usize].0)
+            (label, tables.scan.cells[source as usize].0, tables.scan.births[source as usize].0)
         } else {
             let p = &tables.predicted[tables.slot[source as usize] as usize];
             (tracker.tracks[source as usize].label, p.state, p.innovation)

@@ -196,7 +196,7 @@ where
         sensor: first.ok_or_else(|| Error::input("sensors: needs at least one sensor"))?,
         birth: BirthModel {
             events: scenario.birth.events.core(),
-            measured: None,
+            measured: scenario.birth.measured.as_ref().map(|m| m.core()),
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

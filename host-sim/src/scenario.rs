@@ -251,6 +251,95 @@ impl BirthEventsSpec {
     }
 }
 
+/// The admissible region a measurement's birth density is cut from (`tracker_core::model::AdmissibleRegion`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum AdmissiblePresetSpec {
+    /// Planar positions: velocity N(0, `velocity_sigma`² I).
+    #[default]
+    Planar,
+    /// Low Earth orbit (bound orbits, perigee ≥ R_E + 200 km, apogee ≤ R_E + 2000 km).
+    Leo,
+    /// The GEO belt (near-circular, inclination ≤ 15°).
+    Geo,
+}
+
+/// Birth cells made from unexplained measurements (`tracker_core::pool::MeasuredBirths`,
+/// docs/maths.md §5.8).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredBirthsSpec {
+    /// The admissible region.
+    #[serde(default)]
+    pub region: AdmissiblePresetSpec,
+    /// Planar: the standard deviation of each velocity component of a new object.
+    #[serde(default = "default_velocity_sigma")]
+    pub velocity_sigma: f64,
+    /// Cells of the region's discretisation (each one optional: the preset's value).
+    #[serde(default)]
+    pub headings: Option<usize>,
+    /// Cells of horizontal speed.
+    #[serde(default)]
+    pub speeds: Option<usize>,
+    /// Cells of radial speed.
+    #[serde(default)]
+    pub climbs: Option<usize>,
+    /// Optical: cells of radius.
+    #[serde(default)]
+    pub ranges: Option<usize>,
+    /// λ_B: expected births per scan.
+    pub expected_births: f64,
+    /// The largest α of one measurement's cells, in (0, 1).
+    pub max_probability: f64,
+    /// The smallest r_U for a measurement to make cells.
+    #[serde(default = "default_min_unexplained")]
+    pub min_unexplained: f64,
+    /// Seconds a cell lives.
+    pub lifetime: f64,
+}
+
+fn default_velocity_sigma() -> f64 {
+    1.0
+}
+
+fn default_min_unexplained() -> f64 {
+    0.5
+}
+
+impl MeasuredBirthsSpec {
+    /// The core's settings.
+    pub fn core(&self) -> tracker_core::pool::MeasuredBirths<f64> {
+        use tracker_core::model::AdmissibleRegion;
+        let preset = match self.region {
+            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(self.velocity_sigma),
+            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
+            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
+        };
+        let region = AdmissibleRegion {
+            headings: self.headings.unwrap_or(preset.headings),
+            speeds: self.speeds.unwrap_or(preset.speeds),
+            climbs: self.climbs.unwrap_or(preset.climbs),
+            ranges: self.ranges.unwrap_or(preset.ranges),
+            ..preset
+        };
+        tracker_core::pool::MeasuredBirths {
+            region,
+            expected_births: self.expected_births,
+            max_probability: self.max_probability,
+            min_unexplained: self.min_unexplained,
+            lifetime: self.lifetime,
+        }
+    }
+
+    /// Checks the settings as the core will.
+    pub(crate) fn validate(&self, events: BirthEventsSpec) -> Result<(), ScenarioError> {
+        if events != BirthEventsSpec::Independent {
+            return Err(error("birth.measured", "needs birth.events \"independent\"".to_string()));
+        }
+        self.core().validate().map_err(|reason| error("birth.measured", reason.to_string()))
+    }
+}
+
 /// Birth model.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -263,6 +352,9 @@ pub struct BirthSpec {
     /// At most one birth per scan, or independent births in every cell.
     #[serde(default, skip_serializing_if = "is_default")]
     pub events: BirthEventsSpec,
+    /// Birth cells made from the measurements (docs/maths.md §5.8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<MeasuredBirthsSpec>,
     /// Birth pdf of each cell.
     pub cells: Vec<GaussianSpec>,
 }
@@ -595,6 +687,9 @@ impl Scenario {
         let alpha = self.birth.probability;
         if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
             return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
+        }
+        if let Some(measured) = &self.birth.measured {
+            measured.validate(self.birth.events)?;
         }
         for (i, cell) in self.birth.cells.iter().enumerate() {
             finite_all(&format!("birth.cells[{i}].mean"), &cell.mean)?;

@@ -339,6 +339,9 @@ pub struct Birth3dSpec {
     /// At most one birth per scan, or independent births in every cell.
     #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
     pub events: crate::scenario::BirthEventsSpec,
+    /// Birth cells made from the measurements (docs/maths.md §5.8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<crate::scenario::MeasuredBirthsSpec>,
     /// Birth pdf of each cell (may be empty).
     pub cells: Vec<Gaussian6Spec>,
 }
@@ -565,6 +568,9 @@ impl Scenario3d {
         let alpha = self.birth.probability;
         if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
             return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
+        }
+        if let Some(measured) = &self.birth.measured {
+            measured.validate(self.birth.events)?;
         }
         for (i, cell) in self.birth.cells.iter().enumerate() {
             finite_all(&format!("birth.cells[{i}].mean"), &cell.mean)?;

@@ -83,7 +83,7 @@ pub fn config<M, const B: usize>(
         sensor: sensor(&scenario.sensor),
         birth: BirthModel {
             events: scenario.birth.events.core(),
-            measured: None,
+            measured: scenario.birth.measured.as_ref().map(|m| m.core()),
             probability: scenario.birth.probability,
             cells,
             detection: match scenario.birth.detection {

@@ -12,7 +12,13 @@ fn config_with_births(
     detection: BirthDetection,
 ) -> LinearConfig<f64, 3> {
     let mut config = linear_config::<3>(0.9, 1.0, 400.0);
-    config.birth = BirthModel { probability: alpha, cells: cells.iter().copied().collect(), detection, events: Default::default(), measured: None };
+    config.birth = BirthModel {
+        probability: alpha,
+        cells: cells.iter().copied().collect(),
+        detection,
+        events: Default::default(),
+        measured: None,
+    };
     config.death_probability = beta;
     config
 }

@@ -189,9 +189,10 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         }
         // Σ_z r_U(z) over the measurements that make cells.
         let minimum = settings.min_unexplained;
-        let total = unexplained.iter().take(measurements.len()).fold(T::zero(), |sum, &r_u| {
-            if r_u >= minimum && r_u > T::zero() { sum + r_u } else { sum }
-        });
+        let total = unexplained
+            .iter()
+            .take(measurements.len())
+            .fold(T::zero(), |sum, &r_u| if r_u >= minimum && r_u > T::zero() { sum + r_u } else { sum });
         if !(total > T::zero()) {
             return update;
         }

@@ -364,7 +364,15 @@ fn build_no_event_matrix<
 /// Independent births (docs/maths.md §5.6): appends a column for each birth cell that some measurement may
 /// take, at most `room` of them (a child holds at most `N` objects); returns how many such cells found no
 /// room. A cell no measurement can take is born in no child with non-zero weight and needs no column.
-fn push_birth_columns<T: Real, const S: usize, const D: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn push_birth_columns<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
     matrix: &mut AssociationMatrix<T, N, Z>,
     columns: &mut ParentColumns<N>,
     scan: &ScanInputs<'_, T, S, D, Z, K, B>,

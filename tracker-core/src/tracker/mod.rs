@@ -38,15 +38,15 @@ mod score;
 
 pub use scan::{PlacedScan, check_scan, place_scan};
 
+use crate::association::Column;
 use crate::config::Config;
 use crate::digest::Fnv1a;
 use crate::ekf::Gaussian;
 use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
-use crate::association::Column;
 use crate::index::{At, NONE, insertion_sort_by};
-use crate::pool::{BirthPool, PoolUpdate};
 use crate::model::{MeasurementModel, MotionModel, ScanGeometry};
+use crate::pool::{BirthPool, PoolUpdate};
 use crate::random::scan_seed;
 use crate::real::{LogSumExp, Real, exp};
 use crate::report::StepReport;
@@ -812,7 +812,8 @@ where
         self.next_label = outcome.next_label;
         let birth_pool = match &self.config.birth.measured {
             Some(measured) => {
-                let (unexplained, born) = measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
+                let (unexplained, born) =
+                    measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
                 let rows = measurements.len().min(Z);
                 self.pool.update(measured, capacity, &placed.model, time, measurements, &unexplained[..rows], &born)
@@ -1255,7 +1256,15 @@ fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, co
 /// Per measurement, the posterior probability r_U that no object took it; per pool cell, the posterior
 /// probability that it gave birth: sums over the kept children of the scan, with weights normalised over
 /// them (docs/maths.md §5.8).
-fn measurement_use<T: Real, const S: usize, const D: usize, const H: usize, const N: usize, const Z: usize, const B: usize>(
+fn measurement_use<
+    T: Real,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const B: usize,
+>(
     generation: &Generation<T, H, N, Z>,
     birth_cells: &BirthCells<T, S, D, B>,
     rows: usize,

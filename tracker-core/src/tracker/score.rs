@@ -7,10 +7,10 @@ use crate::config::{Config, NumericalFailure};
 use crate::ekf::{self, Gaussian, Innovation, NumericalError};
 use crate::error::StepError;
 use crate::index::{At, NONE};
-use crate::pool::BirthPool;
-use crate::real::ln;
 use crate::model::{MeasurementModel, MotionModel};
+use crate::pool::BirthPool;
 use crate::real::Real;
+use crate::real::ln;
 use crate::report::NumericalDrops;
 use crate::store::Track;
 use nalgebra::SVector;
@@ -191,8 +191,10 @@ where
     G: MeasurementModel<T, S, D>,
 {
     let mut cells = BirthCells::EMPTY;
-    let fixed = config.birth.cells.iter().enumerate().map(|(cell, state)| (NONE, cell, *state, config.birth.probability));
-    let from_pool = pool.predicted(&config.motion, time).map(|(index, state, alpha)| (index as u16, usize::MAX, state, alpha));
+    let fixed =
+        config.birth.cells.iter().enumerate().map(|(cell, state)| (NONE, cell, *state, config.birth.probability));
+    let from_pool =
+        pool.predicted(&config.motion, time).map(|(index, state, alpha)| (index as u16, usize::MAX, state, alpha));
     let mut no_birth = T::zero();
     for (pool_cell, fixed_cell, state, alpha) in fixed.chain(from_pool) {
         if cells.count >= B {
@@ -206,7 +208,8 @@ where
         let cell = cells.count;
         *cells.states.at_mut(cell) = state;
         *cells.innovations.at_mut(cell) = innovation;
-        *cells.in_field_of_view.at_mut(cell) = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+        *cells.in_field_of_view.at_mut(cell) =
+            placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
         *cells.probabilities.at_mut(cell) = alpha;
         *cells.pool_cell.at_mut(cell) = pool_cell;
         cells.count += 1;
