@@ -43,6 +43,27 @@ const SUBSAMPLES: usize = 4;
 const CELL_SIGMA: f64 = 0.5;
 
 /// One weighted Gaussian of a birth density; the weights of one measurement's components sum to 1.
+///
+/// # Examples
+/// The birth density of a radar measurement 900 km away at 40° elevation, for a LEO object.
+/// ```
+/// use nalgebra::SVector;
+/// use tracker_core::model::{
+///     AdmissibleRegion, BirthComponent, EarthRotation, GroundSite, MAX_BIRTH_COMPONENTS, MeasurementModel,
+///     RadarRangeAzEl,
+/// };
+/// let site = GroundSite { latitude: 0.7_f64, longitude: -1.8, height: 1.6 };
+/// let radar = RadarRangeAzEl::at_site(&site, &EarthRotation::new(0.3), 120.0, [0.02, 1e-3, 1e-3]);
+/// let region = AdmissibleRegion::leo();
+/// let mut out = [BirthComponent::ZERO; MAX_BIRTH_COMPONENTS];
+/// let n = radar.birth_components(&SVector::from([900.0, 1.0, 0.7]), &region, &mut out)?;
+/// assert!(n > 0 && n <= region.max_components());
+/// let total: f64 = out[..n].iter().map(|component| component.weight).sum();
+/// assert!((total - 1.0).abs() < 1e-12);
+/// // Every component is centred on the measured position.
+/// assert!(out[..n].windows(2).all(|pair| pair[0].state.mean.fixed_rows::<3>(0) == pair[1].state.mean.fixed_rows::<3>(0)));
+/// # Ok::<(), tracker_core::model::BirthError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BirthComponent<T: Real, const S: usize> {
