@@ -43,6 +43,27 @@ const SUBSAMPLES: usize = 4;
 const CELL_SIGMA: f64 = 0.5;
 
 /// One weighted Gaussian of a birth density; the weights of one measurement's components sum to 1.
+///
+/// # Examples
+/// The birth density of a radar measurement 900 km away at 40° elevation, for a LEO object.
+/// ```
+/// use nalgebra::SVector;
+/// use tracker_core::model::{
+///     AdmissibleRegion, BirthComponent, EarthRotation, GroundSite, MAX_BIRTH_COMPONENTS, MeasurementModel,
+///     RadarRangeAzEl,
+/// };
+/// let site = GroundSite { latitude: 0.7_f64, longitude: -1.8, height: 1.6 };
+/// let radar = RadarRangeAzEl::at_site(&site, &EarthRotation::new(0.3), 120.0, [0.02, 1e-3, 1e-3]);
+/// let region = AdmissibleRegion::leo();
+/// let mut out = [BirthComponent::ZERO; MAX_BIRTH_COMPONENTS];
+/// let n = radar.birth_components(&SVector::from([900.0, 1.0, 0.7]), &region, &mut out)?;
+/// assert!(n > 0 && n <= region.max_components());
+/// let total: f64 = out[..n].iter().map(|component| component.weight).sum();
+/// assert!((total - 1.0).abs() < 1e-12);
+/// // Every component is centred on the measured position.
+/// assert!(out[..n].windows(2).all(|pair| pair[0].state.mean.fixed_rows::<3>(0) == pair[1].state.mean.fixed_rows::<3>(0)));
+/// # Ok::<(), tracker_core::model::BirthError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BirthComponent<T: Real, const S: usize> {
@@ -778,8 +799,8 @@ mod tests {
         }
     }
 
-    /// A bound orbit with perigee and apogee in [low, high] at a random true anomaly, placed at
-    /// geocentric `position` direction... returned as (radius, radial speed, horizontal speed).
+    /// A bound orbit with perigee and apogee uniform in [low, high] at a uniform true anomaly: its radius,
+    /// radial speed and horizontal speed there.
     fn orbit(rng: &mut Rng, low: f64, high: f64) -> (f64, f64, f64) {
         let rp = rng.range(low, high);
         let ra = rng.range(rp, high);
@@ -824,10 +845,19 @@ mod tests {
         out.iter().map(|component| mahalanobis2(truth, component)).fold(f64::INFINITY, f64::min) <= CHI2_6_999
     }
 
-    fn radar_coverage(with_rate: bool, trials: usize, seed: u64) -> Coverage {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Sensor {
+        Radar,
+        RangeRate,
+        Optical,
+    }
+
+    /// Random bound LEO orbits on random lines of sight above 5.7° elevation of the site, measured with noise.
+    fn leo_coverage(sensor: Sensor, trials: usize, seed: u64) -> Coverage {
         let (site_geo, rotation, t) = site();
         let radar = RadarRangeAzEl::at_site(&site_geo, &rotation, t, [0.02, 1e-3, 1e-3]);
         let rate = RadarRangeRate::at_site(&site_geo, &rotation, t, [0.02, 1e-3, 1e-3, 1e-4]);
+        let telescope = OpticalRaDec { observer: radar.observer, sigma: [5.0 * ARCSEC, 5.0 * ARCSEC] };
         let region = AdmissibleRegion::leo();
         let site = V3::from([radar.observer[0], radar.observer[1], radar.observer[2]]);
         let mut rng = Rng(seed);
@@ -838,18 +868,28 @@ mod tests {
             let (los, _, _) = look(&radar.enu, azimuth, elevation);
             let (radius, vr, vt) = orbit(&mut rng, region.min_perigee_radius, region.max_apogee_radius);
             let truth = state_on_los(&site, &los, radius, vr, vt, rng.range(-PI, PI));
-            let births = if with_rate {
-                let mut z = rate.measure(&truth);
-                for (k, s) in rate.sigma.iter().enumerate() {
-                    z[k] += s * rng.normal();
+            let births = match sensor {
+                Sensor::RangeRate => {
+                    let mut z = rate.measure(&truth);
+                    for (k, s) in rate.sigma.iter().enumerate() {
+                        z[k] += s * rng.normal();
+                    }
+                    rate.birth_components(&z, &region, &mut out)
                 }
-                rate.birth_components(&z, &region, &mut out)
-            } else {
-                let mut z = radar.measure(&truth);
-                for (k, s) in radar.sigma.iter().enumerate() {
-                    z[k] += s * rng.normal();
+                Sensor::Radar => {
+                    let mut z = radar.measure(&truth);
+                    for (k, s) in radar.sigma.iter().enumerate() {
+                        z[k] += s * rng.normal();
+                    }
+                    radar.birth_components(&z, &region, &mut out)
                 }
-                radar.birth_components(&z, &region, &mut out)
+                Sensor::Optical => {
+                    let mut z = telescope.measure(&truth);
+                    for (k, s) in telescope.sigma.iter().enumerate() {
+                        z[k] += s * rng.normal();
+                    }
+                    telescope.birth_components(&z, &region, &mut out)
+                }
             };
             match births {
                 Ok(n) => {
@@ -883,14 +923,20 @@ mod tests {
 
     #[test]
     fn radar_leo_coverage() {
-        let coverage = radar_coverage(false, trials(3000, 150), 1);
+        let coverage = leo_coverage(Sensor::Radar, trials(3000, 150), 1);
         assert!(report("radar (range, az, el), LEO", &coverage) >= 0.99);
     }
 
     #[test]
     fn radar_with_range_rate_leo_coverage() {
-        let coverage = radar_coverage(true, trials(3000, 150), 2);
+        let coverage = leo_coverage(Sensor::RangeRate, trials(3000, 150), 2);
         assert!(report("radar with range-rate, LEO", &coverage) >= 0.99);
+    }
+
+    #[test]
+    fn optical_leo_coverage() {
+        let coverage = leo_coverage(Sensor::Optical, trials(3000, 50), 4);
+        assert!(report("optical (RA, Dec), LEO", &coverage) >= 0.99);
     }
 
     #[test]
