@@ -27,7 +27,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use std::mem::size_of;
 use tracker_core::ekf::{self, Gaussian, Innovation};
 use tracker_core::model::ScanGeometry;
-use tracker_core::pool::BirthPool;
+use tracker_core::pool::{BirthPool, ScanUse};
 use tracker_core::real::{LogSumExp, log_add};
 use tracker_core::tracker::{PlacedScan, place_scan};
 use tracker_core::weight::{Event, WeightModel};
@@ -367,7 +367,8 @@ where
         if let Some(measured) = &self.config.birth.measured {
             let capacity = B.saturating_sub(self.config.birth.cells.len());
             let model = &tables.scan.placed.model;
-            self.pool.update(measured, capacity, model, time, measurements, &posterior.unexplained, &posterior.born);
+            let scan = ScanUse { time, measurements, unexplained: &posterior.unexplained, born: &posterior.born };
+            self.pool.update(measured, capacity, model, &scan);
         }
         self.tracks = posterior.tracks;
         self.hypotheses = posterior.hypotheses;

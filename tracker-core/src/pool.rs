@@ -110,6 +110,20 @@ pub struct PoolUpdate {
     pub without_density: usize,
 }
 
+/// What one scan tells the pool: its time and measurements, each measurement's r_U and each pool cell's
+/// probability of having given birth in the scan (docs/maths.md §5.8).
+#[derive(Debug, Clone, Copy)]
+pub struct ScanUse<'a, T, const D: usize> {
+    /// Time of the scan (seconds since the tracker's epoch).
+    pub time: f64,
+    /// The scan's measurements.
+    pub measurements: &'a [SVector<T, D>],
+    /// Per measurement, r_U.
+    pub unexplained: &'a [T],
+    /// Per pool cell (in the pool's order before the update), the probability that it gave birth.
+    pub born: &'a [T],
+}
+
 /// At most `B` birth cells made from measurements (docs/maths.md §5.8).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BirthPool<T: Real, const S: usize, const B: usize> {
@@ -151,21 +165,19 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         })
     }
 
-    /// Updates the pool after the scan at `time`: each cell's α times 1 − `born[l]` (the posterior
-    /// probability that cell l gave birth in this scan; missing entries count as 0), cells past their
-    /// lifetime removed, then the cells of every measurement whose `unexplained[z]` (r_U) is at least the
-    /// settings' minimum added, made by `model` (the measurement model placed at this scan). At most
+    /// Updates the pool after `scan`: each cell's α times 1 − `born[l]` (the posterior probability that
+    /// cell l gave birth in the scan; missing entries count as 0), cells past their lifetime removed, then
+    /// the cells of every measurement whose `unexplained[z]` (r_U) is at least the settings' minimum added,
+    /// made by `model` (the measurement model placed at the scan). At most
     /// `capacity` (≤ `B`) cells are kept: the smallest α give way, the older first among equals.
     pub fn update<G: MeasurementModel<T, S, D>, const D: usize>(
         &mut self,
         settings: &MeasuredBirths<T>,
         capacity: usize,
         model: &G,
-        time: f64,
-        measurements: &[SVector<T, D>],
-        unexplained: &[T],
-        born: &[T],
+        scan: &ScanUse<'_, T, D>,
     ) -> PoolUpdate {
+        let ScanUse { time, measurements, unexplained, born } = *scan;
         let capacity = capacity.min(B);
         let mut update = PoolUpdate::default();
         // Age the old cells.
@@ -175,7 +187,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             let given_birth = unit(born.get(old_index).copied().unwrap_or(T::zero()));
             old_index += 1;
             let Some(cell) = self.cells.get_mut(index) else { break };
-            cell.probability = cell.probability * (T::one() - given_birth);
+            cell.probability *= T::one() - given_birth;
             if !(time - cell.time <= settings.lifetime && cell.probability > T::zero()) {
                 self.cells.remove(index);
                 update.expired += 1;
@@ -266,5 +278,71 @@ fn unit<T: Real>(x: T) -> T {
         x
     } else {
         T::zero()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::PositionMeasurement;
+
+    fn settings() -> MeasuredBirths<f64> {
+        MeasuredBirths {
+            expected_births: 1.0,
+            max_probability: 0.3,
+            min_unexplained: 0.5,
+            lifetime: 10.0,
+            ..MeasuredBirths::new(AdmissibleRegion::planar(1.0))
+        }
+    }
+
+    fn scan<'a>(time: f64, zs: &'a [SVector<f64, 2>], r_u: &'a [f64], born: &'a [f64]) -> ScanUse<'a, f64, 2> {
+        ScanUse { time, measurements: zs, unexplained: r_u, born }
+    }
+
+    #[test]
+    fn unexplained_measurements_make_cells_with_alpha_shared_by_r_u_and_capped() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0]), SVector::from([9.0, 0.0])];
+        let mut pool = BirthPool::<f64, 4, 4>::new();
+        // r_U 0.9 and 0.3 (below the minimum) and 0.1: only the first makes a cell, α = min(0.3, 1 · 0.9 / 0.9).
+        let update = pool.update(&settings(), 4, &model, &scan(1.0, &zs, &[0.9, 0.3, 0.1], &[]));
+        assert_eq!((update.added, update.evicted, update.expired), (1, 0, 0));
+        assert_eq!(pool.cells()[0].probability, 0.3);
+        assert_eq!(pool.cells()[0].state.mean, SVector::from([1.0, 2.0, 0.0, 0.0]));
+        // Two unexplained measurements share λ_B = 1: α = 0.6 / 1.1 and 0.5 / 1.1, capped at 0.3.
+        let update = pool.update(&settings(), 4, &model, &scan(2.0, &zs[1..], &[0.6, 0.5], &[0.5]));
+        assert_eq!(update.added, 2);
+        let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
+        assert_eq!(alphas, [0.15, 0.3, 0.3], "the first cell gave birth with probability 1/2");
+    }
+
+    #[test]
+    fn a_full_pool_keeps_the_largest_alphas_and_old_cells_expire() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let zs = [SVector::from([0.0, 0.0]), SVector::from([1.0, 0.0]), SVector::from([2.0, 0.0])];
+        let mut pool = BirthPool::<f64, 4, 2>::new();
+        let settings = MeasuredBirths { max_probability: 0.9, min_unexplained: 0.1, ..settings() };
+        // α = 0.5, 0.3, 0.2 (r_U shares of λ_B = 1): the smallest gives way.
+        let update = pool.update(&settings, 2, &model, &scan(0.0, &zs, &[1.0, 0.6, 0.4], &[]));
+        assert_eq!((update.added, update.evicted), (2, 1));
+        let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
+        assert_eq!(alphas, [0.5, 0.3]);
+        // Past the lifetime both expire.
+        let update = pool.update(&settings, 2, &model, &scan(10.5, &[], &[], &[]));
+        assert_eq!((update.expired, pool.cells().len()), (2, 0));
+    }
+
+    #[test]
+    fn a_measurement_without_a_birth_density_is_counted_and_makes_no_cell() {
+        // A GEO region for a planar model is still a density (position models ignore the orbit); an
+        // invalid region is not.
+        let model = PositionMeasurement::isotropic(0.5);
+        let zs = [SVector::from([0.0, 0.0])];
+        let mut pool = BirthPool::<f64, 4, 2>::new();
+        let broken = MeasuredBirths { region: AdmissibleRegion { mu: -1.0, ..settings().region }, ..settings() };
+        let update = pool.update(&broken, 2, &model, &scan(0.0, &zs, &[1.0], &[]));
+        assert_eq!((update.added, update.without_density), (0, 1));
+        assert!(pool.cells().is_empty());
     }
 }

@@ -659,7 +659,7 @@ mod tests {
         for position in [0, 2, 3] {
             columns.push(position).unwrap();
         }
-        let parent = Parent { index: 1, log_weight: 0.0, in_view: 3, rows: 2 };
+        let parent = Parent { index: 1, log_weight: 0.0, in_view: 3, rows: 2, births_skipped: 0 };
         let mut recorded = OfferedChildren::<f64, 8, 2>::new();
         recorded.push(-3.0, &[1, CLUTTER]); // takes column 1 (position 2): positions 0 and 3 may die
         let mut top = TopChildren::<f64, 8, 2>::new();

@@ -46,7 +46,7 @@ use crate::error::{ConfigError, StepError};
 use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::index::{At, NONE, insertion_sort_by};
 use crate::model::{MeasurementModel, MotionModel, ScanGeometry};
-use crate::pool::{BirthPool, PoolUpdate};
+use crate::pool::{BirthPool, PoolUpdate, ScanUse};
 use crate::random::scan_seed;
 use crate::real::{LogSumExp, Real, exp};
 use crate::report::StepReport;
@@ -816,7 +816,8 @@ where
                     measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
                 let rows = measurements.len().min(Z);
-                self.pool.update(measured, capacity, &placed.model, time, measurements, &unexplained[..rows], &born)
+                let scan = ScanUse { time, measurements, unexplained: &unexplained[..rows], born: &born };
+                self.pool.update(measured, capacity, &placed.model, &scan)
             }
             None => PoolUpdate::default(),
         };
