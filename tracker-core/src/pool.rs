@@ -189,7 +189,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             let Some(cell) = self.cells.get_mut(index) else { break };
             cell.probability *= T::one() - given_birth;
             if !(time - cell.time <= settings.lifetime && cell.probability > T::zero()) {
-                self.cells.remove(index);
+                self.remove_at(index);
                 update.expired += 1;
             } else {
                 index += 1;
@@ -245,7 +245,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         }
         match self.smallest() {
             Some((index, probability)) if probability < cell.probability => {
-                self.cells.remove(index);
+                self.remove_at(index);
                 self.cells.push(cell).is_ok()
             }
             _ => false,
@@ -265,7 +265,17 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
 
     fn remove_smallest(&mut self) {
         if let Some((index, _)) = self.smallest() {
-            self.cells.remove(index);
+            self.remove_at(index);
+        }
+    }
+
+    /// Removes the cell at `index`, keeping the order of the others (nothing when there is none).
+    fn remove_at(&mut self, index: usize) {
+        if let Some(tail) = self.cells.get_mut(index..)
+            && !tail.is_empty()
+        {
+            tail.rotate_left(1);
+            self.cells.pop();
         }
     }
 }
