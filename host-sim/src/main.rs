@@ -147,6 +147,28 @@ enum Command {
         #[arg(long)]
         scans: Option<usize>,
     },
+    /// Check SGP4 (the `sgp4` crate, AFSPC mode, through host-sim's TLE parser) against the verification
+    /// cases of Vallado et al. 2006 (bundled in host-sim/data/sgp4-verification); writes a JSON file.
+    Sgp4Check {
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Element sets to check instead of the bundled ones (needs --expected).
+        #[arg(long, requires = "expected")]
+        tle: Option<PathBuf>,
+        /// Expected states for --tle (format: host-sim/data/sgp4-verification/README.md).
+        #[arg(long, requires = "tle")]
+        expected: Option<PathBuf>,
+    },
+    /// Read a catalogue (TLE, 3LE, OMM JSON or CSV) and write its objects with their SGP4 TEME states at
+    /// their epochs as JSON (docs/scenario-format.md, "Catalogue files").
+    Catalogue {
+        /// Catalogue file.
+        file: PathBuf,
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Check the R-FISST sampler against exhaustive enumeration on random small problems.
     SamplerCheck {
         /// Number of random cases.
@@ -323,6 +345,27 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 AnyScenario::V2(scenario) => host_sim::digest3d::run(&scenario, scans)?,
             };
             println!("{digest}");
+            Ok(())
+        }
+        Command::Sgp4Check { out, tle, expected } => {
+            let report = match (tle, expected) {
+                (Some(tle), Some(expected)) => {
+                    let tle_text = host_sim::scenario::read_limited(&tle)?;
+                    let expected_text = host_sim::scenario::read_limited(&expected)?;
+                    let names = (tle.display().to_string(), expected.display().to_string());
+                    host_sim::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
+                }
+                _ => host_sim::sgp4_check::run()?,
+            };
+            write_report(&out, &report)?;
+            if report.mismatched_cases > 0 {
+                return Err(Error::internal(format!("{} SGP4 verification cases do not match", report.mismatched_cases)).into());
+            }
+            Ok(())
+        }
+        Command::Catalogue { file, out } => {
+            let report = host_sim::catalogue::report(&host_sim::catalogue::load(&file)?);
+            evaluate::write_json(&out, &report)?;
             Ok(())
         }
         Command::SamplerCheck { cases, seed, out } => {
