@@ -514,10 +514,8 @@ fn tle_epoch(year: &str, day: &str) -> Option<NaiveDateTime> {
     let nanos = ((day - ordinal) * 86_400e9).round() as u64;
     let (ordinal, nanos) = if nanos >= 86_400_000_000_000 { (ordinal + 1.0, 0) } else { (ordinal, nanos) };
     let date = NaiveDate::from_yo_opt(year, ordinal as u32)?;
-    let time = NaiveTime::from_num_seconds_from_midnight_opt(
-        (nanos / 1_000_000_000) as u32,
-        (nanos % 1_000_000_000) as u32,
-    )?;
+    let time =
+        NaiveTime::from_num_seconds_from_midnight_opt((nanos / 1_000_000_000) as u32, (nanos % 1_000_000_000) as u32)?;
     Some(date.and_time(time))
 }
 
@@ -576,19 +574,21 @@ fn tle_pair(file: &str, number: usize, line1: &str, line2: &str) -> Result<Catal
     let bstar = assumed_exponent(f1(54, 61))
         .ok_or_else(|| bad(number, "54-61", "B*", "expected [sign]DDDDD[sign]D", f1(54, 61)))?;
     let ephemeris_type = unsigned(f1(63, 63), Some(0))
-        .ok_or_else(|| bad(number, "63-63", "ephemeris type", "expected a digit", f1(63, 63)))? as u8;
+        .ok_or_else(|| bad(number, "63-63", "ephemeris type", "expected a digit", f1(63, 63)))?
+        as u8;
     let element_set_number = unsigned(f1(65, 68), Some(0))
         .ok_or_else(|| bad(number, "65-68", "element set number", "expected digits", f1(65, 68)))?;
-    let angle = |a, b, what| decimal(f2(a, b)).ok_or_else(|| bad(l2, &format!("{a}-{b}"), what, "expected a decimal", f2(a, b)));
+    let angle = |a, b, what| {
+        decimal(f2(a, b)).ok_or_else(|| bad(l2, &format!("{a}-{b}"), what, "expected a decimal", f2(a, b)))
+    };
     let inclination = angle(9, 16, "inclination")?;
     let right_ascension = angle(18, 25, "right ascension")?;
     let ecc = f2(27, 33);
     if !ecc.bytes().all(|b| b.is_ascii_digit()) {
         return Err(bad(l2, "27-33", "eccentricity", "expected 7 digits after an assumed \"0.\" (0 <= e < 1)", ecc));
     }
-    let eccentricity = ecc.parse::<u32>().map_err(|_| bad(l2, "27-33", "eccentricity", "expected 7 digits", ecc))?
-        as f64
-        / 1e7;
+    let eccentricity =
+        ecc.parse::<u32>().map_err(|_| bad(l2, "27-33", "eccentricity", "expected 7 digits", ecc))? as f64 / 1e7;
     let argument_of_perigee = angle(35, 42, "argument of perigee")?;
     let mean_anomaly = angle(44, 51, "mean anomaly")?;
     let mean_motion = angle(53, 63, "mean motion")?;
@@ -817,8 +817,7 @@ pub fn parse_omm_json(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cat
             })
         };
         let span = &text[from..to];
-        let line_of =
-            |key: &str| span.find(&format!("\"{key}\"")).map_or(start, |at| line_at(text, from + at));
+        let line_of = |key: &str| span.find(&format!("\"{key}\"")).map_or(start, |at| line_at(text, from + at));
         entries.push(omm_entry(file, start, &get, &line_of)?);
     }
     Ok(entries)
@@ -866,7 +865,12 @@ pub fn parse_omm_csv(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cata
         let number = i + 1;
         let fields = csv_fields(line.trim_end()).ok_or_else(|| err(file, number, "record", "unterminated quote"))?;
         if fields.len() != header.len() {
-            return Err(err(file, number, "record", format!("{} fields, the header has {}", fields.len(), header.len())));
+            return Err(err(
+                file,
+                number,
+                "record",
+                format!("{} fields, the header has {}", fields.len(), header.len()),
+            ));
         }
         let get = |key: &str| header.iter().position(|k| k == key).map(|p| Raw::Text(fields[p].as_str()));
         entries.push(omm_entry(file, number, &get, &|_| number)?);

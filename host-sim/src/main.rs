@@ -359,7 +359,11 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             };
             write_report(&out, &report)?;
             if report.mismatched_cases > 0 {
-                return Err(Error::internal(format!("{} SGP4 verification cases do not match", report.mismatched_cases)).into());
+                return Err(Error::internal(format!(
+                    "{} SGP4 verification cases do not match",
+                    report.mismatched_cases
+                ))
+                .into());
             }
             Ok(())
         }

@@ -93,11 +93,7 @@ fn parse_expected(file: &str, text: &str) -> Result<Vec<Case>, Error> {
         } else if words.len() == 7 {
             let v: Option<Vec<f64>> = words[1..].iter().map(|w| number(w)).collect();
             let v = v.ok_or_else(|| bad("state: expected 6 numbers"))?;
-            case.expected.push(Expected::State {
-                minutes,
-                position: [v[0], v[1], v[2]],
-                velocity: [v[3], v[4], v[5]],
-            });
+            case.expected.push(Expected::State { minutes, position: [v[0], v[1], v[2]], velocity: [v[3], v[4], v[5]] });
         } else {
             return Err(bad("expected \"t x y z vx vy vz\" or \"t error KIND\""));
         }
