@@ -17,6 +17,7 @@
 
 pub mod assignment;
 pub mod catalogue;
+pub mod catalogue_scenario;
 pub mod digest;
 pub mod digest3d;
 pub mod error;

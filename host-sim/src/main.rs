@@ -59,6 +59,23 @@ impl Common {
     }
 }
 
+/// The inputs of `generate catalogue` (docs/scenario-format.md, "Catalogue files" and "Sensors files").
+#[derive(clap::Args, Clone)]
+struct CatalogueArgs {
+    /// generate catalogue: the catalogue (TLE, 3LE, OMM JSON or CSV).
+    #[arg(long)]
+    catalogue: Option<PathBuf>,
+    /// generate catalogue: the sensors file (`rfisst-sensors/1`).
+    #[arg(long)]
+    sensors: Option<PathBuf>,
+    /// generate catalogue: the start, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]` (the scenario's epoch).
+    #[arg(long)]
+    start: Option<String>,
+    /// generate catalogue: the duration in hours.
+    #[arg(long)]
+    duration_hours: Option<f64>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a preset scenario and write it as a scenario file.
@@ -72,6 +89,8 @@ enum Command {
         /// Output scenario file (JSON).
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        catalogue: CatalogueArgs,
     },
     /// Run a tracker on a scenario file; writes summary.json, scans.jsonl, estimates.csv and plots.
     Run {
@@ -188,6 +207,8 @@ enum Command {
 enum AnyPreset {
     Planar(Preset),
     Ssa(Preset3d),
+    /// A catalogue seen by a sensor network (`--catalogue`, `--sensors`, `--start`, `--duration-hours`).
+    Catalogue,
 }
 
 impl clap::ValueEnum for AnyPreset {
@@ -200,6 +221,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
+            AnyPreset::Catalogue,
         ]
     }
 
@@ -207,6 +229,10 @@ impl clap::ValueEnum for AnyPreset {
         match self {
             AnyPreset::Planar(p) => p.to_possible_value(),
             AnyPreset::Ssa(p) => p.to_possible_value(),
+            AnyPreset::Catalogue => Some(
+                clap::builder::PossibleValue::new("catalogue")
+                    .help("A TLE/OMM catalogue (--catalogue) seen by the sensors of --sensors; truth by SGP4"),
+            ),
         }
     }
 }
@@ -252,7 +278,7 @@ impl std::fmt::Display for CliError {
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        Command::Generate { preset: AnyPreset::Planar(preset), seed, out } => {
+        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, .. } => {
             let simulation = preset.simulation(seed);
             let scenario = simulation.run();
             scenario.save(&out)?;
@@ -265,10 +291,36 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
-        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out } => {
+        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, .. } => {
             let simulation = preset.simulate(seed)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
+            eprintln!(
+                "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
+                 field of view dropped)",
+                out.display(),
+                figures.scans,
+                figures.measurements,
+                figures.max_measurements,
+                figures.objects,
+                figures.dropped_outside
+            );
+            Ok(())
+        }
+        Command::Generate { preset: AnyPreset::Catalogue, seed, out, catalogue } => {
+            let missing = |flag: &str| Error::input(format!("generate catalogue: {flag} is required"));
+            let catalogue_file = catalogue.catalogue.ok_or_else(|| missing("--catalogue"))?;
+            let sensors = catalogue.sensors.ok_or_else(|| missing("--sensors"))?;
+            let start = catalogue.start.ok_or_else(|| missing("--start"))?;
+            let duration_hours = catalogue.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+            let (scenario, figures) = host_sim::catalogue_scenario::generate(host_sim::catalogue_scenario::Request {
+                catalogue: &catalogue_file,
+                sensors: &sensors,
+                start: &start,
+                duration_hours,
+                seed,
+            })?;
+            host_sim::catalogue_scenario::save_whole(&scenario, &out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
                  field of view dropped)",
