@@ -330,3 +330,149 @@ fn empty_or_non_utf8_catalogues_are_rejected() {
     assert_rejected(&dir, "b.tle", b"\xff\xfe1 00005U", &["b.tle: not UTF-8"]);
     assert_rejected(&dir, "c.tle", b"just a name\n", &["c.tle:1: name line: not followed by a line 1"]);
 }
+
+// ---------------------------------------------------------------------------------------------------
+// generate catalogue
+// ---------------------------------------------------------------------------------------------------
+
+const CATALOGUE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/catalogue_leo.tle");
+const RADARS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/sensors_radar.json");
+const TELESCOPE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/sensors_telescope.json");
+const START: &str = "2026-03-20T00:00:00Z";
+
+fn generate(catalogue: &str, sensors: &str, start: &str, hours: &str, seed: &str, out: &Path) -> Output {
+    host_sim(&[
+        "generate".as_ref(),
+        "catalogue".as_ref(),
+        "--catalogue".as_ref(),
+        catalogue.as_ref(),
+        "--sensors".as_ref(),
+        sensors.as_ref(),
+        "--start".as_ref(),
+        start.as_ref(),
+        "--duration-hours".as_ref(),
+        hours.as_ref(),
+        "--seed".as_ref(),
+        seed.as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ])
+}
+
+#[test]
+fn generate_catalogue_truth_is_sgp4_and_deterministic() {
+    use host_sim::catalogue::{Satellite, load, parse_omm_epoch};
+    use host_sim::scenario3d::Scenario3d;
+    let dir = TempDir::new("gen-radar");
+    let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));
+    for (out, seed) in [(&a, "1"), (&b, "1"), (&c, "2")] {
+        let output = generate(CATALOGUE, RADARS, START, "2", seed, out);
+        assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    }
+    let bytes = |p: &Path| std::fs::read(p).expect("scenario");
+    assert_eq!(bytes(&a), bytes(&b), "same seed, different files");
+    assert_ne!(bytes(&a), bytes(&c), "another seed, the same file");
+    let scenario = Scenario3d::load(&a).expect("the generated file loads");
+    assert!(scenario.description.contains("SGP4"), "{}", scenario.description);
+    // 2 h, a scan every 10 s (two radars every 20 s, in turn).
+    assert_eq!(scenario.scans.len(), 721);
+    let measurements: usize = scenario.scans.iter().map(|s| s.measurements.len()).sum();
+    let truth = scenario.truth.as_ref().expect("truth");
+    let detections: usize =
+        truth.scans.iter().map(|s| s.origins.as_ref().map_or(0, |o| o.iter().flatten().count())).sum();
+    assert!(detections > 20, "{detections} detections of {measurements} measurements");
+    // Every truth state is SGP4's TEME state at the scan time.
+    let satellites: Vec<Satellite> =
+        load(Path::new(CATALOGUE)).expect("catalogue").into_iter().map(|e| Satellite::new(e).expect("sgp4")).collect();
+    assert_eq!(truth.objects.len(), satellites.len());
+    let epoch = parse_omm_epoch("2026-03-20T00:00:00").expect("epoch");
+    for (k, scan) in truth.scans.iter().enumerate().step_by(97) {
+        for object in &scan.objects {
+            let (r, v) = satellites[object.id as usize].tracker_state(epoch, scenario.scans[k].time).expect("state");
+            assert_eq!(object.state, [r[0], r[1], r[2], v[0], v[1], v[2]], "scan {k} object {}", object.id);
+        }
+    }
+}
+
+#[test]
+fn generate_catalogue_telescope_sees_sunlit_objects_from_a_dark_site() {
+    use host_sim::catalogue_scenario::{sun_elevation, sun_position, sunlit};
+    use host_sim::scenario3d::Scenario3d;
+    use host_sim::ssa::{Site, earth_rotation_angle};
+    let dir = TempDir::new("gen-tel");
+    let out = dir.join("t.json");
+    let output = generate(CATALOGUE, TELESCOPE, START, "24", "3", &out);
+    assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    let scenario = Scenario3d::load(&out).expect("the generated file loads");
+    let jd0 = scenario.epoch_jd();
+    let s = &scenario.sensors[0].site;
+    let site =
+        Site { latitude: s.latitude_deg.to_radians(), longitude: s.longitude_deg.to_radians(), height: s.height_km };
+    // A 24 h run at the equinox: scans only in the dark part of the night (Sun below −12°).
+    assert!(scenario.scans.len() > 500 && scenario.scans.len() < 1800, "{} scans", scenario.scans.len());
+    let truth = scenario.truth.as_ref().expect("truth");
+    let mut detections = 0;
+    for (scan, t) in scenario.scans.iter().zip(&truth.scans) {
+        let sun = sun_position(jd0 + scan.time / 86_400.0);
+        let elevation = sun_elevation(&site, earth_rotation_angle(jd0, scan.time), sun).to_degrees();
+        assert!(elevation < -12.0, "scan at {} s with the Sun at {elevation}°", scan.time);
+        for id in t.origins.as_ref().expect("origins").iter().flatten() {
+            let state = t.objects.iter().find(|o| o.id == *id).expect("object").state;
+            assert!(sunlit([state[0], state[1], state[2]], sun), "object {id} detected in the shadow");
+            detections += 1;
+        }
+    }
+    assert!(detections > 0, "no detection");
+    // Some truth objects are in the shadow at some scans: the filter had something to remove.
+    let shadowed = scenario.scans.iter().zip(&truth.scans).any(|(scan, t)| {
+        let sun = sun_position(jd0 + scan.time / 86_400.0);
+        t.objects.iter().any(|o| !sunlit([o.state[0], o.state[1], o.state[2]], sun))
+    });
+    assert!(shadowed);
+}
+
+#[test]
+fn generate_catalogue_rejects_bad_input_with_one_line_and_no_file() {
+    let dir = TempDir::new("gen-bad");
+    let bad_tle = dir.join("bad.tle");
+    std::fs::write(&bad_tle, format!("{}4\n{L2}\n", &L1[..68])).expect("write");
+    let sensors_text = std::fs::read_to_string(RADARS).expect("sensors");
+    let wrong_format = dir.join("format.json");
+    std::fs::write(&wrong_format, sensors_text.replace("rfisst-sensors/1", "rfisst-sensors/9")).expect("write");
+    let no_interval = dir.join("interval.json");
+    std::fs::write(&no_interval, sensors_text.replace("\"scan_interval_s\": 20.0,", "")).expect("write");
+    let bad_pd = dir.join("pd.json");
+    std::fs::write(
+        &bad_pd,
+        sensors_text.replacen("\"detection_probability\": 0.9", "\"detection_probability\": 1.5", 1),
+    )
+    .expect("write");
+    let bad_tle = bad_tle.to_string_lossy().into_owned();
+    let cases: Vec<(&str, &str, &str, &str, &str)> = vec![
+        (&bad_tle, RADARS, START, "1", "line 1 column 69 (checksum)"),
+        (CATALOGUE, wrong_format.to_str().unwrap(), START, "1", "format: expected \"rfisst-sensors/1\""),
+        (CATALOGUE, no_interval.to_str().unwrap(), START, "1", "scan_interval_s"),
+        (CATALOGUE, bad_pd.to_str().unwrap(), START, "1", "sensors[0].detection_probability"),
+        (CATALOGUE, RADARS, "2026-02-30T00:00:00Z", "1", "--start"),
+        (CATALOGUE, RADARS, START, "0", "--duration-hours 0"),
+        (CATALOGUE, RADARS, START, "NaN", "--duration-hours NaN"),
+    ];
+    for (catalogue, sensors, start, hours, expect) in cases {
+        let out = dir.join("out.json");
+        let output = generate(catalogue, sensors, start, hours, "1", &out);
+        let err = String::from_utf8_lossy(&output.stderr).into_owned();
+        assert_eq!(output.status.code(), Some(2), "{expect}: {}", describe(&output));
+        assert!(err.starts_with("error: ") && err.lines().count() == 1 && err.contains(expect), "{expect}: {err:?}");
+        assert!(!out.exists(), "{expect}: output written");
+        assert!(
+            std::fs::read_dir(&dir.0).expect("dir").all(|e| !e
+                .expect("entry")
+                .file_name()
+                .to_string_lossy()
+                .ends_with(".partial"))
+        );
+    }
+    let output = host_sim(&["generate", "catalogue", "--out", dir.join("x.json").to_str().unwrap()]);
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--catalogue is required"));
+}
