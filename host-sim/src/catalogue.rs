@@ -708,10 +708,10 @@ fn omm_entry<'a>(
             _ => Err(fail(key, format!("expected an integer in [0, {max}]"))),
         }
     };
-    if let Some(theory) = text("MEAN_ELEMENT_THEORY")? {
-        if theory.trim() != "SGP4" {
-            return Err(fail("MEAN_ELEMENT_THEORY", format!("{theory:?} is not SGP4")));
-        }
+    if let Some(theory) = text("MEAN_ELEMENT_THEORY")?
+        && theory.trim() != "SGP4"
+    {
+        return Err(fail("MEAN_ELEMENT_THEORY", format!("{theory:?} is not SGP4")));
     }
     let epoch_text = text("EPOCH")?.ok_or_else(|| fail("EPOCH", "missing".into()))?;
     let epoch = parse_omm_epoch(epoch_text.trim())

@@ -76,6 +76,20 @@ struct CatalogueArgs {
     duration_hours: Option<f64>,
 }
 
+impl CatalogueArgs {
+    /// The catalogue options are refused with a preset.
+    fn only_for_catalogue(&self) -> Result<(), Error> {
+        let given =
+            self.catalogue.is_some() || self.sensors.is_some() || self.start.is_some() || self.duration_hours.is_some();
+        if given {
+            return Err(Error::input(
+                "--catalogue, --sensors, --start and --duration-hours are for generate catalogue only",
+            ));
+        }
+        Ok(())
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a preset scenario and write it as a scenario file.
@@ -278,7 +292,8 @@ impl std::fmt::Display for CliError {
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, .. } => {
+        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, catalogue } => {
+            catalogue.only_for_catalogue()?;
             let simulation = preset.simulation(seed);
             let scenario = simulation.run();
             scenario.save(&out)?;
@@ -291,7 +306,8 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
-        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, .. } => {
+        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue } => {
+            catalogue.only_for_catalogue()?;
             let simulation = preset.simulate(seed)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
