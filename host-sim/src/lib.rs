@@ -8,7 +8,8 @@
 //!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
 //! - [`catalogue`] reads TLE and OMM element sets and propagates them with SGP4; [`sgp4_check`] verifies
-//!   that against the published SGP4 verification cases.
+//!   that against the published SGP4 verification cases; [`catalogue_scenario`] makes version 2 scenarios
+//!   of a catalogue seen by a sensors file (`generate catalogue`).
 //! - [`report`] holds the typed records of every JSON file the commands write; [`error`] the one error
 //!   type of the commands and its exit codes.
 
