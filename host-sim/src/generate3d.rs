@@ -104,6 +104,23 @@ pub struct Generated {
 /// # Errors
 /// [`Error::Internal`] when the sensors mix measurement types, or truth propagation fails.
 pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> {
+    to_scenario_with(sim, None)
+}
+
+/// Truth the caller computes: `state(object, time)` (inertial km, km/s at `time` s since the epoch), named
+/// `source` in the file's description.
+pub struct KnownTruth<'a> {
+    /// The state of object `i` at time `t`.
+    pub state: &'a dyn Fn(usize, f64) -> Result<[f64; 6], Error>,
+    /// How the truth was computed, e.g. "SGP4".
+    pub source: &'a str,
+}
+
+/// As [`to_scenario`], the truth and the prior means from `known` instead of the RKF7(8) integrator.
+///
+/// # Errors
+/// As [`to_scenario`], and `known`'s errors.
+pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Result<(Scenario3d, Generated), Error> {
     let kind = sim.sensors.first().map(|s| s.kind).ok_or_else(|| Error::internal("simulation has no sensor"))?;
     let measurement = match kind {
         SensorKind::Radar => Measurement3dSpec::Radar,
@@ -124,9 +141,12 @@ pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> 
         let mut state = object.initial_state;
         let mut t = 0.0;
         for (k, &time) in times.iter().enumerate() {
-            state = Propagator::EARTH
-                .propagate(state, time - t)
-                .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?;
+            state = match &known {
+                Some(known) => (known.state)(i, time)?,
+                None => Propagator::EARTH
+                    .propagate(state, time - t)
+                    .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?,
+            };
             t = time;
             truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
         }
@@ -145,9 +165,12 @@ pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> 
     let prior_time = times.first().map_or(0.0, |&t| t.min(0.0)) - 1.0;
     let mut objects = Vec::with_capacity(sim.objects.len());
     for (i, o) in sim.objects.iter().enumerate() {
-        let state = Propagator::EARTH
-            .propagate(o.initial_state, prior_time)
-            .map_err(|e| Error::internal(format!("prior propagation of object {i}: {e}")))?;
+        let state = match &known {
+            Some(known) => (known.state)(i, prior_time)?,
+            None => Propagator::EARTH
+                .propagate(o.initial_state, prior_time)
+                .map_err(|e| Error::internal(format!("prior propagation of object {i}: {e}")))?,
+        };
         let error = Random::stream(sim.seed, Stream::Prior, i as u64).gaussian(&prior_covariance);
         objects.push(PriorObject3dSpec {
             label: i as u32,
@@ -161,12 +184,13 @@ pub fn to_scenario(sim: &SsaScenario) -> Result<(Scenario3d, Generated), Error> 
         version: 2,
         name: sim.name.clone(),
         description: format!(
-            "host-sim generate {} --seed {}: {} objects, {} sensors, {} scans; truth by RKF7(8) two-body + J2",
+            "host-sim generate {} --seed {}: {} objects, {} sensors, {} scans; truth by {}",
             sim.name,
             sim.seed,
             sim.objects.len(),
             sim.sensors.len(),
-            sim.scans.len()
+            sim.scans.len(),
+            known.as_ref().map_or("RKF7(8) two-body + J2", |k| k.source)
         ),
         epoch: EpochSpec { utc: Some(sim.epoch.clone()), julian_date: Some(sim.epoch_jd) },
         motion: Motion3dSpec::TwoBodyJ2 {
@@ -248,7 +272,8 @@ fn degrees(rad: f64) -> f64 {
     (rad.to_degrees() * 1e9).round() / 1e9
 }
 
-fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
+/// The file form of a simulator's sensor.
+pub fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
     let arcsec = |rad: f64| (rad.to_degrees() * 3600.0 * 1e9).round() / 1e9;
     let noise = match sensor.kind {
         SensorKind::Radar => NoiseSpec {

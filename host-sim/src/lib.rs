@@ -7,6 +7,9 @@
 //! - [`setup`] turns a scenario into tracker-core values; [`runner`] runs a core tracker or the
 //!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
+//! - [`catalogue`] reads TLE and OMM element sets and propagates them with SGP4; [`sgp4_check`] verifies
+//!   that against the published SGP4 verification cases; [`catalogue_scenario`] makes version 2 scenarios
+//!   of a catalogue seen by a sensors file (`generate catalogue`).
 //! - [`report`] holds the typed records of every JSON file the commands write; [`error`] the one error
 //!   type of the commands and its exit codes.
 
@@ -14,6 +17,8 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assignment;
+pub mod catalogue;
+pub mod catalogue_scenario;
 pub mod digest;
 pub mod digest3d;
 pub mod error;
@@ -36,6 +41,7 @@ pub mod sampler_check;
 pub mod scenario;
 pub mod scenario3d;
 pub mod setup;
+pub mod sgp4_check;
 pub mod sim;
 pub mod snapshot;
 pub mod soak;

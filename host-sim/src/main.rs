@@ -59,6 +59,37 @@ impl Common {
     }
 }
 
+/// The inputs of `generate catalogue` (docs/scenario-format.md, "Catalogue files" and "Sensors files").
+#[derive(clap::Args, Clone)]
+struct CatalogueArgs {
+    /// generate catalogue: the catalogue (TLE, 3LE, OMM JSON or CSV).
+    #[arg(long)]
+    catalogue: Option<PathBuf>,
+    /// generate catalogue: the sensors file (`rfisst-sensors/1`).
+    #[arg(long)]
+    sensors: Option<PathBuf>,
+    /// generate catalogue: the start, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]` (the scenario's epoch).
+    #[arg(long)]
+    start: Option<String>,
+    /// generate catalogue: the duration in hours.
+    #[arg(long)]
+    duration_hours: Option<f64>,
+}
+
+impl CatalogueArgs {
+    /// The catalogue options are refused with a preset.
+    fn only_for_catalogue(&self) -> Result<(), Error> {
+        let given =
+            self.catalogue.is_some() || self.sensors.is_some() || self.start.is_some() || self.duration_hours.is_some();
+        if given {
+            return Err(Error::input(
+                "--catalogue, --sensors, --start and --duration-hours are for generate catalogue only",
+            ));
+        }
+        Ok(())
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a preset scenario and write it as a scenario file.
@@ -72,6 +103,8 @@ enum Command {
         /// Output scenario file (JSON).
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        catalogue: CatalogueArgs,
     },
     /// Run a tracker on a scenario file; writes summary.json, scans.jsonl, estimates.csv and plots.
     Run {
@@ -147,6 +180,28 @@ enum Command {
         #[arg(long)]
         scans: Option<usize>,
     },
+    /// Check SGP4 (the `sgp4` crate, AFSPC mode, through host-sim's TLE parser) against the verification
+    /// cases of Vallado et al. 2006 (bundled in host-sim/data/sgp4-verification); writes a JSON file.
+    Sgp4Check {
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Element sets to check instead of the bundled ones (needs --expected).
+        #[arg(long, requires = "expected")]
+        tle: Option<PathBuf>,
+        /// Expected states for --tle (format: host-sim/data/sgp4-verification/README.md).
+        #[arg(long, requires = "tle")]
+        expected: Option<PathBuf>,
+    },
+    /// Read a catalogue (TLE, 3LE, OMM JSON or CSV) and write its objects with their SGP4 TEME states at
+    /// their epochs as JSON (docs/scenario-format.md, "Catalogue files").
+    Catalogue {
+        /// Catalogue file.
+        file: PathBuf,
+        /// Output JSON file.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Check the R-FISST sampler against exhaustive enumeration on random small problems.
     SamplerCheck {
         /// Number of random cases.
@@ -166,6 +221,8 @@ enum Command {
 enum AnyPreset {
     Planar(Preset),
     Ssa(Preset3d),
+    /// A catalogue seen by a sensor network (`--catalogue`, `--sensors`, `--start`, `--duration-hours`).
+    Catalogue,
 }
 
 impl clap::ValueEnum for AnyPreset {
@@ -178,6 +235,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
+            AnyPreset::Catalogue,
         ]
     }
 
@@ -185,6 +243,10 @@ impl clap::ValueEnum for AnyPreset {
         match self {
             AnyPreset::Planar(p) => p.to_possible_value(),
             AnyPreset::Ssa(p) => p.to_possible_value(),
+            AnyPreset::Catalogue => Some(
+                clap::builder::PossibleValue::new("catalogue")
+                    .help("A TLE/OMM catalogue (--catalogue) seen by the sensors of --sensors; truth by SGP4"),
+            ),
         }
     }
 }
@@ -230,7 +292,8 @@ impl std::fmt::Display for CliError {
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        Command::Generate { preset: AnyPreset::Planar(preset), seed, out } => {
+        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, catalogue } => {
+            catalogue.only_for_catalogue()?;
             let simulation = preset.simulation(seed);
             let scenario = simulation.run();
             scenario.save(&out)?;
@@ -243,10 +306,37 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
-        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out } => {
+        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue } => {
+            catalogue.only_for_catalogue()?;
             let simulation = preset.simulate(seed)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
+            eprintln!(
+                "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
+                 field of view dropped)",
+                out.display(),
+                figures.scans,
+                figures.measurements,
+                figures.max_measurements,
+                figures.objects,
+                figures.dropped_outside
+            );
+            Ok(())
+        }
+        Command::Generate { preset: AnyPreset::Catalogue, seed, out, catalogue } => {
+            let missing = |flag: &str| Error::input(format!("generate catalogue: {flag} is required"));
+            let catalogue_file = catalogue.catalogue.ok_or_else(|| missing("--catalogue"))?;
+            let sensors = catalogue.sensors.ok_or_else(|| missing("--sensors"))?;
+            let start = catalogue.start.ok_or_else(|| missing("--start"))?;
+            let duration_hours = catalogue.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+            let (scenario, figures) = host_sim::catalogue_scenario::generate(host_sim::catalogue_scenario::Request {
+                catalogue: &catalogue_file,
+                sensors: &sensors,
+                start: &start,
+                duration_hours,
+                seed,
+            })?;
+            host_sim::catalogue_scenario::save_whole(&scenario, &out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
                  field of view dropped)",
@@ -323,6 +413,31 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 AnyScenario::V2(scenario) => host_sim::digest3d::run(&scenario, scans)?,
             };
             println!("{digest}");
+            Ok(())
+        }
+        Command::Sgp4Check { out, tle, expected } => {
+            let report = match (tle, expected) {
+                (Some(tle), Some(expected)) => {
+                    let tle_text = host_sim::scenario::read_limited(&tle)?;
+                    let expected_text = host_sim::scenario::read_limited(&expected)?;
+                    let names = (tle.display().to_string(), expected.display().to_string());
+                    host_sim::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
+                }
+                _ => host_sim::sgp4_check::run()?,
+            };
+            write_report(&out, &report)?;
+            if report.mismatched_cases > 0 {
+                return Err(Error::internal(format!(
+                    "{} SGP4 verification cases do not match",
+                    report.mismatched_cases
+                ))
+                .into());
+            }
+            Ok(())
+        }
+        Command::Catalogue { file, out } => {
+            let report = host_sim::catalogue::report(&host_sim::catalogue::load(&file)?);
+            evaluate::write_json(&out, &report)?;
             Ok(())
         }
         Command::SamplerCheck { cases, seed, out } => {

@@ -738,7 +738,7 @@ impl Scenario {
 
 /// The text of the file at `path`, read only up to [`MAX_FILE_BYTES`] (`/dev/zero` is rejected, not read to
 /// the end).
-pub(crate) fn read_limited(path: &Path) -> Result<String, ScenarioError> {
+pub fn read_limited(path: &Path) -> Result<String, ScenarioError> {
     use std::io::Read;
     let file = std::fs::File::open(path).map_err(|e| error(path.display(), e))?;
     let mut bytes = vec![];

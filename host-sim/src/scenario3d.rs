@@ -714,7 +714,8 @@ fn angle_in(field: &str, value: f64, low: f64, high: f64) -> Result<(), Scenario
 }
 
 impl Sensor3dSpec {
-    fn validate(&self, field: &str, kind: Measurement3dSpec) -> Result<(), ScenarioError> {
+    /// The sensor's fields against the measurement type; errors name `field`.
+    pub fn validate(&self, field: &str, kind: Measurement3dSpec) -> Result<(), ScenarioError> {
         let site = &self.site;
         angle_in(&format!("{field}.site.latitude_deg"), site.latitude_deg, -90.0, 90.0)?;
         angle_in(&format!("{field}.site.longitude_deg"), site.longitude_deg, -360.0, 360.0)?;

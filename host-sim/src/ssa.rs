@@ -807,9 +807,9 @@ fn count_passes(schedule: &[(f64, usize)], visible: &[bool], sensors: usize) -> 
 
 /// Everything a preset decides before the scans are drawn.
 struct Plan {
-    name: &'static str,
+    name: String,
     seed: u64,
-    epoch: &'static str,
+    epoch: String,
     duration: f64,
     sensors: Vec<SensorSpec>,
     objects: Vec<ObjectTruth>,
@@ -818,6 +818,9 @@ struct Plan {
     schedule: Vec<(f64, usize)>,
     /// Truth per object per scan, when the preset already propagated it.
     tracks: Option<Vec<Vec<[f64; 6]>>>,
+    /// Per object per scan, whether the object can be seen at all (a telescope sees only sunlit objects);
+    /// `None`: always.
+    visible: Option<Vec<Vec<bool>>>,
 }
 
 fn observers(sensors: &[SensorSpec], epoch_jd: f64, schedule: &[(f64, usize)]) -> Vec<Observer> {
@@ -826,7 +829,7 @@ fn observers(sensors: &[SensorSpec], epoch_jd: f64, schedule: &[(f64, usize)]) -
 
 /// Draws detections and clutter for every scan of a plan.
 fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
-    let epoch_jd = parse_iso8601(plan.epoch)?;
+    let epoch_jd = parse_iso8601(&plan.epoch)?;
     for s in &plan.sensors {
         s.check()?;
     }
@@ -846,7 +849,7 @@ fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
         let mut truth = Vec::new();
         for (i, states) in tracks.iter().enumerate() {
             let state = states[k];
-            if !sensor.sees(observer, &state) {
+            if !sensor.sees(observer, &state) || plan.visible.as_ref().is_some_and(|v| !v[i][k]) {
                 continue;
             }
             truth.push(TruthAt { object: i, state, measurement: None });
@@ -873,15 +876,51 @@ fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
         scans.push(Scan3 { time, sensor: s, measurements: items.into_iter().map(|(z, _)| z).collect(), truth });
     }
     Ok(SsaScenario {
-        name: plan.name.into(),
+        name: plan.name,
         seed: plan.seed,
-        epoch: plan.epoch.into(),
+        epoch: plan.epoch,
         epoch_jd,
         duration: plan.duration,
         sensors: plan.sensors,
         objects: plan.objects,
         groups: plan.groups,
         scans,
+    })
+}
+
+/// A scenario whose truth the caller propagated (`tracks[object][scan]`, inertial km, km/s, at the
+/// `schedule`'s times): detections and clutter drawn as for the presets, an object seen only where
+/// `visible[object][scan]` (and inside the sensor's field of view). `objects[i].initial_state` is
+/// `tracks`' first state (informative only).
+///
+/// # Errors
+/// As [`radar_leo`].
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_tracks(
+    name: &str,
+    seed: u64,
+    epoch: &str,
+    duration: f64,
+    sensors: Vec<SensorSpec>,
+    schedule: Vec<(f64, usize)>,
+    tracks: Vec<Vec<[f64; 6]>>,
+    visible: Vec<Vec<bool>>,
+) -> Result<SsaScenario, SsaError> {
+    let objects = tracks
+        .iter()
+        .map(|t| ObjectTruth { initial_state: t.first().copied().unwrap_or([0.0; 6]), group: None })
+        .collect();
+    simulate(Plan {
+        name: name.into(),
+        seed,
+        epoch: epoch.into(),
+        duration,
+        sensors,
+        objects,
+        groups: vec![],
+        schedule,
+        tracks: Some(tracks),
+        visible: Some(visible),
     })
 }
 
@@ -1083,15 +1122,16 @@ pub fn radar_leo_with(seed: u64, config: &RadarLeoConfig) -> Result<SsaScenario,
         }
     }
     simulate(Plan {
-        name: "radar-leo",
+        name: "radar-leo".into(),
         seed,
-        epoch: LEO_EPOCH,
+        epoch: LEO_EPOCH.into(),
         duration: config.duration,
         sensors,
         objects,
         groups,
         schedule,
         tracks: Some(tracks),
+        visible: None,
     })
 }
 
@@ -1121,15 +1161,16 @@ pub fn tiny_3d(seed: u64) -> Result<SsaScenario, SsaError> {
         objects.push(ObjectTruth { initial_state: Propagator::EARTH.propagate(at_aim, -t_aim)?, group: None });
     }
     simulate(Plan {
-        name: "tiny-3d",
+        name: "tiny-3d".into(),
         seed,
-        epoch: LEO_EPOCH,
+        epoch: LEO_EPOCH.into(),
         duration: 100.0,
         sensors: vec![sensor],
         objects,
         groups: Vec::new(),
         schedule: (0..=10).map(|k| (10.0 * k as f64, 0)).collect(),
         tracks: None,
+        visible: None,
     })
 }
 
@@ -1258,15 +1299,16 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
     }
     let steps = (config.duration / config.cadence).floor() as usize;
     simulate(Plan {
-        name: "optical-geo",
+        name: "optical-geo".into(),
         seed,
-        epoch: GEO_EPOCH,
+        epoch: GEO_EPOCH.into(),
         duration: config.duration,
         sensors: vec![sensor],
         objects,
         groups,
         schedule: (0..=steps).map(|k| (k as f64 * config.cadence, 0)).collect(),
         tracks: None,
+        visible: None,
     })
 }
 

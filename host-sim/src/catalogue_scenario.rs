@@ -1,0 +1,327 @@
+//! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario3d`]) from a TLE / OMM catalogue
+//! ([`crate::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
+//! docs/scenario-format.md "Sensors files").
+//!
+//! Truth: SGP4 for every object at every scan (and at the prior, 1 s before the first scan), in the
+//! tracker's frame (TEME, docs/maths.md §6.8). The sensors take turns, one scan every
+//! `scan_interval_s / sensors` seconds from the start. Detections, noise and clutter are drawn by
+//! [`crate::ssa`]'s simulator as for the presets. A telescope scans only while its site is dark (the Sun
+//! below `max_sun_elevation_deg`, default −12°) and sees only sunlit objects (outside the Earth's
+//! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
+
+use crate::Error;
+use crate::catalogue::{self, Satellite};
+use crate::generate3d::{self, Generated, KnownTruth};
+use crate::scenario::{ScenarioError, error, read_limited};
+use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
+use crate::ssa::{self, FieldOfView, LookShape, SensorKind, SensorSpec, Site, SsaError};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The format tag of a sensors file.
+pub const SENSORS_FORMAT: &str = "rfisst-sensors/1";
+
+/// The longest scenario: 31 days.
+pub const MAX_DURATION_HOURS: f64 = 744.0;
+
+/// The most SGP4 evaluations (objects × scans) one generation may make.
+pub const MAX_PROPAGATIONS: u64 = 20_000_000;
+
+/// One astronomical unit (km).
+pub const ASTRONOMICAL_UNIT_KM: f64 = 149_597_870.7;
+
+fn default_dark() -> f64 {
+    -12.0
+}
+
+/// A sensors file: the sensors of a version 2 scenario and how often they scan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SensorsFile {
+    /// Must be [`SENSORS_FORMAT`].
+    pub format: String,
+    /// What every sensor measures (as in a version 2 scenario).
+    pub measurement: Measurement3dSpec,
+    /// Seconds between two scans of one sensor (> 0); the sensors take turns, evenly spaced.
+    pub scan_interval_s: f64,
+    /// A telescope's site is dark when the Sun is below this elevation (degrees, in [−90, 0]).
+    #[serde(default = "default_dark")]
+    pub max_sun_elevation_deg: f64,
+    /// The sensors, exactly as in a version 2 scenario's `sensors`.
+    pub sensors: Vec<Sensor3dSpec>,
+}
+
+impl SensorsFile {
+    /// Reads and checks a sensors file; errors name the file and the field.
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let text = read_limited(path)?;
+        let file = path.display();
+        Self::from_json(&text).map_err(|e| ScenarioError(crate::scenario::one_line(&format!("{file}: {e}"))))
+    }
+
+    /// Parses and checks a sensors file.
+    pub fn from_json(text: &str) -> Result<Self, ScenarioError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let deserializer = &mut serde_json::Deserializer::from_str(text);
+        let sensors: SensorsFile = serde_path_to_error::deserialize(&mut *deserializer).map_err(|e| {
+            let path = e.path().to_string();
+            let message = e.into_inner().to_string();
+            if path == "." { error("invalid sensors JSON", message) } else { error(path, message) }
+        })?;
+        deserializer.end().map_err(|e| error("invalid sensors JSON", e))?;
+        sensors.validate()?;
+        Ok(sensors)
+    }
+
+    fn validate(&self) -> Result<(), ScenarioError> {
+        if self.format != SENSORS_FORMAT {
+            return Err(error("format", format!("expected \"{SENSORS_FORMAT}\", found \"{}\"", self.format)));
+        }
+        if !(self.scan_interval_s.is_finite() && self.scan_interval_s > 0.0) {
+            return Err(error("scan_interval_s", format!("{} is not finite and > 0", self.scan_interval_s)));
+        }
+        if !(-90.0..=0.0).contains(&self.max_sun_elevation_deg) {
+            return Err(error("max_sun_elevation_deg", format!("{} is not in [-90, 0]", self.max_sun_elevation_deg)));
+        }
+        if self.sensors.is_empty() || self.sensors.len() > MAX_SENSORS {
+            return Err(error("sensors", format!("{} sensors: needs 1 to {MAX_SENSORS}", self.sensors.len())));
+        }
+        for (i, sensor) in self.sensors.iter().enumerate() {
+            sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
+        }
+        Ok(())
+    }
+}
+
+/// The simulator's form of a file sensor (degrees to radians, arcseconds to radians).
+fn simulator_sensor(sensor: &Sensor3dSpec, kind: Measurement3dSpec) -> SensorSpec {
+    let fov = &sensor.field_of_view;
+    let shape = match fov.shape {
+        ShapeSpec::Cone { azimuth_deg, elevation_deg, half_angle_deg } => LookShape::Cone {
+            azimuth: azimuth_deg.to_radians(),
+            elevation: elevation_deg.to_radians(),
+            half_angle: half_angle_deg.to_radians(),
+        },
+        ShapeSpec::Box { azimuth_deg, half_width_deg, elevation_deg } => LookShape::Box {
+            azimuth_centre: azimuth_deg.to_radians(),
+            azimuth_half_width: half_width_deg.to_radians(),
+            elevation_min: elevation_deg[0].to_radians(),
+            elevation_max: elevation_deg[1].to_radians(),
+        },
+    };
+    SensorSpec {
+        name: sensor.name.clone(),
+        site: Site {
+            latitude: sensor.site.latitude_deg.to_radians(),
+            longitude: sensor.site.longitude_deg.to_radians(),
+            height: sensor.site.height_km,
+        },
+        kind: match kind {
+            Measurement3dSpec::Radar => SensorKind::Radar,
+            Measurement3dSpec::RadarRangeRate => SensorKind::RadarRangeRate {
+                max_range_rate: fov.range_rate_km_s.map_or(0.0, |[lo, hi]| lo.abs().max(hi.abs())),
+            },
+            Measurement3dSpec::Optical => SensorKind::Optical,
+        },
+        fov: FieldOfView { shape, min_elevation: fov.min_elevation_deg.to_radians(), range: fov.range_km },
+        sigma: sensor.noise.sigma(kind),
+        detection_probability: sensor.detection_probability,
+        clutter_rate: sensor.clutter_rate,
+    }
+}
+
+/// The Sun's position (km) in the inertial frame at UT1 Julian date `jd`: the Astronomical Almanac's
+/// low-precision formula (Vallado, Algorithm 29; about 0.01° in 1950-2050), mean equator and equinox of
+/// date, taken as TEME (the equation of the equinoxes, ≤ 1.2″, neglected).
+pub fn sun_position(jd: f64) -> [f64; 3] {
+    let t = (jd - 2_451_545.0) / 36_525.0;
+    let mean_longitude = (280.460 + 36_000.771 * t).to_radians();
+    let m = (357.529_109_2 + 35_999.050_34 * t).to_radians();
+    let longitude = mean_longitude + (1.914_666_471 * m.sin() + 0.019_994_643 * (2.0 * m).sin()).to_radians();
+    let distance = (1.000_140_612 - 0.016_708_617 * m.cos() - 0.000_139_589 * (2.0 * m).cos()) * ASTRONOMICAL_UNIT_KM;
+    let obliquity = (23.439_291 - 0.013_004_2 * t).to_radians();
+    let (sl, cl) = longitude.sin_cos();
+    [distance * cl, distance * obliquity.cos() * sl, distance * obliquity.sin() * sl]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Whether a position (km) is sunlit: outside the Earth's cylindrical shadow (radius 6378.137 km) behind
+/// the Earth as seen from the Sun at `sun` (km).
+pub fn sunlit(position: [f64; 3], sun: [f64; 3]) -> bool {
+    let s = norm(sun);
+    let u = [sun[0] / s, sun[1] / s, sun[2] / s];
+    let along = dot(position, u);
+    if along >= 0.0 {
+        return true;
+    }
+    let across = [position[0] - along * u[0], position[1] - along * u[1], position[2] - along * u[2]];
+    norm(across) > ssa::WGS84_A
+}
+
+/// The Sun's elevation (rad) from `site` at Earth rotation angle `theta` and Sun position `sun` (km).
+pub fn sun_elevation(site: &Site, theta: f64, sun: [f64; 3]) -> f64 {
+    let observer = site.observer(theta);
+    let d = [sun[0] - observer.position[0], sun[1] - observer.position[1], sun[2] - observer.position[2]];
+    (dot(d, observer.up) / norm(d)).clamp(-1.0, 1.0).asin()
+}
+
+/// What `generate catalogue` is given.
+#[derive(Debug, Clone, Copy)]
+pub struct Request<'a> {
+    /// Catalogue file (TLE, 3LE, OMM JSON or CSV).
+    pub catalogue: &'a Path,
+    /// Sensors file.
+    pub sensors: &'a Path,
+    /// Start (UTC, `YYYY-MM-DDTHH:MM:SS[.f][Z]`): the scenario's epoch.
+    pub start: &'a str,
+    /// Duration (hours).
+    pub duration_hours: f64,
+    /// Seed of detections and clutter (and the prior errors).
+    pub seed: u64,
+}
+
+/// The scenario of a catalogue seen by a sensor network.
+///
+/// # Errors
+/// [`Error::Input`] for a bad file or argument, an object SGP4 cannot propagate over the run, or a scan
+/// that would carry more measurements than the tracker takes.
+pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> {
+    let hours = request.duration_hours;
+    if !(hours.is_finite() && hours > 0.0 && hours <= MAX_DURATION_HOURS) {
+        return Err(Error::input(format!("--duration-hours {hours}: must be in (0, {MAX_DURATION_HOURS}]")));
+    }
+    let start = request.start;
+    let bad_start =
+        || Error::input(format!("--start {start:?}: not a UTC time YYYY-MM-DDTHH:MM:SS[.f][Z] in 1901-2099"));
+    let epoch_jd = ssa::parse_iso8601(start).map_err(|_| bad_start())?;
+    let epoch = catalogue::parse_omm_epoch(start).ok_or_else(bad_start)?;
+    let entries = catalogue::load(request.catalogue)?;
+    let sensors_file = SensorsFile::load(request.sensors)?;
+    let kind = sensors_file.measurement;
+    let sensors: Vec<SensorSpec> = sensors_file.sensors.iter().map(|s| simulator_sensor(s, kind)).collect();
+
+    // The schedule: sensors in turn; a telescope only while its site is dark.
+    let duration = hours * 3600.0;
+    let slot = sensors_file.scan_interval_s / sensors.len() as f64;
+    let slots = (duration / slot).floor() as u64 + 1;
+    if slots.saturating_mul(entries.len() as u64) > MAX_PROPAGATIONS {
+        return Err(Error::input(format!(
+            "{} objects x {slots} scans exceed {MAX_PROPAGATIONS} SGP4 evaluations: a shorter run, a longer \
+             scan_interval_s or a smaller catalogue",
+            entries.len()
+        )));
+    }
+    let dark = sensors_file.max_sun_elevation_deg.to_radians();
+    let mut schedule = vec![];
+    for j in 0..slots {
+        let t = j as f64 * slot;
+        let s = (j % sensors.len() as u64) as usize;
+        let optical = kind == Measurement3dSpec::Optical;
+        let sun = sun_position(epoch_jd + t / 86_400.0);
+        if optical && sun_elevation(&sensors[s].site, ssa::earth_rotation_angle(epoch_jd, t), sun) >= dark {
+            continue;
+        }
+        schedule.push((t, s));
+    }
+    if schedule.is_empty() {
+        return Err(Error::input(format!(
+            "{}: no scan: the telescopes' sites are never dark (Sun below {}°) during the run",
+            request.sensors.display(),
+            sensors_file.max_sun_elevation_deg
+        )));
+    }
+
+    // Truth by SGP4.
+    let file = request.catalogue.display().to_string();
+    let satellites: Vec<Satellite> = entries
+        .into_iter()
+        .map(|e| {
+            let (line, id) = (e.line, e.norad_id);
+            Satellite::new(e).map_err(|err| Error::input(format!("{file}:{line}: object {id}: {err}")))
+        })
+        .collect::<Result<_, _>>()?;
+    let state = |i: usize, t: f64| -> Result<[f64; 6], Error> {
+        let satellite = &satellites[i];
+        satellite.tracker_state(epoch, t).map(|(r, v)| [r[0], r[1], r[2], v[0], v[1], v[2]]).map_err(|err| {
+            Error::input(format!(
+                "{file}:{}: object {}: at {start} + {t} s: {err}",
+                satellite.entry.line, satellite.entry.norad_id
+            ))
+        })
+    };
+    let mut tracks = Vec::with_capacity(satellites.len());
+    let mut visible = Vec::with_capacity(satellites.len());
+    for i in 0..satellites.len() {
+        let mut track = Vec::with_capacity(schedule.len());
+        let mut seen = Vec::with_capacity(schedule.len());
+        for &(t, _) in &schedule {
+            let x = state(i, t)?;
+            seen.push(
+                kind != Measurement3dSpec::Optical || sunlit([x[0], x[1], x[2]], sun_position(epoch_jd + t / 86_400.0)),
+            );
+            track.push(x);
+        }
+        tracks.push(track);
+        visible.push(seen);
+    }
+    let name =
+        format!("catalogue {}", request.catalogue.file_name().map_or(file.clone(), |n| n.to_string_lossy().into()));
+    let simulation = ssa::simulate_tracks(&name, request.seed, start, duration, sensors, schedule, tracks, visible)
+        .map_err(|e| match e {
+            SsaError::TooManyMeasurements { scan } => Error::input(format!(
+                "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
+                 narrower field of view or less clutter",
+                ssa::MAX_MEASUREMENTS
+            )),
+            other => Error::input(format!("{}: {other}", request.sensors.display())),
+        })?;
+    generate3d::to_scenario_with(&simulation, Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }))
+}
+
+/// Writes `scenario` to `out` through a temporary file beside it, renamed once complete: a failed write
+/// leaves no partial file.
+pub fn save_whole(scenario: &Scenario3d, out: &Path) -> Result<(), Error> {
+    let mut partial = out.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = std::path::PathBuf::from(partial);
+    if let Err(e) = scenario.save(&partial) {
+        let _ = std::fs::remove_file(&partial);
+        return Err(e);
+    }
+    std::fs::rename(&partial, out).map_err(|e| {
+        let _ = std::fs::remove_file(&partial);
+        Error::output(out, e)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sun_matches_vallado_example_5_1() {
+        // Vallado, Example 5-1: 2006-04-02 00:00 UTC (JD_UT1 2453827.5); r_sun (MOD) =
+        // [0.9771945, 0.1924424, 0.0834308] AU.
+        let r = sun_position(2_453_827.5);
+        let expected = [0.977_194_5, 0.192_442_4, 0.083_430_8].map(|x| x * ASTRONOMICAL_UNIT_KM);
+        let angle = (dot(r, expected) / (norm(r) * norm(expected))).clamp(-1.0, 1.0).acos().to_degrees();
+        assert!(angle < 0.01, "{angle}°");
+        assert!((norm(r) / norm(expected) - 1.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn shadow_is_behind_the_earth() {
+        let sun = [ASTRONOMICAL_UNIT_KM, 0.0, 0.0];
+        assert!(sunlit([7000.0, 0.0, 0.0], sun));
+        assert!(!sunlit([-7000.0, 0.0, 0.0], sun));
+        assert!(sunlit([-7000.0, 6400.0, 0.0], sun));
+        assert!(sunlit([0.0, 0.0, 7000.0], sun));
+    }
+}
