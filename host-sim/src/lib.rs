@@ -14,6 +14,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assignment;
+pub mod ccsds;
 pub mod digest;
 pub mod digest3d;
 pub mod error;
@@ -24,6 +25,7 @@ pub mod generate3d;
 pub mod gibbs;
 pub mod metrics;
 pub mod murty;
+pub mod oem;
 pub mod orbit;
 pub mod perf;
 pub mod plots;
@@ -40,5 +42,6 @@ pub mod sim;
 pub mod snapshot;
 pub mod soak;
 pub mod ssa;
+pub mod tdm;
 
 pub use error::Error;
