@@ -733,7 +733,11 @@ mod tests {
         scans
             .iter()
             .map(|s| {
-                (s.time.to_bits(), s.sensor, s.measurements.iter().map(|z| z.iter().map(|v| v.to_bits()).collect()).collect())
+                (
+                    s.time.to_bits(),
+                    s.sensor,
+                    s.measurements.iter().map(|z| z.iter().map(|v| v.to_bits()).collect()).collect(),
+                )
             })
             .collect()
     }
