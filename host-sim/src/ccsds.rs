@@ -89,7 +89,14 @@ impl Instant {
         let bad = || format!("\"{text}\" is not a time YYYY-MM-DDThh:mm:ss[.fff] (UTC)");
         let body = text.strip_suffix('Z').unwrap_or(text);
         let b = body.as_bytes();
-        if b.len() < 19 || b[4] != b'-' || b[7] != b'-' || b[10] != b'T' || b[13] != b':' || b[16] != b':' {
+        if b.len() < 19
+            || !b[..19].is_ascii()
+            || b[4] != b'-'
+            || b[7] != b'-'
+            || b[10] != b'T'
+            || b[13] != b':'
+            || b[16] != b':'
+        {
             return Err(bad());
         }
         let number = |range: std::ops::Range<usize>| -> Result<i64, String> {
@@ -214,7 +221,14 @@ mod tests {
             assert_eq!(Instant::parse(text).map(|i| i.to_string()).as_deref(), Ok(text));
         }
         assert_eq!(Instant::parse("1970-01-01T00:00:01Z").map(|i| i.seconds), Ok(1));
-        for bad in ["2023-02-29T00:00:00", "2000-01-01T24:00:00", "2000-01-01T23:59:60", "2000-01-01 00:00:00", "x"] {
+        for bad in [
+            "2023-02-29T00:00:00",
+            "2000-01-01T24:00:00",
+            "2000-01-01T23:59:60",
+            "2000-01-01 00:00:00",
+            "x",
+            "2000-01-01T00:00:0\u{e9}",
+        ] {
             assert!(Instant::parse(bad).is_err(), "{bad}");
         }
     }
