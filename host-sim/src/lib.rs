@@ -19,6 +19,7 @@
 pub mod assignment;
 pub mod catalogue;
 pub mod catalogue_scenario;
+pub mod ccsds;
 pub mod digest;
 pub mod digest3d;
 pub mod error;
@@ -29,6 +30,7 @@ pub mod generate3d;
 pub mod gibbs;
 pub mod metrics;
 pub mod murty;
+pub mod oem;
 pub mod orbit;
 pub mod perf;
 pub mod plots;
@@ -46,5 +48,6 @@ pub mod sim;
 pub mod snapshot;
 pub mod soak;
 pub mod ssa;
+pub mod tdm;
 
 pub use error::Error;

@@ -119,6 +119,32 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
+    /// Write one CCSDS TDM per sensor of a version 2 scenario (docs/scenario-format.md, "TDM and OEM").
+    ExportTdm {
+        /// Scenario file (version 2).
+        file: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Track CCSDS TDMs with a version 2 scenario's models, sensors, prior and tracker settings (its scans
+    /// and truth are ignored); writes what `run` writes.
+    Track {
+        /// TDM files (merged by time; PARTICIPANT_1 names the sensor).
+        #[arg(long, num_args = 1.., required = true)]
+        tdm: Vec<PathBuf>,
+        /// Scenario file (version 2) giving everything but the scans.
+        #[arg(long)]
+        config: PathBuf,
+        /// Tracker to run.
+        #[arg(long, value_enum, default_value_t = TrackerKind::Homht)]
+        tracker: TrackerKind,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        common: Common,
+    },
     /// Run the bounded tracker and the unbounded reference on the same scans; writes compare.json.
     Compare {
         /// Scenario file.
@@ -352,16 +378,27 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Run { file, tracker, out, common } => {
             let scenario = match load_any(&file)? {
                 AnyScenario::V1(scenario) => *scenario,
-                AnyScenario::V2(scenario) => {
-                    let (summary, clean) =
-                        host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, &out)?;
-                    println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
-                    return if clean { Ok(()) } else { Err(CliError::Rejected) };
-                }
+                AnyScenario::V2(scenario) => return run3d(&scenario, tracker, common, &out),
             };
             let (summary, clean) = evaluate::run(&scenario, tracker, &common.options(), &out)?;
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
             if clean { Ok(()) } else { Err(CliError::Rejected) }
+        }
+        Command::ExportTdm { file, out } => {
+            let AnyScenario::V2(scenario) = load_any(&file)? else {
+                return Err(Error::input(format!("{}: export-tdm needs a version 2 scenario", file.display())).into());
+            };
+            for path in host_sim::tdm::export(&scenario, &out)? {
+                eprintln!("wrote {}", path.display());
+            }
+            Ok(())
+        }
+        Command::Track { tdm, config, tracker, out, common } => {
+            let AnyScenario::V2(config_scenario) = load_any(&config)? else {
+                return Err(Error::input(format!("{}: --config needs a version 2 scenario", config.display())).into());
+            };
+            let scenario = host_sim::tdm::scenario_from_tdms(&tdm, &config_scenario)?;
+            run3d(&scenario, tracker, common, &out)
         }
         Command::Compare { file, tracker, out, common } => {
             if tracker == TrackerKind::Reference {
@@ -445,6 +482,19 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             write_report(&out, &report)
         }
     }
+}
+
+/// `run` on a version 2 scenario, its outputs written only when it succeeds ([`host_sim::tdm::stage`]).
+fn run3d(
+    scenario: &host_sim::scenario3d::Scenario3d,
+    tracker: TrackerKind,
+    common: Common,
+    out: &Path,
+) -> Result<(), CliError> {
+    let (summary, clean) =
+        host_sim::tdm::stage(out, |dir| host_sim::run3d::run(scenario, tracker, common.profile, common.quiet, dir))?;
+    println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
+    if clean { Ok(()) } else { Err(CliError::Rejected) }
 }
 
 /// Writes a JSON report to `out` and prints it.

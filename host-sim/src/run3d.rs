@@ -1,7 +1,7 @@
 //! `host-sim run` on version 2 (3-D) scenarios: builds the sensor network and the core tracker (f64,
 //! two-body + J2), steps every scan with its sensor and time ([`tracker_core::Tracker::step_scan`]), scores
-//! the MAP estimates against the truth in 3-D (km) and writes `summary.json`, `estimates.csv` and the plots
-//! (a sky plot per sensor, the expected cardinality and GOSPA over time).
+//! the MAP estimates against the truth in 3-D (km) and writes `summary.json`, `estimates.csv`, the MAP tracks
+//! as a CCSDS OEM (`tracks.oem`, [`crate::oem`]) and the plots (a sky plot per sensor, the expected cardinality and GOSPA over time).
 //!
 //! Scoring is that of version 1 ([`crate::evaluate`]) with 3-D positions: GOSPA (α = 2) of the MAP
 //! positions against every true object, label switches along GOSPA's assignment, and an estimate *in view*
@@ -42,6 +42,8 @@ pub struct Track6 {
     pub mean: [f64; 6],
     /// Existence probability of the label.
     pub existence: f64,
+    /// Covariance (row-major; km², km²/s, km²/s²).
+    pub covariance: [[f64; 6]; 6],
 }
 
 /// What the run needs of a posterior.
@@ -110,6 +112,7 @@ where
                         label: t.label.0,
                         mean: t.state.mean.into(),
                         existence: existence.get(&t.label.0).copied().unwrap_or(0.0),
+                        covariance: core::array::from_fn(|i| core::array::from_fn(|j| t.state.covariance[(i, j)])),
                     })
                     .collect();
             }
@@ -619,6 +622,7 @@ pub fn run(
     let mut confirmed: BTreeMap<u64, Option<usize>> = BTreeMap::new();
     let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
     let mut peak_hypotheses = prior.hypotheses;
+    let mut oem = crate::oem::OemTracks::new(scenario);
     let bar = progress(n, quiet, kind.name());
     for (k, scan) in scenario.scans.iter().enumerate() {
         let zs = measurements_in_radians(scenario.measurement, &scan.measurements);
@@ -641,6 +645,9 @@ pub fn run(
         };
         let posterior = runner.posterior();
         peak_hypotheses = peak_hypotheses.max(posterior.hypotheses);
+        if info.is_some() {
+            oem.record(scan.time, &posterior.map);
+        }
         let estimates: Vec<[f64; 3]> = posterior.map.iter().map(|t| [t.mean[0], t.mean[1], t.mean[2]]).collect();
         let truth = scenario.truth.as_ref().map(|t| &t.scans[k].objects);
         let mut within = vec![None; estimates.len()];
@@ -762,6 +769,7 @@ pub fn run(
         sensors: Some(sensors),
     };
     write_plots(scenario, &records, &sky_truth, &sky_estimates, out)?;
+    oem.write(&out.join("tracks.oem"))?;
     summary.peak_resident_kib = peak_resident_kib();
     write_json(&out.join("summary.json"), &summary)?;
     let clean = summary.rejected_scans.is_empty();

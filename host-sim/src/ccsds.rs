@@ -1,0 +1,263 @@
+//! Exact UTC times for the CCSDS files (TDM, OEM): an [`Instant`] is whole seconds since 1970-01-01 and a
+//! decimal fraction kept as digits, so that a scan time (f64 seconds since the scenario epoch) written as
+//! `YYYY-MM-DDThh:mm:ss.fff…` and read back is the same f64, bit for bit.
+//!
+//! How: the writer splits t ≥ 0 into s = ⌊t⌋ and f = t − s (both exact in f64), writes f's shortest
+//! round-trip decimal digits and adds them to the epoch's decimal digits exactly; the reader subtracts the
+//! epoch's digits exactly, parses the fraction (the same shortest digits, so the same f) and adds s: the
+//! real sum s + f is t itself, which is representable, so the rounded sum is t. UTC is taken as uniform
+//! (no leap seconds: a second of 60 is refused); dates from year 1000 to 9999.
+
+use crate::scenario3d::Scenario3d;
+use std::cmp::Ordering;
+use std::fmt;
+
+/// The longest fraction of a second read (digits): more than any f64's shortest decimal form needs.
+pub const MAX_FRACTION_DIGITS: usize = 1100;
+
+/// The largest time after the epoch written (s): about 31,700 years would leave the calendar range anyway.
+const MAX_OFFSET: f64 = 1e11;
+
+/// A UTC instant: whole seconds since 1970-01-01T00:00:00 (no leap seconds) and a fraction in decimal
+/// digits without trailing zeros.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct Instant {
+    seconds: i64,
+    fraction: String,
+}
+
+impl Ord for Instant {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Without trailing zeros, digit strings compare as the fractions they spell.
+        self.seconds.cmp(&other.seconds).then_with(|| self.fraction.cmp(&other.fraction))
+    }
+}
+
+impl PartialOrd for Instant {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Days from 1970-01-01 to the civil date (proleptic Gregorian).
+fn days_from_civil(year: i64, month: i64, day: i64) -> i64 {
+    let y = if month <= 2 { year - 1 } else { year };
+    let era = y.div_euclid(400);
+    let yoe = y - era * 400;
+    let mp = (month + 9) % 12;
+    let doy = (153 * mp + 2) / 5 + day - 1;
+    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    era * 146_097 + doe - 719_468
+}
+
+/// The civil date of a day count from 1970-01-01.
+fn civil_from_days(days: i64) -> (i64, i64, i64) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    (if month <= 2 { yoe + era * 400 + 1 } else { yoe + era * 400 }, month, day)
+}
+
+fn days_in_month(year: i64, month: i64) -> i64 {
+    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    match month {
+        2 if leap => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
+fn trimmed(mut digits: String) -> String {
+    while digits.ends_with('0') {
+        digits.pop();
+    }
+    digits
+}
+
+impl Instant {
+    /// Parses `YYYY-MM-DDThh:mm:ss[.f…][Z]` (the CCSDS calendar form, UTC).
+    ///
+    /// # Errors
+    /// A short description of what is wrong.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let bad = || format!("\"{text}\" is not a time YYYY-MM-DDThh:mm:ss[.fff] (UTC)");
+        let body = text.strip_suffix('Z').unwrap_or(text);
+        let b = body.as_bytes();
+        if b.len() < 19
+            || !b[..19].is_ascii()
+            || b[4] != b'-'
+            || b[7] != b'-'
+            || b[10] != b'T'
+            || b[13] != b':'
+            || b[16] != b':'
+        {
+            return Err(bad());
+        }
+        let number = |range: std::ops::Range<usize>| -> Result<i64, String> {
+            let s = &body[range];
+            if s.bytes().all(|c| c.is_ascii_digit()) { s.parse().map_err(|_| bad()) } else { Err(bad()) }
+        };
+        let (year, month, day) = (number(0..4)?, number(5..7)?, number(8..10)?);
+        let (hour, minute, second) = (number(11..13)?, number(14..16)?, number(17..19)?);
+        let fraction = match &body[19..] {
+            "" => "",
+            rest => {
+                let digits = rest.strip_prefix('.').ok_or_else(bad)?;
+                if digits.is_empty() || !digits.bytes().all(|c| c.is_ascii_digit()) {
+                    return Err(bad());
+                }
+                if digits.len() > MAX_FRACTION_DIGITS {
+                    return Err(format!("\"{text}\": more than {MAX_FRACTION_DIGITS} digits of a second"));
+                }
+                digits
+            }
+        };
+        if !(1000..=9999).contains(&year) || !(1..=12).contains(&month) || day < 1 || day > days_in_month(year, month) {
+            return Err(format!("\"{text}\": no such date (years 1000 to 9999)"));
+        }
+        if hour > 23 || minute > 59 || second > 59 {
+            return Err(format!("\"{text}\": no such time of day (leap seconds are not supported)"));
+        }
+        let seconds = days_from_civil(year, month, day) * 86_400 + hour * 3600 + minute * 60 + second;
+        Ok(Instant { seconds, fraction: trimmed(fraction.to_string()) })
+    }
+
+    /// The instant of a Julian date (UTC), rounded to the nanosecond.
+    pub fn from_julian_date(jd: f64) -> Self {
+        let ns = ((jd - 2_440_587.5) * 86_400e9).round() as i128;
+        let seconds = ns.div_euclid(1_000_000_000) as i64;
+        let fraction = trimmed(format!("{:09}", ns.rem_euclid(1_000_000_000)));
+        Instant { seconds, fraction }
+    }
+
+    /// The scenario's epoch: its `utc` when given (the exact digits), else its Julian date.
+    pub fn epoch_of(scenario: &Scenario3d) -> Self {
+        scenario
+            .epoch
+            .utc
+            .as_deref()
+            .and_then(|utc| Instant::parse(utc).ok())
+            .unwrap_or_else(|| Instant::from_julian_date(scenario.epoch_jd()))
+    }
+
+    /// `self + t` for t in [0, 1e11] s, exact.
+    ///
+    /// # Errors
+    /// t negative, not finite or too large.
+    pub fn after(&self, t: f64) -> Result<Self, String> {
+        if !(t.is_finite() && (0.0..=MAX_OFFSET).contains(&t)) {
+            return Err(format!("time {t} s is not in [0, {MAX_OFFSET}] s after the epoch"));
+        }
+        let whole = t.floor();
+        let text = format!("{}", t - whole);
+        let digits = text.split_once('.').map_or("", |(_, d)| d);
+        let (a, b) = (self.fraction.as_bytes(), digits.as_bytes());
+        let n = a.len().max(b.len());
+        let mut sum = vec![0u8; n];
+        let mut carry = 0;
+        for i in (0..n).rev() {
+            let d = a.get(i).map_or(0, |c| c - b'0') + b.get(i).map_or(0, |c| c - b'0') + carry;
+            sum[i] = b'0' + d % 10;
+            carry = d / 10;
+        }
+        let fraction = trimmed(String::from_utf8(sum).unwrap_or_default());
+        Ok(Instant { seconds: self.seconds + whole as i64 + i64::from(carry), fraction })
+    }
+
+    /// Seconds from `epoch` to `self` (the inverse of [`Instant::after`]), or `None` when `self` is before
+    /// the epoch.
+    pub fn since(&self, epoch: &Instant) -> Option<f64> {
+        let (a, b) = (self.fraction.as_bytes(), epoch.fraction.as_bytes());
+        let n = a.len().max(b.len());
+        let mut difference = vec![0u8; n];
+        let mut borrow = 0i16;
+        for i in (0..n).rev() {
+            let mut d = i16::from(a.get(i).map_or(0, |c| c - b'0')) - i16::from(b.get(i).map_or(0, |c| c - b'0'));
+            d -= borrow;
+            borrow = i16::from(d < 0);
+            difference[i] = b'0' + (d + 10 * borrow) as u8;
+        }
+        let whole = self.seconds.checked_sub(epoch.seconds)?.checked_sub(i64::from(borrow))?;
+        if whole < 0 {
+            return None;
+        }
+        let digits = String::from_utf8(difference).unwrap_or_default();
+        let fraction: f64 = format!("0.{digits}0").parse().unwrap_or(f64::NAN);
+        Some(whole as f64 + fraction)
+    }
+}
+
+impl fmt::Display for Instant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (year, month, day) = civil_from_days(self.seconds.div_euclid(86_400));
+        let s = self.seconds.rem_euclid(86_400);
+        write!(f, "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)?;
+        if !self.fraction.is_empty() {
+            write!(f, ".{}", self.fraction)?;
+        }
+        Ok(())
+    }
+}
+
+/// The current time (for `CREATION_DATE`), to the microsecond.
+pub fn now() -> Instant {
+    let elapsed = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
+    Instant { seconds: elapsed.as_secs() as i64, fraction: trimmed(format!("{:06}", elapsed.subsec_micros())) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn calendar_round_trip() {
+        for text in ["2000-01-01T12:00:00", "1999-12-31T23:59:59.999", "2024-02-29T00:00:00.5", "1000-01-01T00:00:00"] {
+            assert_eq!(Instant::parse(text).map(|i| i.to_string()).as_deref(), Ok(text));
+        }
+        assert_eq!(Instant::parse("1970-01-01T00:00:01Z").map(|i| i.seconds), Ok(1));
+        for bad in [
+            "2023-02-29T00:00:00",
+            "2000-01-01T24:00:00",
+            "2000-01-01T23:59:60",
+            "2000-01-01 00:00:00",
+            "x",
+            "2000-01-01T00:00:0\u{e9}",
+        ] {
+            assert!(Instant::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn offsets_round_trip_bit_exactly() {
+        let epochs =
+            [Instant::parse("2000-01-01T12:00:00").unwrap(), Instant::parse("2024-03-01T00:00:59.987654321").unwrap()];
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for epoch in &epochs {
+            for k in 0..20_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let t = match k % 4 {
+                    0 => f64::from_bits(x).abs() % 1e9,
+                    1 => (x >> 11) as f64 / (1u64 << 53) as f64 * 86_400.0,
+                    2 => (x % 100_000) as f64 * 0.1,
+                    _ => f64::from_bits(x).abs() % 1.0,
+                };
+                if !t.is_finite() {
+                    continue;
+                }
+                let at = epoch.after(t).unwrap();
+                let back = Instant::parse(&at.to_string()).unwrap().since(epoch).unwrap();
+                assert_eq!(back.to_bits(), t.to_bits(), "t = {t:e}, written {at}");
+            }
+        }
+        assert_eq!(Instant::parse("1999-12-31T23:59:59").unwrap().since(&epochs[0]), None);
+        assert!(epochs[0].after(-1.0).is_err());
+    }
+}

@@ -1,0 +1,374 @@
+//! CCSDS files at the command line (issue 15): `export-tdm` then `track` gives bit-identical estimates to
+//! `run`, `tracks.oem` parses back to the rows of `estimates.csv`, and every bad TDM is one line naming
+//! the file, line and keyword, exit code 2, with no output folder left behind.
+
+use host_sim::ccsds::Instant;
+use serde_json::Value;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+const BIN: &str = env!("CARGO_BIN_EXE_host-sim");
+
+/// A fresh directory under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!("host-sim-ccsds-{}-{tag}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).expect("create temp dir");
+        TempDir(path)
+    }
+
+    fn join(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn host_sim<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
+    Command::new(BIN).args(args).output().expect("run host-sim")
+}
+
+fn ok(output: Output) -> Output {
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "stdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+fn p(path: &Path) -> &str {
+    path.to_str().expect("utf-8 path")
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn generate(dir: &TempDir, preset: &str) -> Value {
+    let file = dir.join("generated.json");
+    ok(host_sim(&["generate", preset, "--seed", "1", "--out", p(&file)]));
+    serde_json::from_str(&read(&file)).expect("scenario JSON")
+}
+
+fn save(value: &Value, path: &Path) {
+    std::fs::write(path, serde_json::to_string(value).expect("json")).expect("write scenario");
+}
+
+/// tiny-3d with a second radar (a copy of the first, another name) taking every other scan, and one empty
+/// scan; without truth (the truth's per-measurement origins no longer hold).
+fn two_radars(dir: &TempDir) -> Value {
+    let mut s = generate(dir, "tiny-3d");
+    let mut second = s["sensors"][0].clone();
+    second["name"] = "radar-copy".into();
+    s["sensors"].as_array_mut().expect("sensors").push(second);
+    for (k, scan) in s["scans"].as_array_mut().expect("scans").iter_mut().enumerate() {
+        scan["sensor"] = (k % 2).into();
+        if k == 3 {
+            scan["measurements"] = Value::Array(vec![]);
+        }
+    }
+    s.as_object_mut().expect("object").remove("truth");
+    s
+}
+
+/// export-tdm, then track with the same file as the configuration; returns (run dir, track dir).
+fn run_and_track(dir: &TempDir, scenario: &Path, tracker: &str) -> (PathBuf, PathBuf) {
+    let (run, tdm, track) = (dir.join("run"), dir.join("tdm"), dir.join("track"));
+    ok(host_sim(&["run", p(scenario), "--tracker", tracker, "--out", p(&run), "--quiet"]));
+    ok(host_sim(&["export-tdm", p(scenario), "--out", p(&tdm)]));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&tdm).expect("tdm dir").map(|e| e.expect("entry").path()).collect();
+    files.sort();
+    let mut args: Vec<String> = vec!["track".into(), "--tdm".into()];
+    args.extend(files.iter().map(|f| p(f).to_string()));
+    args.extend(["--config", p(scenario), "--tracker", tracker, "--out", p(&track), "--quiet"].map(String::from));
+    ok(host_sim(&args));
+    (run, track)
+}
+
+#[test]
+fn tracking_the_tdm_export_of_two_radars_gives_the_run_estimates_bit_for_bit() {
+    let dir = TempDir::new("radar");
+    let scenario = dir.join("two.json");
+    save(&two_radars(&dir), &scenario);
+    let (run, track) = run_and_track(&dir, &scenario, "homht");
+    let tdms = std::fs::read_dir(dir.join("tdm")).expect("tdm dir").count();
+    assert_eq!(tdms, 2, "one TDM per sensor");
+    assert!(read(&dir.join("tdm/1-radar-copy.tdm")).contains("COMMENT EMPTY_SCAN "), "the empty scan is written");
+    let expected = read(&run.join("estimates.csv"));
+    assert!(expected.lines().count() > 10, "estimates written");
+    assert_eq!(read(&track.join("estimates.csv")), expected);
+    assert!(track.join("tracks.oem").exists() && track.join("summary.json").exists());
+}
+
+#[test]
+fn tracking_the_tdm_export_of_tiny_3d_gives_its_estimates_without_the_truth_column() {
+    let dir = TempDir::new("tiny");
+    let scenario = dir.join("tiny.json");
+    save(&generate(&dir, "tiny-3d"), &scenario);
+    let (run, track) = run_and_track(&dir, &scenario, "homht");
+    // The truth column (within_error_bound) is empty when tracking TDMs; everything else is identical.
+    let strip = |text: String| -> Vec<String> {
+        text.lines().map(|l| l.rsplit_once(',').map_or(l, |(head, _)| head).to_string()).collect()
+    };
+    let expected = strip(read(&run.join("estimates.csv")));
+    assert!(expected.len() > 10);
+    assert_eq!(strip(read(&track.join("estimates.csv"))), expected);
+}
+
+#[test]
+fn tracking_the_tdm_export_of_an_optical_scenario_gives_the_run_estimates_bit_for_bit() {
+    let dir = TempDir::new("optical");
+    let mut s = generate(&dir, "optical-geo");
+    // Four scans of three measurements each keep the debug-build run short.
+    let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
+        .iter()
+        .map(|scan| {
+            let mut scan = scan.clone();
+            let zs: Vec<Value> = scan["measurements"].as_array().expect("measurements")[..3].to_vec();
+            scan["measurements"] = Value::Array(zs);
+            scan
+        })
+        .collect();
+    s["scans"] = Value::Array(scans);
+    s.as_object_mut().expect("object").remove("truth");
+    let scenario = dir.join("geo.json");
+    save(&s, &scenario);
+    let (run, track) = run_and_track(&dir, &scenario, "rfisst");
+    assert!(read(&dir.join("tdm/0-telescope.tdm")).contains("ANGLE_TYPE = RADEC"));
+    let expected = read(&run.join("estimates.csv"));
+    assert!(expected.lines().count() > 4);
+    assert_eq!(read(&track.join("estimates.csv")), expected);
+}
+
+/// The segments of an OEM: label → [(time, state, covariance lower triangle)].
+type Segments = HashMap<u32, Vec<(Instant, [f64; 6], Vec<f64>)>>;
+
+/// A minimal OEM reader: what `tracks.oem` holds.
+fn read_oem(text: &str) -> Segments {
+    let mut segments: Segments = HashMap::new();
+    let mut label = None;
+    let mut in_covariance = false;
+    let mut cov_epoch: Option<Instant> = None;
+    let mut cov_index = 0;
+    let mut cov_point = 0;
+    for line in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        let (key, value) = line.split_once('=').map_or((line, ""), |(k, v)| (k.trim(), v.trim()));
+        match key {
+            "CCSDS_OEM_VERS" => assert_eq!(value, "2.0"),
+            "META_START" => in_covariance = false,
+            "OBJECT_ID" => label = Some(value.parse::<u32>().expect("label")),
+            "REF_FRAME" | "COV_REF_FRAME" => assert_eq!(value, "TEME"),
+            "CENTER_NAME" => assert_eq!(value, "EARTH"),
+            "TIME_SYSTEM" => assert_eq!(value, "UTC"),
+            "COVARIANCE_START" => {
+                in_covariance = true;
+                cov_point = 0;
+            }
+            "COVARIANCE_STOP" => {
+                in_covariance = false;
+                cov_epoch = None;
+            }
+            "EPOCH" => {
+                if cov_epoch.is_some() {
+                    cov_point += 1;
+                }
+                cov_epoch = Some(Instant::parse(value).expect("covariance epoch"));
+                cov_index = 0;
+            }
+            _ if line.starts_with("COMMENT")
+                || ["CREATION_DATE", "ORIGINATOR", "OBJECT_NAME", "START_TIME", "STOP_TIME", "META_STOP"]
+                    .contains(&key) => {}
+            _ if in_covariance => {
+                let values: Vec<f64> = line.split_whitespace().map(|v| v.parse().expect("covariance")).collect();
+                let points = segments.get_mut(&label.expect("segment")).expect("ephemeris before covariance");
+                let epoch = cov_epoch.as_ref().expect("EPOCH");
+                let point = &mut points[cov_point];
+                assert_eq!(&point.0, epoch, "covariances follow the ephemeris epochs");
+                assert_eq!(values.len(), cov_index + 1, "lower triangle");
+                point.2.extend(values);
+                cov_index += 1;
+            }
+            _ => {
+                let mut parts = line.split_whitespace();
+                let time = Instant::parse(parts.next().expect("epoch")).expect("ephemeris epoch");
+                let state: Vec<f64> = parts.map(|v| v.parse().expect("state")).collect();
+                let state: [f64; 6] = state.try_into().expect("six components");
+                segments.entry(label.expect("segment")).or_default().push((time, state, vec![]));
+            }
+        }
+    }
+    segments
+}
+
+#[test]
+fn tracks_oem_parses_back_to_the_estimates() {
+    let dir = TempDir::new("oem");
+    let scenario_path = dir.join("tiny.json");
+    let scenario = generate(&dir, "tiny-3d");
+    save(&scenario, &scenario_path);
+    let out = dir.join("run");
+    ok(host_sim(&["run", p(&scenario_path), "--out", p(&out), "--quiet"]));
+    let epoch = Instant::parse(scenario["epoch"]["utc"].as_str().expect("utc epoch")).expect("epoch");
+    let segments = read_oem(&read(&out.join("tracks.oem")));
+    // estimates.csv: scan,time,sensor,label,x,y,z,vx,vy,vz,existence,within_error_bound
+    let rows: Vec<Vec<String>> =
+        read(&out.join("estimates.csv")).lines().skip(1).map(|l| l.split(',').map(String::from).collect()).collect();
+    let last_scan = rows.iter().map(|r| r[0].clone()).next_back().expect("rows");
+    let mut confirmed: Vec<u32> = rows
+        .iter()
+        .filter(|r| r[0] == last_scan && r[10].parse::<f64>().expect("existence") >= 0.9)
+        .map(|r| r[3].parse().expect("label"))
+        .collect();
+    confirmed.sort_unstable();
+    let mut labels: Vec<u32> = segments.keys().copied().collect();
+    labels.sort_unstable();
+    assert!(!labels.is_empty(), "tiny-3d confirms tracks");
+    assert_eq!(labels, confirmed, "one segment per confirmed track");
+    for label in labels {
+        let points = &segments[&label];
+        let expected: Vec<&Vec<String>> = rows.iter().filter(|r| r[3] == label.to_string()).collect();
+        assert_eq!(points.len(), expected.len(), "label {label}: a point per scan in the MAP");
+        for ((time, state, covariance), row) in points.iter().zip(expected) {
+            let t: f64 = row[1].parse().expect("time");
+            assert_eq!(time.since(&epoch).map(f64::to_bits), Some(t.to_bits()), "label {label} time");
+            for (i, value) in state.iter().enumerate() {
+                assert_eq!(value.to_bits(), row[4 + i].parse::<f64>().expect("state").to_bits());
+            }
+            assert_eq!(covariance.len(), 21, "a covariance per epoch");
+            assert!(covariance[0] > 0.0 && covariance[20] > 0.0, "positive variances");
+        }
+    }
+}
+
+/// A small valid radar TDM for tiny-3d's sensor, with `edit` applied; tracked, it must fail with exit code
+/// 2, one line naming the file, `line` and `keyword`, and no output folder.
+fn assert_bad_tdm(edit: impl Fn(String) -> String, line: usize, keyword: &str) {
+    let dir = TempDir::new("bad");
+    let config = dir.join("tiny.json");
+    save(&generate(&dir, "tiny-3d"), &config);
+    ok(host_sim(&["export-tdm", p(&config), "--out", p(&dir.join("tdm"))]));
+    let tdm = dir.join("tdm/0-radar-north.tdm");
+    std::fs::write(&tdm, edit(read(&tdm))).expect("write TDM");
+    let out = dir.join("out");
+    let output = host_sim(&["track", "--tdm", p(&tdm), "--config", p(&config), "--out", p(&out), "--quiet"]);
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    let place = format!("{}:{line}: {keyword}: ", tdm.display());
+    assert!(stderr.contains(&place), "expected {place:?} in {stderr:?}");
+    assert!(!out.exists(), "nothing written");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir.0).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    assert!(!leftovers.iter().any(|n| n.to_string_lossy().contains("partial")), "{leftovers:?}");
+}
+
+/// The line number (1-based) of the first line of `text` that starts with `prefix`.
+fn line_of(prefix: &str) -> impl Fn(&str) -> usize {
+    let prefix = prefix.to_string();
+    move |text: &str| text.lines().position(|l| l.starts_with(&prefix)).expect("line") + 1
+}
+
+/// The exported TDM's text, to find line numbers.
+fn sample_tdm() -> String {
+    let dir = TempDir::new("sample");
+    let config = dir.join("tiny.json");
+    save(&generate(&dir, "tiny-3d"), &config);
+    ok(host_sim(&["export-tdm", p(&config), "--out", p(&dir.join("tdm"))]));
+    read(&dir.join("tdm/0-radar-north.tdm"))
+}
+
+#[test]
+fn tdm_with_an_unknown_keyword_is_refused() {
+    let line = line_of("MODE")(&sample_tdm());
+    assert_bad_tdm(|t| t.replace("MODE = SEQUENTIAL", "FLAVOUR = SEQUENTIAL"), line, "FLAVOUR");
+    let data = line_of("RANGE =")(&sample_tdm());
+    assert_bad_tdm(|t| t.replacen("RANGE =", "RANGE_X =", 1), data, "RANGE_X");
+}
+
+#[test]
+fn tdm_without_a_meta_block_is_refused() {
+    let text = sample_tdm();
+    let start = line_of("META_START")(&text);
+    let stop = line_of("META_STOP")(&text);
+    // The data block follows the header directly: DATA_START is then line start + 2 (the META block and
+    // the blank line after it are removed).
+    let removed = stop - start + 2;
+    let data = line_of("DATA_START")(&text) - removed;
+    assert_bad_tdm(
+        |t| {
+            let lines: Vec<&str> = t.lines().collect();
+            let kept: Vec<&str> = lines[..start - 1].iter().chain(&lines[stop + 1..]).copied().collect();
+            kept.join("\n") + "\n"
+        },
+        data,
+        "DATA_START",
+    );
+}
+
+#[test]
+fn tdm_with_times_out_of_order_is_refused() {
+    // The first scan's lines moved after the second scan's: its RANGE is then out of order.
+    let text = sample_tdm();
+    let first = line_of("RANGE =")(&text);
+    let lines: Vec<&str> = text.lines().collect();
+    let t0 = lines[first - 1].split_whitespace().nth(2).expect("time").to_string();
+    let scan0: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].contains(&format!("= {t0} "))).collect();
+    let t1 = lines[scan0[scan0.len() - 1] + 1].split_whitespace().nth(2).expect("time").to_string();
+    let scan1: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].contains(&format!("= {t1} "))).collect();
+    let moved_to = first + scan1.len(); // the first moved line, 1-based
+    assert_bad_tdm(
+        move |t| {
+            let lines: Vec<&str> = t.lines().collect();
+            let mut out: Vec<&str> = lines[..scan0[0]].to_vec();
+            out.extend(scan1.iter().map(|&i| lines[i]));
+            out.extend(scan0.iter().map(|&i| lines[i]));
+            out.extend(&lines[scan1[scan1.len() - 1] + 1..]);
+            out.join("\n") + "\n"
+        },
+        moved_to,
+        "RANGE",
+    );
+}
+
+#[test]
+fn tdm_with_a_time_before_the_epoch_is_refused() {
+    let text = sample_tdm();
+    let first = line_of("RANGE =")(&text);
+    let lines: Vec<&str> = text.lines().collect();
+    let t0 = lines[first - 1].split_whitespace().nth(2).expect("time").to_string();
+    let earlier = format!("1999{}", &t0[4..]);
+    assert_bad_tdm(move |t| t.replacen(&format!("RANGE = {t0}"), &format!("RANGE = {earlier}"), 1), first, "RANGE");
+}
+
+#[test]
+fn tdm_with_an_unsupported_time_system_is_refused() {
+    let line = line_of("TIME_SYSTEM")(&sample_tdm());
+    assert_bad_tdm(|t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = TAI"), line, "TIME_SYSTEM");
+}
+
+#[test]
+fn tdm_with_an_unsupported_angle_type_is_refused() {
+    let line = line_of("ANGLE_TYPE")(&sample_tdm());
+    assert_bad_tdm(|t| t.replace("ANGLE_TYPE = AZEL", "ANGLE_TYPE = XEYN"), line, "ANGLE_TYPE");
+    // RADEC is supported, but not for the configuration's radar.
+    assert_bad_tdm(|t| t.replace("ANGLE_TYPE = AZEL", "ANGLE_TYPE = RADEC"), line, "ANGLE_TYPE");
+}
+
+#[test]
+fn tdm_naming_an_unknown_sensor_is_refused() {
+    let line = line_of("PARTICIPANT_1")(&sample_tdm());
+    assert_bad_tdm(|t| t.replace("PARTICIPANT_1 = radar-north", "PARTICIPANT_1 = radar-west"), line, "PARTICIPANT_1");
+}
