@@ -39,6 +39,7 @@ pub mod setup;
 pub mod sim;
 pub mod snapshot;
 pub mod soak;
+pub mod soak3d;
 pub mod ssa;
 
 pub use error::Error;
