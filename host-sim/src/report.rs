@@ -240,6 +240,10 @@ pub struct SoakReport {
     pub p99_ms_per_scan: f64,
     /// Largest over median time per scan.
     pub max_over_median: f64,
+    /// Mean time per scan over the first tenth of the scans (ms).
+    pub mean_ms_per_scan_first_tenth: f64,
+    /// Mean time per scan over the last tenth of the scans (ms).
+    pub mean_ms_per_scan_last_tenth: f64,
     /// Peak resident memory (VmHWM, KiB) after the first scan, when the system reports it.
     pub peak_resident_kib_start: Option<u64>,
     /// Peak resident memory (VmHWM, KiB) after the last scan.

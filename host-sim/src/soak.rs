@@ -204,6 +204,13 @@ impl Health {
     }
 }
 
+/// The mean time per scan (ms) over the first and the last tenth of the scans (the whole run below ten).
+pub(crate) fn tenths(durations: &[f32]) -> (f64, f64) {
+    let tenth = (durations.len() / 10).max(1).min(durations.len());
+    let mean = |d: &[f32]| d.iter().map(|&x| f64::from(x)).sum::<f64>() / d.len().max(1) as f64;
+    (mean(&durations[..tenth]), mean(&durations[durations.len() - tenth..]))
+}
+
 /// The times per scan (ms) as (max, mean, p50, p99).
 pub(crate) fn timing(durations: &[f32]) -> (f64, f64, f64, f64) {
     let mut sorted = durations.to_vec();
@@ -436,6 +443,8 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
         p50_ms_per_scan: p50_ms,
         p99_ms_per_scan: p99_ms,
         max_over_median: max_ms / p50_ms,
+        mean_ms_per_scan_first_tenth: tenths(&durations).0,
+        mean_ms_per_scan_last_tenth: tenths(&durations).1,
         peak_resident_kib_start: resident_start,
         peak_resident_kib_end: crate::evaluate::peak_resident_kib(),
         numerical_drops: health.numerical_drops,
@@ -502,7 +511,11 @@ mod tests {
     fn untimed(report: &SoakReport) -> serde_json::Value {
         let mut report = serde_json::to_value(report).unwrap();
         if let Some(object) = report.as_object_mut() {
-            object.retain(|key, _| !key.contains("ms_per_scan") && key != "wall_seconds");
+            object.retain(|key, _| {
+                !key.contains("ms_per_scan")
+                    && !key.starts_with("peak_resident")
+                    && !["wall_seconds", "max_over_median"].contains(&key.as_str())
+            });
         }
         report
     }

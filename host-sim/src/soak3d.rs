@@ -22,7 +22,7 @@ use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::rng::{Random, Stream};
 use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
 use crate::runner::{Profile, TrackerKind};
-use crate::soak::{Health, MAX_SCANS, Scenario, non_finite_values, progress, timing};
+use crate::soak::{Health, MAX_SCANS, Scenario, non_finite_values, progress, tenths, timing};
 use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;
@@ -214,6 +214,8 @@ where
         p50_ms_per_scan: p50_ms,
         p99_ms_per_scan: p99_ms,
         max_over_median: max_ms / p50_ms,
+        mean_ms_per_scan_first_tenth: tenths(&durations).0,
+        mean_ms_per_scan_last_tenth: tenths(&durations).1,
         peak_resident_kib_start: resident_start,
         peak_resident_kib_end: peak_resident_kib(),
         numerical_drops: health.numerical_drops,
@@ -250,8 +252,14 @@ where
         wall_seconds: started.elapsed().as_secs_f64(),
         setup: SoakSetup {
             tracker: format!(
-                "tracker-core Tracker<f64, TwoBodyJ2, SensorNetwork> of `host-sim run --tracker rfisst` on `host-sim generate {} --seed {seed}` (profile {profile:?}: H = {H}, N = {N}, Z = {Z}, K = {K}, B = {B})",
-                scenario.name()
+                "tracker-core Tracker<f64, TwoBodyJ2, SensorNetwork> of `host-sim run --tracker rfisst` (profile {profile:?}: H = {H}, N = {N}, Z = {Z}, K = {K}, B = {B}) on {}",
+                match scenario {
+                    Scenario::RadarLeo => format!(
+                        "radar-leo's radars and orbits with seed {seed}, {} singles + {} crossing pairs",
+                        RADAR_LEO.singles, RADAR_LEO.pairs
+                    ),
+                    _ => format!("`host-sim generate {} --seed {seed}`", scenario.name()),
+                }
             ),
             motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
             sensor: sensors.join("; "),

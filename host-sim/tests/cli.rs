@@ -1341,6 +1341,8 @@ fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
         "mean_abs_cardinality_error",
         "max_over_median",
         "mean_ms_per_scan",
+        "mean_ms_per_scan_first_tenth",
+        "mean_ms_per_scan_last_tenth",
         "measurement_capacity",
         "measurements",
         "nan_count",
