@@ -49,8 +49,7 @@ impl Stream3d {
             _ => return Err(Error::internal("soak: the preset has fewer than two scans")),
         };
         let states = sim.objects.iter().map(|o| o.initial_state).collect();
-        let detection =
-            (0..sim.objects.len()).map(|i| Random::stream(sim.seed, Stream::Detection, i as u64)).collect();
+        let detection = (0..sim.objects.len()).map(|i| Random::stream(sim.seed, Stream::Detection, i as u64)).collect();
         Ok(Stream3d { sim, interval, states, time: 0.0, detection })
     }
 
@@ -108,7 +107,8 @@ where
     for track in tracker.map_hypothesis().tracks() {
         if let Some(t) = truth.get(track.label.0 as usize) {
             let m = &track.state.mean;
-            errors[track.label.0 as usize] = ((m[0] - t[0]).powi(2) + (m[1] - t[1]).powi(2) + (m[2] - t[2]).powi(2)).sqrt();
+            errors[track.label.0 as usize] =
+                ((m[0] - t[0]).powi(2) + (m[1] - t[1]).powi(2) + (m[2] - t[2]).powi(2)).sqrt();
         }
     }
     errors
@@ -320,7 +320,7 @@ pub const RADAR_LEO: RadarLeoConfig = RadarLeoConfig { singles: 40, pairs: 10, .
 #[cfg(test)]
 mod tests {
     use super::*;
-    
+
     #[test]
     fn the_radar_soak_fits_the_embedded_profile() {
         let sim = ssa::radar_leo_with(1, &RADAR_LEO).unwrap();
