@@ -47,6 +47,7 @@ pub mod sgp4_check;
 pub mod sim;
 pub mod snapshot;
 pub mod soak;
+pub mod soak3d;
 pub mod ssa;
 pub mod tdm;
 

@@ -190,6 +190,9 @@ enum Command {
         /// Seed.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// The soak's geometry: the planar SSA scenario with births and deaths, or a 3-D preset observed without end.
+        #[arg(long, value_enum, default_value = "planar")]
+        scenario: host_sim::soak::Scenario,
         /// Output JSON file.
         #[arg(long)]
         out: PathBuf,
@@ -440,8 +443,8 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let report = host_sim::perf::run()?;
             write_report(&out, &report)
         }
-        Command::Soak { scans, seed, out, quiet } => {
-            let report = host_sim::soak::run(scans, seed, quiet)?;
+        Command::Soak { scans, seed, scenario, out, quiet } => {
+            let report = host_sim::soak::run_scenario(scenario, scans, seed, quiet)?;
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {

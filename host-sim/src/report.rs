@@ -216,6 +216,8 @@ pub struct CompareScan {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SoakReport {
+    /// The scenario (`planar`, `radar-leo`, `optical-geo`).
+    pub scenario: String,
     /// Scans run.
     pub scans: u64,
     /// Seed.
@@ -236,6 +238,21 @@ pub struct SoakReport {
     pub p50_ms_per_scan: f64,
     /// 99th percentile of the time per scan (ms).
     pub p99_ms_per_scan: f64,
+    /// Largest over median time per scan.
+    pub max_over_median: f64,
+    /// Mean time per scan over the first tenth of the scans (ms).
+    pub mean_ms_per_scan_first_tenth: f64,
+    /// Mean time per scan over the last tenth of the scans (ms).
+    pub mean_ms_per_scan_last_tenth: f64,
+    /// Peak resident memory (VmHWM, KiB) after the first scan, when the system reports it.
+    pub peak_resident_kib_start: Option<u64>,
+    /// Peak resident memory (VmHWM, KiB) after the last scan.
+    pub peak_resident_kib_end: Option<u64>,
+    /// Tracks dropped for a numerical failure, summed.
+    pub numerical_drops: u64,
+    /// Whether the objects stay tracked (3-D soaks, whose objects live for the whole run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracking: Option<SoakTracking>,
     /// Step errors by variant.
     pub errors_by_kind: BTreeMap<String, u64>,
     /// The first step error.
@@ -268,6 +285,41 @@ pub struct SoakReport {
     pub wall_seconds: f64,
     /// The scenario and tracker.
     pub setup: SoakSetup,
+}
+
+/// Whether a 3-D soak's objects stay tracked: an object is tracked at a scan when the MAP hypothesis holds
+/// its label with a position within `error_bound_km` of the truth.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SoakTracking {
+    /// The bound (km): the scenario's `evaluation.error_bound`.
+    pub error_bound_km: f64,
+    /// True objects (all alive for the whole run).
+    pub objects: usize,
+    /// Objects tracked after the last scan.
+    pub final_tracked: usize,
+    /// Fewest objects tracked after any scan.
+    pub min_tracked: usize,
+    /// The first scan (1-based) with that fewest.
+    pub min_tracked_scan: u64,
+    /// Mean number tracked over the scans.
+    pub mean_tracked: f64,
+    /// Mean number tracked over the last tenth of the scans.
+    pub mean_tracked_last_tenth: f64,
+    /// Object-scans with the object in the scan's field of view.
+    pub in_view: u64,
+    /// The fraction of them tracked after the scan.
+    pub in_view_tracked_fraction: f64,
+    /// The same over the last tenth of the scans.
+    pub in_view_tracked_fraction_last_tenth: f64,
+    /// Median MAP position error (km) over the objects after the last scan.
+    pub final_median_position_error_km: f64,
+    /// Labels missing from the MAP hypothesis after the last scan.
+    pub final_missing_labels: usize,
+    /// Detections dropped because their noisy value fell outside the field of view.
+    pub dropped_outside_field_of_view: u64,
+    /// Simulated time (days).
+    pub simulated_days: f64,
 }
 
 /// The first step error of a soak.

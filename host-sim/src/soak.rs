@@ -75,8 +75,9 @@ use std::time::Instant;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
     BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorObject, SsaConfig,
-    SsaTracker, StoreOverflow, TrackLabel, ssa_caps,
+    SsaTracker, StoreOverflow, TrackLabel, Tracker, ssa_caps,
 };
+use tracker_core::{MeasurementModel, MotionModel};
 
 /// Objects known to the prior.
 pub const INITIAL_OBJECTS: usize = 20;
@@ -122,28 +123,62 @@ fn orbit_in_view(random: &mut Random) -> Orbit {
     orbit
 }
 
+/// The scenario of a soak.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Scenario {
+    /// Paper 003's planar SSA geometry with births and deaths (this module).
+    Planar,
+    /// `generate radar-leo`'s radars and objects, observed without end ([`crate::soak3d`]).
+    RadarLeo,
+    /// `generate optical-geo`'s telescope and objects, observed without end ([`crate::soak3d`]).
+    OpticalGeo,
+}
+
+impl Scenario {
+    /// The name on the command line and in the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scenario::Planar => "planar",
+            Scenario::RadarLeo => "radar-leo",
+            Scenario::OpticalGeo => "optical-geo",
+        }
+    }
+}
+
+/// Runs `scans` scans of the soak `scenario` with `seed` and returns the report.
+///
+/// # Errors
+/// As [`run`] and [`crate::soak3d::run`].
+pub fn run_scenario(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
+    match scenario {
+        Scenario::Planar => run(scans, seed, quiet),
+        Scenario::RadarLeo | Scenario::OpticalGeo => crate::soak3d::run(scenario, scans, seed, quiet),
+    }
+}
+
 /// Counts of what one run saw.
 #[derive(Default)]
-struct Health {
-    non_finite: u64,
-    non_finite_scans: u64,
-    first_non_finite_scan: Option<u64>,
-    errors: BTreeMap<String, u64>,
-    first_error: Option<(u64, String)>,
-    max_hypotheses: usize,
-    max_tracks: usize,
-    max_measurements: usize,
-    births_beyond_capacity: u64,
-    children_dropped_for_store: u64,
+pub(crate) struct Health {
+    pub(crate) non_finite: u64,
+    pub(crate) non_finite_scans: u64,
+    pub(crate) first_non_finite_scan: Option<u64>,
+    pub(crate) errors: BTreeMap<String, u64>,
+    pub(crate) first_error: Option<(u64, String)>,
+    pub(crate) max_hypotheses: usize,
+    pub(crate) max_tracks: usize,
+    pub(crate) max_measurements: usize,
+    pub(crate) births_beyond_capacity: u64,
+    pub(crate) children_dropped_for_store: u64,
+    pub(crate) numerical_drops: u64,
 }
 
 impl Health {
-    /// Scan `k`'s step result and the tracker's state after it.
-    fn record(
+    /// Scan `k`'s step result and the number of non-finite values in the tracker after it.
+    pub(crate) fn record(
         &mut self,
         k: u64,
         result: Result<tracker_core::StepReport<f64>, tracker_core::StepError>,
-        tracker: &SsaTracker<f64>,
+        bad: u64,
     ) {
         match result {
             Ok(report) => {
@@ -151,19 +186,41 @@ impl Health {
                 self.max_tracks = self.max_tracks.max(report.tracks);
                 self.births_beyond_capacity += report.births_beyond_object_capacity;
                 self.children_dropped_for_store += report.children_dropped_for_store as u64;
+                self.numerical_drops += report.numerical_drops.count as u64;
             }
-            Err(error) => {
-                *self.errors.entry(variant(&error)).or_default() += 1;
-                self.first_error.get_or_insert((k + 1, error.to_string()));
-            }
+            Err(error) => self.error(k, variant(&error), error.to_string()),
         }
-        let bad = non_finite_values(tracker);
         if bad > 0 {
             self.non_finite += bad;
             self.non_finite_scans += 1;
             self.first_non_finite_scan.get_or_insert(k + 1);
         }
     }
+
+    /// An error of kind `kind` at scan `k`.
+    pub(crate) fn error(&mut self, k: u64, kind: String, message: String) {
+        *self.errors.entry(kind).or_default() += 1;
+        self.first_error.get_or_insert((k + 1, message));
+    }
+}
+
+/// The mean time per scan (ms) over the first and the last tenth of the scans (the whole run below ten).
+pub(crate) fn tenths(durations: &[f32]) -> (f64, f64) {
+    let tenth = (durations.len() / 10).max(1).min(durations.len());
+    let mean = |d: &[f32]| d.iter().map(|&x| f64::from(x)).sum::<f64>() / d.len().max(1) as f64;
+    (mean(&durations[..tenth]), mean(&durations[durations.len() - tenth..]))
+}
+
+/// The times per scan (ms) as (max, mean, p50, p99).
+pub(crate) fn timing(durations: &[f32]) -> (f64, f64, f64, f64) {
+    let mut sorted = durations.to_vec();
+    sorted.sort_unstable_by(f32::total_cmp);
+    let percentile = |p: f64| {
+        let i = (p * sorted.len().saturating_sub(1) as f64).round() as usize;
+        sorted.get(i.min(sorted.len().saturating_sub(1))).map_or(0.0, |&d| f64::from(d))
+    };
+    let mean = durations.iter().map(|&d| f64::from(d)).sum::<f64>() / durations.len().max(1) as f64;
+    (percentile(1.0), mean, percentile(0.5), percentile(0.99))
 }
 
 /// The name of an error's variant (`Numerical { .. }` → `Numerical`).
@@ -173,7 +230,19 @@ fn variant(error: &tracker_core::StepError) -> String {
 }
 
 /// Non-finite values among the tracker's weights, means, covariances and existence probabilities.
-fn non_finite_values(tracker: &SsaTracker<f64>) -> u64 {
+pub(crate) fn non_finite_values<
+    M: MotionModel<f64, S>,
+    G: MeasurementModel<f64, S, D>,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    tracker: &Tracker<f64, M, G, S, D, H, N, Z, K, B>,
+) -> u64 {
     let weights = tracker.hypotheses().filter(|h| !h.weight().is_finite() || !h.log_weight().is_finite()).count();
     let tracks: usize = tracker
         .tracks()
@@ -187,7 +256,7 @@ fn non_finite_values(tracker: &SsaTracker<f64>) -> u64 {
     (weights + tracks) as u64
 }
 
-fn progress(scans: u64, quiet: bool) -> ProgressBar {
+pub(crate) fn progress(scans: u64, quiet: bool) -> ProgressBar {
     if quiet || !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
@@ -341,6 +410,7 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
     // Grown scan by scan, never reserved for `scans` up front.
     let mut durations: Vec<f32> = vec![];
     let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
+    let mut resident_start = None;
     for k in 0..scans {
         let measurements = world.scan(k);
         health.max_measurements = health.max_measurements.max(measurements.len());
@@ -348,7 +418,10 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
         let step_started = Instant::now();
         let result = tracker.step((k + 1) as f64 * SCAN_INTERVAL, &measurements);
         durations.push(step_started.elapsed().as_secs_f32() * 1e3);
-        health.record(k, result, &tracker);
+        health.record(k, result, non_finite_values(&*tracker));
+        if k == 0 {
+            resident_start = crate::evaluate::peak_resident_kib();
+        }
         let difference = (tracker.expected_cardinality() - world.alive.len() as f64).abs();
         cardinality_error += difference;
         max_cardinality_error = max_cardinality_error.max(difference);
@@ -356,21 +429,26 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
     }
     bar.finish_and_clear();
 
-    let mut sorted = durations.clone();
-    sorted.sort_unstable_by(f32::total_cmp);
-    let percentile =
-        |p: f64| f64::from(sorted[((p * (sorted.len() - 1) as f64).round() as usize).min(sorted.len() - 1)]);
+    let (max_ms, mean_ms, p50_ms, p99_ms) = timing(&durations);
     Ok(SoakReport {
+        scenario: Scenario::Planar.name().into(),
         scans,
         seed,
         nan_count: health.non_finite,
         non_finite_scans: health.non_finite_scans,
         first_non_finite_scan: health.first_non_finite_scan,
         max_hypotheses: health.max_hypotheses,
-        max_ms_per_scan: percentile(1.0),
-        mean_ms_per_scan: durations.iter().map(|&d| f64::from(d)).sum::<f64>() / durations.len() as f64,
-        p50_ms_per_scan: percentile(0.5),
-        p99_ms_per_scan: percentile(0.99),
+        max_ms_per_scan: max_ms,
+        mean_ms_per_scan: mean_ms,
+        p50_ms_per_scan: p50_ms,
+        p99_ms_per_scan: p99_ms,
+        max_over_median: max_ms / p50_ms,
+        mean_ms_per_scan_first_tenth: tenths(&durations).0,
+        mean_ms_per_scan_last_tenth: tenths(&durations).1,
+        peak_resident_kib_start: resident_start,
+        peak_resident_kib_end: crate::evaluate::peak_resident_kib(),
+        numerical_drops: health.numerical_drops,
+        tracking: None,
         errors_by_kind: health.errors,
         first_error: health.first_error.map(|(scan, message)| SoakError { scan, message }),
         track_store_high_water: health.max_tracks,
@@ -433,7 +511,11 @@ mod tests {
     fn untimed(report: &SoakReport) -> serde_json::Value {
         let mut report = serde_json::to_value(report).unwrap();
         if let Some(object) = report.as_object_mut() {
-            object.retain(|key, _| !key.contains("ms_per_scan") && key != "wall_seconds");
+            object.retain(|key, _| {
+                !key.contains("ms_per_scan")
+                    && !key.starts_with("peak_resident")
+                    && !["wall_seconds", "max_over_median"].contains(&key.as_str())
+            });
         }
         report
     }

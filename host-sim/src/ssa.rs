@@ -827,6 +827,50 @@ fn observers(sensors: &[SensorSpec], epoch_jd: f64, schedule: &[(f64, usize)]) -
     schedule.iter().map(|&(t, s)| sensors[s].site.observer(earth_rotation_angle(epoch_jd, t))).collect()
 }
 
+/// Draws scan `k` of a plan with `seed`: the sensor `s` (`sensor`, seen from `observer`) at `time` looks at
+/// the objects at `states` (`None`: object `i` cannot be seen at this scan; object `i` draws its detection and
+/// noise from `detection[i]`); Poisson clutter
+/// from stream [`Stream::Clutter`] `k`, the order shuffled by stream [`Stream::Scenario`] `k`.
+///
+/// # Errors
+/// [`SsaError::TooManyMeasurements`] above [`MAX_MEASUREMENTS`]; [`SsaError::EmptyFieldOfView`] from clutter.
+pub fn draw_scan(
+    seed: u64,
+    k: usize,
+    (time, s): (f64, usize),
+    sensor: &SensorSpec,
+    observer: &Observer,
+    states: impl Iterator<Item = Option<[f64; 6]>>,
+    detection: &mut [Random],
+) -> Result<Scan3, SsaError> {
+    // (measurement, origin)
+    let mut items: Vec<(Vec<f64>, Option<usize>)> = Vec::new();
+    let mut truth = Vec::new();
+    for ((i, state), random) in states.enumerate().zip(detection.iter_mut()) {
+        let Some(state) = state.filter(|state| sensor.sees(observer, state)) else { continue };
+        truth.push(TruthAt { object: i, state, measurement: None });
+        if random.uniform() < sensor.detection_probability {
+            items.push((sensor.noisy(observer, &state, random), Some(i)));
+        }
+    }
+    let mut clutter = Random::stream(seed, Stream::Clutter, k as u64);
+    for _ in 0..clutter.poisson(sensor.clutter_rate) {
+        items.push((sensor.clutter_point(observer, &mut clutter)?, None));
+    }
+    if items.len() > MAX_MEASUREMENTS {
+        return Err(SsaError::TooManyMeasurements { scan: k });
+    }
+    Random::stream(seed, Stream::Scenario, k as u64).shuffle(&mut items);
+    for (j, (_, origin)) in items.iter().enumerate() {
+        if let Some(i) = origin
+            && let Some(t) = truth.iter_mut().find(|t| t.object == *i)
+        {
+            t.measurement = Some(j);
+        }
+    }
+    Ok(Scan3 { time, sensor: s, measurements: items.into_iter().map(|(z, _)| z).collect(), truth })
+}
+
 /// Draws detections and clutter for every scan of a plan.
 fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
     let epoch_jd = parse_iso8601(&plan.epoch)?;
@@ -843,37 +887,10 @@ fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
         (0..plan.objects.len()).map(|i| Random::stream(plan.seed, Stream::Detection, i as u64)).collect();
     let mut scans = Vec::with_capacity(plan.schedule.len());
     for (k, (&(time, s), observer)) in plan.schedule.iter().zip(&observers).enumerate() {
-        let sensor = &plan.sensors[s];
-        // (measurement, origin)
-        let mut items: Vec<(Vec<f64>, Option<usize>)> = Vec::new();
-        let mut truth = Vec::new();
-        for (i, states) in tracks.iter().enumerate() {
-            let state = states[k];
-            if !sensor.sees(observer, &state) || plan.visible.as_ref().is_some_and(|v| !v[i][k]) {
-                continue;
-            }
-            truth.push(TruthAt { object: i, state, measurement: None });
-            let random = &mut detection[i];
-            if random.uniform() < sensor.detection_probability {
-                items.push((sensor.noisy(observer, &state, random), Some(i)));
-            }
-        }
-        let mut clutter = Random::stream(plan.seed, Stream::Clutter, k as u64);
-        for _ in 0..clutter.poisson(sensor.clutter_rate) {
-            items.push((sensor.clutter_point(observer, &mut clutter)?, None));
-        }
-        if items.len() > MAX_MEASUREMENTS {
-            return Err(SsaError::TooManyMeasurements { scan: k });
-        }
-        Random::stream(plan.seed, Stream::Scenario, k as u64).shuffle(&mut items);
-        for (j, (_, origin)) in items.iter().enumerate() {
-            if let Some(i) = origin
-                && let Some(t) = truth.iter_mut().find(|t| t.object == *i)
-            {
-                t.measurement = Some(j);
-            }
-        }
-        scans.push(Scan3 { time, sensor: s, measurements: items.into_iter().map(|(z, _)| z).collect(), truth });
+        // An object the plan marks invisible at this scan (a telescope's unlit object) is not seen.
+        let visible = |i: usize| plan.visible.as_ref().is_none_or(|v| v[i][k]);
+        let states = tracks.iter().enumerate().map(|(i, states)| visible(i).then_some(states[k]));
+        scans.push(draw_scan(plan.seed, k, (time, s), &plan.sensors[s], observer, states, &mut detection)?);
     }
     Ok(SsaScenario {
         name: plan.name,

@@ -979,7 +979,60 @@ fn soak_scan_count_is_bounded() {
             panic!("{scans}: {why}\n{}", describe(&output));
         }
         assert!(!out.exists());
+        let output = host_sim(&[
+            "soak".as_ref(),
+            "--scenario".as_ref(),
+            "radar-leo".as_ref(),
+            "--scans".as_ref(),
+            scans.as_ref(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        if let Err(why) = check_malformed(&output, &format!("--scans {scans}: must be in [1, 10000000]")) {
+            panic!("radar-leo {scans}: {why}\n{}", describe(&output));
+        }
+        assert!(!out.exists());
     }
+}
+
+/// A short soak on the radar geometry (issue 17 item 7): healthy, every object kept, the new keys present.
+#[test]
+fn a_short_radar_soak_keeps_its_objects() {
+    let dir = TempDir::new("soak-radar");
+    let out = dir.join("soak.json");
+    let scans = 300;
+    let output = host_sim(&[
+        "soak".as_ref(),
+        "--scenario".as_ref(),
+        "radar-leo".as_ref(),
+        "--scans".as_ref(),
+        scans.to_string().as_ref(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert_success(&output);
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&out).expect("report")).expect("json");
+    assert_eq!(report["scenario"], "radar-leo");
+    assert_eq!(report["scans"], scans);
+    assert_eq!(report["nan_count"], 0);
+    assert_eq!(report["errors_by_kind"], serde_json::json!({}));
+    assert_eq!(report["numerical_drops"], 0);
+    assert!(report["max_over_median"].as_f64().expect("ratio") >= 1.0);
+    let (start, end) = (report["peak_resident_kib_start"].as_u64(), report["peak_resident_kib_end"].as_u64());
+    if let (Some(start), Some(end)) = (start, end) {
+        assert!(start > 0 && end >= start, "{start} {end}");
+    }
+    let objects = report["tracking"]["objects"].as_u64().expect("objects");
+    assert_eq!(report["truth"]["final_alive"], objects);
+    let expected = report["final_expected_cardinality"].as_f64().expect("cardinality");
+    assert!((expected - objects as f64).abs() < 0.5, "{expected} of {objects}");
+    assert_eq!(report["tracking"]["final_missing_labels"], 0);
+    // The objects the radars see are where the tracker has them.
+    assert!(report["tracking"]["in_view"].as_u64().expect("in view") > 100);
+    let fraction = report["tracking"]["in_view_tracked_fraction"].as_f64().expect("fraction");
+    assert!(fraction > 0.95, "{fraction}");
+    assert!(report["measurements"].as_u64().expect("measurements") > 0);
 }
 
 #[test]
@@ -1226,7 +1279,8 @@ fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
     assert_eq!(printed, brief);
 }
 
-/// The same for the reports of `sampler-check` and `soak` (keys listed from their outputs at commit 18b844d).
+/// The same for the reports of `sampler-check` and `soak` (keys listed from their outputs at commit 18b844d,
+/// with the soak's `scenario`, `max_over_median`, `peak_resident_kib_*` and `numerical_drops` of issue 17).
 #[test]
 fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
     use host_sim::report::{SamplerCheckReport, SoakReport};
@@ -1285,14 +1339,21 @@ fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
         "max_measurements_per_scan",
         "max_ms_per_scan",
         "mean_abs_cardinality_error",
+        "max_over_median",
         "mean_ms_per_scan",
+        "mean_ms_per_scan_first_tenth",
+        "mean_ms_per_scan_last_tenth",
         "measurement_capacity",
         "measurements",
         "nan_count",
         "non_finite_scans",
+        "numerical_drops",
         "p50_ms_per_scan",
         "p99_ms_per_scan",
+        "peak_resident_kib_end",
+        "peak_resident_kib_start",
         "scans",
+        "scenario",
         "seed",
         "setup",
         "track_store_capacity",

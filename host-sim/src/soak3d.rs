@@ -1,0 +1,345 @@
+//! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
+//!
+//! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
+//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::generate3d::to_scenario`]); the tracker is
+//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::run3d::config3d`], f64,
+//! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
+//! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the
+//! sensors take turns, one scan every interval): every object's truth is carried from scan to scan by
+//! [`crate::orbit`]'s RKF7(8) two-body + J2 integrator (only the states of now are kept) and every scan is
+//! drawn by [`crate::ssa::draw_scan`], so the first scans are those of the generated file. A detection whose
+//! noisy value falls outside the field of view is dropped, as `generate` does.
+//!
+//! Every object lives for the whole run, so the soak checks that they stay *tracked*: after every scan it
+//! counts the objects whose label the MAP hypothesis holds within the scenario's error bound of the truth
+//! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::soak`]).
+
+use crate::error::Error;
+use crate::evaluate::peak_resident_kib;
+use crate::generate3d::to_scenario;
+use crate::orbit::Propagator;
+use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
+use crate::rng::{Random, Stream};
+use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
+use crate::runner::{Profile, TrackerKind};
+use crate::soak::{Health, MAX_SCANS, Scenario, non_finite_values, progress, tenths, timing};
+use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
+use nalgebra::SVector;
+use std::time::Instant;
+use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, ScanGeometry, SensorNetwork};
+use tracker_core::{PriorHypothesis, Tracker, TwoBodyJ2, ssa_caps};
+
+type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
+
+/// The truth of the objects now, scan after scan.
+struct Stream3d {
+    sim: SsaScenario,
+    /// Seconds between two scans (of any sensor).
+    interval: f64,
+    states: Vec<[f64; 6]>,
+    time: f64,
+    detection: Vec<Random>,
+}
+
+impl Stream3d {
+    fn new(sim: SsaScenario) -> Result<Self, Error> {
+        let interval = match sim.scans.as_slice() {
+            [first, second, ..] => second.time - first.time,
+            _ => return Err(Error::internal("soak: the preset has fewer than two scans")),
+        };
+        let states = sim.objects.iter().map(|o| o.initial_state).collect();
+        let detection = (0..sim.objects.len()).map(|i| Random::stream(sim.seed, Stream::Detection, i as u64)).collect();
+        Ok(Stream3d { sim, interval, states, time: 0.0, detection })
+    }
+
+    /// Scan `k` (0-based).
+    fn scan(&mut self, k: u64, check: &FieldOfViewCheck) -> Result<Drawn, String> {
+        let time = k as f64 * self.interval;
+        for (i, state) in self.states.iter_mut().enumerate() {
+            *state = Propagator::EARTH
+                .propagate(*state, time - self.time)
+                .map_err(|e| format!("truth propagation of object {i}: {e}"))?;
+        }
+        self.time = time;
+        let s = k as usize % self.sim.sensors.len();
+        let sensor = &self.sim.sensors[s];
+        let observer = sensor.site.observer(earth_rotation_angle(self.sim.epoch_jd, time));
+        let scan = draw_scan(
+            self.sim.seed,
+            k as usize,
+            (time, s),
+            sensor,
+            &observer,
+            self.states.iter().copied().map(Some),
+            &mut self.detection,
+        )
+        .map_err(|e| e.to_string())?;
+        let before = scan.measurements.len();
+        let measurements: Vec<Vec<f64>> = scan.measurements.into_iter().filter(|z| check.sees(s, time, z)).collect();
+        let outside = (before - measurements.len()) as u64;
+        let in_view = scan.truth.iter().map(|t| t.object).collect();
+        Ok(Drawn { sensor: s, time, measurements, outside, in_view })
+    }
+}
+
+/// One scan of the stream.
+struct Drawn {
+    sensor: usize,
+    time: f64,
+    /// Tracker units (km, rad).
+    measurements: Vec<Vec<f64>>,
+    /// Detections dropped outside the field of view.
+    outside: u64,
+    /// The objects in the field of view.
+    in_view: Vec<usize>,
+}
+
+/// The MAP hypothesis's position error (km) of every object (infinite when it lacks the object's label).
+fn position_errors<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    tracker: &Tracker3d<X, D, H, N, Z, K, B>,
+    truth: &[[f64; 6]],
+) -> Vec<f64>
+where
+    X: Placeable<f64, D>,
+{
+    let mut errors = vec![f64::INFINITY; truth.len()];
+    for track in tracker.map_hypothesis().tracks() {
+        if let Some(t) = truth.get(track.label.0 as usize) {
+            let m = &track.state.mean;
+            errors[track.label.0 as usize] =
+                ((m[0] - t[0]).powi(2) + (m[1] - t[1]).powi(2) + (m[2] - t[2]).powi(2)).sqrt();
+        }
+    }
+    errors
+}
+
+fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: Scenario,
+    profile: Profile,
+    sim: SsaScenario,
+    scans: u64,
+    quiet: bool,
+) -> Result<SoakReport, Error>
+where
+    X: Placeable<f64, D>,
+{
+    let started = Instant::now();
+    let seed = sim.seed;
+    let (file, _) = to_scenario(&sim)?;
+    let check = FieldOfViewCheck::new(&file)?;
+    let (config, objects) = config3d::<X, D, B>(&file, TrackerKind::Rfisst)?;
+    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
+        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let mut tracker = Box::new(
+        Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
+            .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?,
+    );
+    let mut stream = Stream3d::new(sim)?;
+    let objects = stream.states.len();
+    let bound = file.evaluation.error_bound;
+
+    let bar = progress(scans, quiet);
+    let mut health = Health::default();
+    // Grown scan by scan, never reserved for `scans` up front.
+    let mut durations: Vec<f32> = vec![];
+    let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
+    let (mut dropped, mut resident_start) = (0u64, None);
+    let (mut tracked_sum, mut tracked_last_tenth, mut min_tracked) = (0u64, 0u64, (usize::MAX, 0u64));
+    // (objects in view, of which tracked) over all scans and over the last tenth.
+    let (mut in_view, mut in_view_last_tenth) = ((0u64, 0u64), (0u64, 0u64));
+    let last_tenth = scans - scans / 10;
+    for k in 0..scans {
+        let Drawn { sensor, time, measurements, outside, in_view: seen } = match stream.scan(k, &check) {
+            Ok(scan) => scan,
+            Err(message) => {
+                health.error(k, "Simulation".into(), message);
+                bar.inc(1);
+                continue;
+            }
+        };
+        dropped += outside;
+        health.max_measurements = health.max_measurements.max(measurements.len());
+        measurement_total += measurements.len() as u64;
+        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
+        let step_started = Instant::now();
+        let result = tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs);
+        durations.push(step_started.elapsed().as_secs_f32() * 1e3);
+        health.record(k, result, non_finite_values(&*tracker));
+        if k == 0 {
+            resident_start = peak_resident_kib();
+        }
+        let difference = (tracker.expected_cardinality() - objects as f64).abs();
+        cardinality_error += difference;
+        max_cardinality_error = max_cardinality_error.max(difference);
+        let errors = position_errors(&tracker, &stream.states);
+        let within = errors.iter().filter(|&&e| e < bound).count();
+        let seen_within = seen.iter().filter(|&&i| errors[i] < bound).count() as u64;
+        tracked_sum += within as u64;
+        in_view = (in_view.0 + seen.len() as u64, in_view.1 + seen_within);
+        if k >= last_tenth {
+            tracked_last_tenth += within as u64;
+            in_view_last_tenth = (in_view_last_tenth.0 + seen.len() as u64, in_view_last_tenth.1 + seen_within);
+        }
+        if within < min_tracked.0 {
+            min_tracked = (within, k + 1);
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+
+    let mut errors = position_errors(&tracker, &stream.states);
+    let final_tracked = errors.iter().filter(|&&e| e < bound).count();
+    let final_missing = errors.iter().filter(|e| e.is_infinite()).count();
+    errors.sort_unstable_by(f64::total_cmp);
+    let final_median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
+    let fraction = |(seen, within): (u64, u64)| within as f64 / seen.max(1) as f64;
+    let (max_ms, mean_ms, p50_ms, p99_ms) = timing(&durations);
+    let sensors: Vec<String> = stream
+        .sim
+        .sensors
+        .iter()
+        .map(|s| format!("{} (p_D = {}, clutter {} per scan)", s.name, s.detection_probability, s.clutter_rate))
+        .collect();
+    Ok(SoakReport {
+        scenario: scenario.name().into(),
+        scans,
+        seed,
+        nan_count: health.non_finite,
+        non_finite_scans: health.non_finite_scans,
+        first_non_finite_scan: health.first_non_finite_scan,
+        max_hypotheses: health.max_hypotheses,
+        max_ms_per_scan: max_ms,
+        mean_ms_per_scan: mean_ms,
+        p50_ms_per_scan: p50_ms,
+        p99_ms_per_scan: p99_ms,
+        max_over_median: max_ms / p50_ms,
+        mean_ms_per_scan_first_tenth: tenths(&durations).0,
+        mean_ms_per_scan_last_tenth: tenths(&durations).1,
+        peak_resident_kib_start: resident_start,
+        peak_resident_kib_end: peak_resident_kib(),
+        numerical_drops: health.numerical_drops,
+        tracking: Some(SoakTracking {
+            error_bound_km: bound,
+            objects,
+            final_tracked,
+            min_tracked: min_tracked.0.min(objects),
+            min_tracked_scan: min_tracked.1,
+            mean_tracked: tracked_sum as f64 / scans as f64,
+            mean_tracked_last_tenth: tracked_last_tenth as f64 / (scans - last_tenth).max(1) as f64,
+            in_view: in_view.0,
+            in_view_tracked_fraction: fraction(in_view),
+            in_view_tracked_fraction_last_tenth: fraction(in_view_last_tenth),
+            final_median_position_error_km: final_median,
+            final_missing_labels: final_missing,
+            dropped_outside_field_of_view: dropped,
+            simulated_days: stream.time / 86_400.0,
+        }),
+        errors_by_kind: health.errors,
+        first_error: health.first_error.map(|(scan, message)| crate::report::SoakError { scan, message }),
+        track_store_high_water: health.max_tracks,
+        track_store_capacity: K,
+        hypothesis_capacity: H,
+        max_measurements_per_scan: health.max_measurements,
+        measurement_capacity: Z,
+        measurements: measurement_total,
+        births_beyond_object_capacity: health.births_beyond_capacity,
+        children_dropped_for_store: health.children_dropped_for_store,
+        truth: SoakTruth { initial_objects: objects, births: 0, deaths: 0, max_alive: objects, final_alive: objects },
+        final_expected_cardinality: tracker.expected_cardinality(),
+        mean_abs_cardinality_error: cardinality_error / scans as f64,
+        max_abs_cardinality_error: max_cardinality_error,
+        wall_seconds: started.elapsed().as_secs_f64(),
+        setup: SoakSetup {
+            tracker: format!(
+                "tracker-core Tracker<f64, TwoBodyJ2, SensorNetwork> of `host-sim run --tracker rfisst` (profile {profile:?}: H = {H}, N = {N}, Z = {Z}, K = {K}, B = {B}) on {}",
+                match scenario {
+                    Scenario::RadarLeo => format!(
+                        "radar-leo's radars and orbits with seed {seed}, {} singles + {} crossing pairs",
+                        RADAR_LEO.singles, RADAR_LEO.pairs
+                    ),
+                    _ => format!("`host-sim generate {} --seed {seed}`", scenario.name()),
+                }
+            ),
+            motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
+            sensor: sensors.join("; "),
+            scan_interval_s: stream.interval,
+            birth_rate_per_scan: 0.0,
+            death_rate_per_object_per_scan: 0.0,
+            tracker_birth_probability_per_cell: file.birth.probability,
+            tracker_birth_cells: file.birth.cells.len(),
+            tracker_death_probability: file.death_probability,
+        },
+    })
+}
+
+/// Runs `scans` scans of the 3-D soak `scenario` (radar-leo or optical-geo) with `seed`.
+///
+/// # Errors
+/// [`Error::Input`] when `scans` is 0 or above [`MAX_SCANS`] or `scenario` is planar; [`Error::Internal`]
+/// when the preset cannot be simulated or its tracker built (which would be a bug).
+pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
+    if !(1..=MAX_SCANS).contains(&scans) {
+        return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
+    }
+    let sim = match scenario {
+        Scenario::RadarLeo => ssa::radar_leo_with(seed, &RADAR_LEO),
+        Scenario::OpticalGeo => ssa::optical_geo(seed),
+        Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::soak::run")),
+    }
+    .map_err(|e| Error::internal(format!("soak: simulation: {e}")))?;
+    let profile = choose_profile(&to_scenario(&sim)?.0, None);
+    match (scenario, profile) {
+        (Scenario::RadarLeo, Profile::Embedded) => soak::<
+            RadarRangeAzEl<f64>,
+            3,
+            { ssa_caps::HYPOTHESES },
+            { ssa_caps::OBJECTS },
+            { ssa_caps::MEASUREMENTS },
+            { ssa_caps::TRACKS_3D },
+            { ssa_caps::BIRTH_CELLS },
+        >(scenario, profile, sim, scans, quiet),
+        (Scenario::OpticalGeo, Profile::Embedded) => soak::<
+            OpticalRaDec<f64>,
+            2,
+            { ssa_caps::HYPOTHESES },
+            { ssa_caps::OBJECTS },
+            { ssa_caps::MEASUREMENTS },
+            { ssa_caps::TRACKS_3D },
+            { ssa_caps::BIRTH_CELLS },
+        >(scenario, profile, sim, scans, quiet),
+        _ => Err(Error::internal(format!("soak: {} does not fit the {profile:?} profile", scenario.name()))),
+    }
+}
+
+/// radar-leo's radars, schedule and orbits with 40 single objects and 10 crossing pairs instead of 100 and
+/// 10: the 60 objects fit the embedded `RadarTracker` (N = 64); the preset's 120 need the `host` profile
+/// (H = 256), about ten times slower per scan.
+pub const RADAR_LEO: RadarLeoConfig = RadarLeoConfig { singles: 40, pairs: 10, ..RadarLeoConfig::PRESET };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_radar_soak_fits_the_embedded_profile() {
+        let sim = ssa::radar_leo_with(1, &RADAR_LEO).unwrap();
+        assert_eq!(sim.objects.len(), 60);
+        assert_eq!(choose_profile(&to_scenario(&sim).unwrap().0, None), Profile::Embedded);
+    }
+
+    #[test]
+    fn the_stream_starts_with_the_generated_scans() {
+        let sim = crate::ssa::tiny_3d(3).unwrap();
+        let (file, _) = to_scenario(&sim).unwrap();
+        let check = FieldOfViewCheck::new(&file).unwrap();
+        let expected = sim.scans.clone();
+        let mut stream = Stream3d::new(sim).unwrap();
+        for (k, scan) in expected.iter().enumerate() {
+            let Drawn { sensor, time, measurements, .. } = stream.scan(k as u64, &check).unwrap();
+            assert_eq!((sensor, time), (scan.sensor, scan.time));
+            let kept: Vec<&Vec<f64>> = scan.measurements.iter().filter(|z| check.sees(sensor, time, z)).collect();
+            assert_eq!(measurements.iter().collect::<Vec<_>>(), kept, "scan {k}");
+        }
+    }
+}
