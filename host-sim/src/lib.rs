@@ -14,6 +14,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assignment;
+pub mod births;
 pub mod digest;
 pub mod digest3d;
 pub mod error;
