@@ -3,7 +3,7 @@
 //! A *birth* is a true object the prior does not know (`in_prior` false, whether it exists from the
 //! start or is born during the run). It is *confirmed* at the first scan where the MAP hypothesis holds a
 //! track of existence ≥ `confirmation_existence` that GOSPA with cut-off `error_bound` (order 1) assigns
-//! to it. Its *detections to confirmation* are the measurements the truth attributes to it (the scan's
+//! to it, from its first detection on (before it, a track near the object is a neighbour's). Its *detections to confirmation* are the measurements the truth attributes to it (the scan's
 //! `origins`) from its first one up to and including the confirmation scan, and its *scans to
 //! confirmation* the scans from the first detection to the confirmation, both ends counted.
 //!
@@ -96,7 +96,10 @@ impl BirthTally {
         }
         for ((id, _), assigned) in truth.iter().zip(assignment) {
             let Some(b) = self.births.get_mut(id) else { continue };
-            if b.confirmed.is_none() && assigned.is_some_and(|e| map.get(e).is_some_and(|t| t.existence >= self.threshold))
+            // Not before its first detection: a track near an undetected birth is a neighbour's.
+            if b.confirmed.is_none()
+                && b.first_detection.is_some()
+                && assigned.is_some_and(|e| map.get(e).is_some_and(|t| t.existence >= self.threshold))
             {
                 b.confirmed = Some((k, b.detections));
             }
@@ -129,10 +132,7 @@ impl BirthTally {
                 first_detection_scan: b.first_detection,
                 confirmation_scan: b.confirmed.map(|c| c.0),
                 detections_to_confirm: b.confirmed.map(|c| c.1),
-                scans_to_confirm: b.confirmed.map(|(scan, _)| match b.first_detection {
-                    Some(first) if first <= scan => scan - first + 1,
-                    _ => 0,
-                }),
+                scans_to_confirm: b.confirmed.zip(b.first_detection).map(|((scan, _), first)| scan + 1 - first),
             })
             .collect();
         let detections: Vec<usize> = records.iter().filter_map(|r| r.detections_to_confirm).collect();
@@ -166,7 +166,11 @@ mod tests {
         let mut tally = BirthTally::new([7], 0.5, 3.0);
         let (p1, p7) = ([0.0, 0.0], [10.0, 10.0]);
         let truth = [(1, &p1[..]), (7, &p7[..])];
-        // Scan 0: not detected. Scan 1: detected, no track. Scan 2: missed. Scan 3: detected, a track of
+        // Scan 0 assigns it a confirmed track before any detection (a neighbour's): not a confirmation.
+        let neighbour = [11.0, 10.0];
+        tally.record(0, &truth, [], &[track(1, &p1, 0.99), track(2, &neighbour, 0.99)], &[Some(0), Some(1)]);
+        assert_eq!(tally.confirmed_at(7), None);
+        // Scan 0 again: not detected. Scan 1: detected, no track. Scan 2: missed. Scan 3: detected, a track of
         // existence 0.4. Scan 4: detected, existence 0.6: confirmed with 3 detections over 4 scans.
         tally.record(0, &truth, [1], &[track(1, &p1, 0.99)], &[Some(0), None]);
         tally.record(1, &truth, [1, 7], &[track(1, &p1, 0.99)], &[Some(0), None]);

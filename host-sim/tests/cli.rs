@@ -1648,7 +1648,9 @@ fn check_birth_keys(file: &Value, summary: &Value) {
         if let Some(c) = r["confirmation_scan"].as_u64().map(|c| c as usize) {
             let detections = (0..=c).filter(|&k| detected_at(k)).count();
             assert_eq!(r["detections_to_confirm"], json!(detections), "{r}");
-            let scans = first.filter(|&f| f <= c).map_or(0, |f| c - f + 1);
+            let first = first.expect("confirmed only once detected");
+            assert!(first <= c, "{r}");
+            let scans = c - first + 1;
             assert_eq!(r["scans_to_confirm"], json!(scans), "{r}");
             confirmed.push(detections);
         } else {
