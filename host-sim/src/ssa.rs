@@ -92,9 +92,7 @@ impl core::fmt::Display for SsaError {
             }
             SsaError::OrbitSearch => f.write_str("no orbit with enough passes found for an object"),
             SsaError::Orbit(e) => write!(f, "truth propagation: {e}"),
-            SsaError::BadUnknowns => {
-                f.write_str("--missing-fraction must be in [0, 1]; --breakup needs radar-leo")
-            }
+            SsaError::BadUnknowns => f.write_str("--missing-fraction must be in [0, 1]; --breakup needs radar-leo"),
         }
     }
 }
@@ -713,7 +711,12 @@ fn breakup(
         let state = [at_breakup[0], at_breakup[1], at_breakup[2], v[0], v[1], v[2]];
         let initial = Propagator::EARTH.propagate(state, -time)?;
         tracks.push(track(initial, &times)?);
-        fragments.push(ObjectTruth { initial_state: initial, group: Some(group), in_prior: false, birth_time: Some(time) });
+        fragments.push(ObjectTruth {
+            initial_state: initial,
+            group: Some(group),
+            in_prior: false,
+            birth_time: Some(time),
+        });
     }
     Ok((fragments, tracks))
 }
@@ -1049,15 +1052,14 @@ pub struct RadarLeoConfig {
 
 impl RadarLeoConfig {
     /// The `radar-leo` preset: 100 singles + 10 crossing pairs, 6 h, each radar every 20 s.
-    pub const PRESET: RadarLeoConfig =
-        RadarLeoConfig {
-            singles: 100,
-            pairs: 10,
-            duration: 6.0 * 3600.0,
-            revisit: 20.0,
-            min_passes: 2,
-            unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
-        };
+    pub const PRESET: RadarLeoConfig = RadarLeoConfig {
+        singles: 100,
+        pairs: 10,
+        duration: 6.0 * 3600.0,
+        revisit: 20.0,
+        min_passes: 2,
+        unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
+    };
 }
 
 /// The two radars of `radar-leo`.
@@ -1199,15 +1201,8 @@ pub fn radar_leo_with(seed: u64, config: &RadarLeoConfig) -> Result<SsaScenario,
         groups.push(Group { kind: "breakup".into(), objects: vec![parent] });
         let group = groups.len() - 1;
         objects[parent].group = Some(group);
-        let (fragments, fragment_tracks) = breakup(
-            seed,
-            &objects[parent],
-            config.unknowns.breakup,
-            group,
-            &schedule,
-            &visible,
-            sensors.len(),
-        )?;
+        let (fragments, fragment_tracks) =
+            breakup(seed, &objects[parent], config.unknowns.breakup, group, &schedule, &visible, sensors.len())?;
         for (fragment, states) in fragments.into_iter().zip(fragment_tracks) {
             groups[group].objects.push(objects.len());
             objects.push(fragment);
@@ -1656,15 +1651,14 @@ mod tests {
     }
 
     /// A short radar-leo (debug-friendly); the full preset is checked by the ignored test below.
-    const SHORT_LEO: RadarLeoConfig =
-        RadarLeoConfig {
-            singles: 12,
-            pairs: 3,
-            duration: 3.0 * 3600.0,
-            revisit: 40.0,
-            min_passes: 2,
-            unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
-        };
+    const SHORT_LEO: RadarLeoConfig = RadarLeoConfig {
+        singles: 12,
+        pairs: 3,
+        duration: 3.0 * 3600.0,
+        revisit: 40.0,
+        min_passes: 2,
+        unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
+    };
 
     #[test]
     fn missing_objects_and_a_breakup_are_unknown_to_the_prior() {
@@ -1700,8 +1694,7 @@ mod tests {
             assert!((0.002 - 1e-6..=0.030 + 1e-6).contains(&kick), "{kick}");
         }
         // Seen only after the break-up, and seen.
-        let seen: Vec<f64> =
-            a.scans.iter().filter(|s| s.truth.iter().any(|t| t.object >= n)).map(|s| s.time).collect();
+        let seen: Vec<f64> = a.scans.iter().filter(|s| s.truth.iter().any(|t| t.object >= n)).map(|s| s.time).collect();
         assert!(!seen.is_empty() && seen.iter().all(|&t| t >= born), "{seen:?}");
         // Another seed, other choices.
         let b = radar_leo_with(4, &config).unwrap();
@@ -1848,7 +1841,10 @@ mod tests {
         let missing = OpticalGeoConfig { unknowns: Unknowns { missing_fraction: 0.25, breakup: 0 }, ..config };
         let m = optical_geo_with(5, &missing).unwrap();
         assert_eq!(m.objects.iter().filter(|o| !o.in_prior).count(), 5);
-        assert_eq!(m.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>(), a.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>());
+        assert_eq!(
+            m.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>(),
+            a.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>()
+        );
         assert!(m.objects.iter().all(|o| o.birth_time.is_none()));
         // Measurement noise about 1.5″: residuals of detections.
         let mut sq = 0.0;
