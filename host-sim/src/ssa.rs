@@ -670,11 +670,14 @@ fn mark_missing(seed: u64, objects: &mut [ObjectTruth], n: usize, fraction: f64)
     Ok(())
 }
 
+/// An object's truth at every scan time.
+type Track = Vec<[f64; 6]>;
+
 /// A break-up of `parent` into `count` new fragments (stream [`Stream::Scenario`] 3,000,000): at a time
 /// 2 to 15 minutes before the start of one of the parent's passes after the first 5 minutes of the run,
 /// each fragment takes the parent's state and a velocity kick of 2 to 30 m/s in a uniformly random
-/// direction. The parent continues on its orbit. Returns the fragments (born then, unknown to the prior)
-/// and their truth at `schedule`'s times.
+/// direction. The parent continues on its orbit. Returns the fragments (born then, unknown to the prior),
+/// each with its truth at `schedule`'s times.
 fn breakup(
     seed: u64,
     parent: &ObjectTruth,
@@ -683,7 +686,7 @@ fn breakup(
     schedule: &[(f64, usize)],
     visible: &[bool],
     sensors: usize,
-) -> Result<(Vec<ObjectTruth>, Vec<Vec<[f64; 6]>>), SsaError> {
+) -> Result<Vec<(ObjectTruth, Track)>, SsaError> {
     let mut random = Random::stream(seed, Stream::Scenario, 3_000_000);
     let mut starts = vec![];
     let mut last = vec![f64::NEG_INFINITY; sensors];
@@ -702,7 +705,6 @@ fn breakup(
     let at_breakup = Propagator::EARTH.propagate(parent.initial_state, time)?;
     let times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
     let mut fragments = Vec::with_capacity(count);
-    let mut tracks = Vec::with_capacity(count);
     for _ in 0..count {
         let direction = [random.normal(), random.normal(), random.normal()];
         let speed = random.between(0.002, 0.030);
@@ -710,15 +712,11 @@ fn breakup(
         let v = add(vel(&at_breakup), kick);
         let state = [at_breakup[0], at_breakup[1], at_breakup[2], v[0], v[1], v[2]];
         let initial = Propagator::EARTH.propagate(state, -time)?;
-        tracks.push(track(initial, &times)?);
-        fragments.push(ObjectTruth {
-            initial_state: initial,
-            group: Some(group),
-            in_prior: false,
-            birth_time: Some(time),
-        });
+        let fragment =
+            ObjectTruth { initial_state: initial, group: Some(group), in_prior: false, birth_time: Some(time) };
+        fragments.push((fragment, track(initial, &times)?));
     }
-    Ok((fragments, tracks))
+    Ok(fragments)
 }
 
 /// A deliberately close group of objects.
@@ -1201,9 +1199,9 @@ pub fn radar_leo_with(seed: u64, config: &RadarLeoConfig) -> Result<SsaScenario,
         groups.push(Group { kind: "breakup".into(), objects: vec![parent] });
         let group = groups.len() - 1;
         objects[parent].group = Some(group);
-        let (fragments, fragment_tracks) =
+        let fragments =
             breakup(seed, &objects[parent], config.unknowns.breakup, group, &schedule, &visible, sensors.len())?;
-        for (fragment, states) in fragments.into_iter().zip(fragment_tracks) {
+        for (fragment, states) in fragments {
             groups[group].objects.push(objects.len());
             objects.push(fragment);
             tracks.push(states);
