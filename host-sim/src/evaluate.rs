@@ -4,9 +4,10 @@
 //! Scoring uses the MAP hypothesis's estimates: GOSPA (α = 2, cut-off and order from the scenario's
 //! `evaluation`), OSPA, the error of the expected cardinality, and label switches along GOSPA's
 //! assignment. An estimate is *within the error bound* when GOSPA with cut-off `error_bound` assigns it to
-//! a true object. A born object is *confirmed* once a track within the error bound of it belongs to a
-//! label whose existence probability reaches `confirmation_existence`.
+//! a true object. A born object is *confirmed* once GOSPA with cut-off `error_bound` assigns it a MAP
+//! track whose label's existence probability reaches `confirmation_existence` ([`crate::births`]).
 
+use crate::births::{BirthTally, MapTrack};
 use crate::error::Error;
 use crate::metrics::{LabelSwitches, gospa, ospa};
 use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
@@ -20,7 +21,7 @@ use crate::setup;
 use crate::snapshot::{HypothesisOut, Snapshot, TrackOut, match_posteriors};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 use std::time::Instant;
@@ -97,6 +98,8 @@ pub(crate) struct Scored {
     within_bound: Vec<bool>,
     /// Per true object (in truth order): (id, whether a MAP estimate is within the error bound of it).
     truth_covered: Vec<(u64, bool)>,
+    /// Per true object, the MAP track GOSPA with cut-off `error_bound` assigns to it.
+    bound_assignment: Vec<Option<usize>>,
 }
 
 pub(crate) fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Option<Scored> {
@@ -119,33 +122,26 @@ pub(crate) fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Optio
         pairs,
         within_bound,
         truth_covered,
+        bound_assignment: bound.assignment,
     })
 }
 
-/// The births of a scenario and the first scan at which each is confirmed.
-fn birth_confirmations(
-    scenario: &Scenario,
-    k: usize,
-    snapshot: &Snapshot,
-    confirmed: &mut BTreeMap<u64, Option<usize>>,
-) {
+/// Records scan `k` of a run in the births tally ([`crate::births`]).
+fn record_births(tally: &mut BirthTally, scenario: &Scenario, k: usize, snapshot: &Snapshot, scored: &Scored) {
     let Some(truth) = &scenario.truth else { return };
-    let threshold = scenario.evaluation.confirmation_existence;
+    let scan = &truth.scans[k];
+    let objects: Vec<(u64, &[f64])> = scan.objects.iter().map(|o| (o.id, &o.state[..2])).collect();
     let existence: HashMap<u32, f64> = snapshot.label_existence().into_iter().collect();
-    for object in truth.objects.iter().filter(|o| !o.in_prior) {
-        let entry = confirmed.entry(object.id).or_insert(None);
-        if entry.is_some() {
-            continue;
-        }
-        let Some(state) = truth.scans[k].objects.iter().find(|o| o.id == object.id) else { continue };
-        let near = snapshot.tracks.iter().any(|t| {
-            existence.get(&t.label).copied().unwrap_or(0.0) >= threshold
-                && (t.mean[0] - state.state[0]).hypot(t.mean[1] - state.state[1]) <= scenario.evaluation.error_bound
-        });
-        if near {
-            *entry = Some(k);
-        }
-    }
+    let map: Vec<MapTrack<'_>> = snapshot
+        .map_tracks()
+        .into_iter()
+        .map(|t| MapTrack {
+            label: t.label,
+            position: &t.mean[..2],
+            existence: existence.get(&t.label).copied().unwrap_or(0.0),
+        })
+        .collect();
+    tally.record(k, &objects, scan.origins.iter().flatten().copied(), &map, &scored.bound_assignment);
 }
 
 pub(crate) fn progress(scans: usize, quiet: bool, message: &'static str) -> ProgressBar {
@@ -245,7 +241,11 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
     let mut snapshots: Vec<(usize, Snapshot, Vec<bool>)> = vec![];
     let mut records = vec![];
     let mut switches = LabelSwitches::new();
-    let mut confirmed: BTreeMap<u64, Option<usize>> = BTreeMap::new();
+    let mut births = BirthTally::new(
+        scenario.truth.iter().flat_map(|t| t.objects.iter().filter(|o| !o.in_prior).map(|o| o.id)),
+        scenario.evaluation.confirmation_existence,
+        scenario.evaluation.error_bound,
+    );
     let mut peak_hypotheses = 0;
     let fov = setup::region(&scenario.sensor.field_of_view);
     let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
@@ -258,9 +258,9 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         bar.inc(1);
         let snapshot = runner.snapshot();
         let scored = score(scenario, k, &snapshot);
-        birth_confirmations(scenario, k, &snapshot, &mut confirmed);
         if let Some(s) = &scored {
             switches.record(&s.pairs);
+            record_births(&mut births, scenario, k, &snapshot, s);
         }
         let (info, error) = match outcome {
             Ok(info) => (Some(info), None),
@@ -276,11 +276,8 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         // have a MAP estimate within the error bound, and no MAP estimate in the field of view may be
         // outside the bound of every true object.
         if let (Some(s), Some(truth)) = (&scored, truth_positions(scenario, k)) {
-            let born: HashMap<u64, bool> =
-                scenario.truth.iter().flat_map(|t| t.objects.iter().map(|o| (o.id, !o.in_prior))).collect();
             for ((id, covered), (_, position)) in s.truth_covered.iter().zip(&truth) {
-                let confirmed_track = !born.get(id).copied().unwrap_or(false)
-                    || confirmed.get(id).copied().flatten().is_some_and(|c| c <= k);
+                let confirmed_track = !births.is_birth(*id) || births.confirmed_at(*id).is_some_and(|c| c <= k);
                 if confirmed_track && !covered && fov.contains(&nalgebra::SVector::<f64, 2>::from(*position)) {
                     in_view_misses += 1;
                 }
@@ -344,6 +341,7 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         .filter_map(|r| r.error.as_ref().map(|e| RejectedScan { scan: r.scan, error: e.clone() }))
         .collect();
     let last = records.last();
+    let figures = births.figures();
     let summary = RunSummary {
         scenario: scenario.name.clone(),
         tracker: kind.name().into(),
@@ -359,9 +357,17 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         final_expected_cardinality: last.map_or(prior_cardinality.0, |r| r.expected_cardinality),
         final_map_cardinality: last.map_or(prior_cardinality.1, |r| r.map_cardinality),
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
-        births_total: confirmed.len(),
-        births_confirmed: confirmed.values().filter(|c| c.is_some()).count(),
-        birth_confirmation_scans: confirmed.iter().map(|(&object, &scan)| BirthConfirmation { object, scan }).collect(),
+        births_total: figures.births_total,
+        births_confirmed: figures.births_confirmed,
+        birth_confirmation_scans: figures
+            .records
+            .iter()
+            .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
+            .collect(),
+        mean_detections_to_confirm: figures.mean_detections_to_confirm,
+        max_detections_to_confirm: figures.max_detections_to_confirm,
+        false_tracks: scenario.truth.is_some().then_some(figures.false_tracks),
+        birth_confirmations: figures.records,
         label_switches: switches.total(),
         in_view_misses_after_confirmation: in_view_misses,
         in_view_red_stars,

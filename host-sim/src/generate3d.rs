@@ -3,8 +3,10 @@
 //!
 //! The truth of every object at every scan comes from [`crate::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
-//! for the whole run and is in the prior, 1 s before the first scan: its prior mean is the true state then
-//! plus an error drawn from the prior covariance (stream [`Stream::Prior`] of the seed). A detection whose noisy measurement
+//! for the whole run unless it is a break-up fragment (from its `birth_time` on), and is in the prior unless
+//! the simulation says otherwise ([`ssa::Unknowns`]), 1 s before the first scan: its prior mean is the true
+//! state then plus an error drawn from the prior covariance (stream [`Stream::Prior`] of the seed). A birth
+//! is confirmed at existence ≥ 0.5 (the evaluation's `confirmation_existence`). A detection whose noisy measurement
 //! falls outside the sensor's field of view (an object at the edge) is dropped: the sensor does not report
 //! it, and the tracker rejects a scan with a measurement outside the field of view.
 
@@ -17,7 +19,7 @@ use crate::scenario::{
     TrackerSpec, TruthObjectSpec,
 };
 use crate::scenario3d::*;
-use crate::ssa::{self, SensorKind, SsaScenario};
+use crate::ssa::{self, OpticalGeoConfig, RadarLeoConfig, SensorKind, SsaScenario, Unknowns};
 use nalgebra::SMatrix;
 
 /// The 3-D presets.
@@ -38,12 +40,29 @@ impl Preset3d {
     /// # Errors
     /// The simulator's message.
     pub fn simulate(self, seed: u64) -> Result<SsaScenario, Error> {
+        self.simulate_with(seed, &Unknowns::default())
+    }
+
+    /// The simulation of this preset with `seed` and objects unknown to the prior (`radar-leo`: missing
+    /// objects and a break-up; `optical-geo`: missing objects; `tiny-3d`: none).
+    ///
+    /// # Errors
+    /// Bad input: unknowns the preset cannot have; otherwise the simulator's message.
+    pub fn simulate_with(self, seed: u64, unknowns: &Unknowns) -> Result<SsaScenario, Error> {
         let result = match self {
-            Preset3d::RadarLeo => ssa::radar_leo(seed),
-            Preset3d::OpticalGeo => ssa::optical_geo(seed),
-            Preset3d::Tiny3d => ssa::tiny_3d(seed),
+            Preset3d::RadarLeo => {
+                ssa::radar_leo_with(seed, &RadarLeoConfig { unknowns: *unknowns, ..RadarLeoConfig::PRESET })
+            }
+            Preset3d::OpticalGeo => {
+                ssa::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
+            }
+            Preset3d::Tiny3d if *unknowns == Unknowns::default() => ssa::tiny_3d(seed),
+            Preset3d::Tiny3d => Err(ssa::SsaError::BadUnknowns),
         };
-        result.map_err(|e| Error::internal(format!("simulation: {e}")))
+        result.map_err(|e| match e {
+            ssa::SsaError::BadUnknowns => Error::input(e.to_string()),
+            e => Error::internal(format!("simulation: {e}")),
+        })
     }
 }
 
@@ -66,7 +85,7 @@ fn settings(kind: SensorKind) -> Settings {
                 error_bound: 5.0,
                 gospa_cutoff: 10.0,
                 gospa_order: 2.0,
-                confirmation_existence: 0.9,
+                confirmation_existence: 0.5,
             },
         },
         // GEO telescope: angles only, range weakly observed: a looser prior and cut-off.
@@ -78,7 +97,7 @@ fn settings(kind: SensorKind) -> Settings {
                 error_bound: 10.0,
                 gospa_cutoff: 20.0,
                 gospa_order: 2.0,
-                confirmation_existence: 0.9,
+                confirmation_existence: 0.5,
             },
         },
     }
@@ -148,7 +167,9 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
                     .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?,
             };
             t = time;
-            truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
+            if object.exists_at(time) {
+                truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
+            }
         }
     }
 
@@ -164,7 +185,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
     // The prior holds 1 s before the first scan (a scan must come after it).
     let prior_time = times.first().map_or(0.0, |&t| t.min(0.0)) - 1.0;
     let mut objects = Vec::with_capacity(sim.objects.len());
-    for (i, o) in sim.objects.iter().enumerate() {
+    for (i, o) in sim.objects.iter().enumerate().filter(|(_, o)| o.in_prior) {
         let state = match &known {
             Some(known) => (known.state)(i, prior_time)?,
             None => Propagator::EARTH
@@ -184,10 +205,11 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         version: 2,
         name: sim.name.clone(),
         description: format!(
-            "host-sim generate {} --seed {}: {} objects, {} sensors, {} scans; truth by {}",
+            "host-sim generate {} --seed {}: {} objects ({} unknown to the prior), {} sensors, {} scans; truth by {}",
             sim.name,
             sim.seed,
             sim.objects.len(),
+            sim.objects.iter().filter(|o| !o.in_prior).count(),
             sim.sensors.len(),
             sim.scans.len(),
             known.as_ref().map_or("RKF7(8) two-body + J2", |k| k.source)
@@ -251,7 +273,12 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
     scenario.scans = scans;
     scenario.truth = Some(Truth3dSpec {
         objects: (0..sim.objects.len())
-            .map(|i| TruthObjectSpec { id: i as u64, in_prior: true, birth_time: None, death_time: None })
+            .map(|i| TruthObjectSpec {
+                id: i as u64,
+                in_prior: sim.objects[i].in_prior,
+                birth_time: sim.objects[i].birth_time,
+                death_time: None,
+            })
             .collect(),
         scans: truth_scans,
     });

@@ -17,6 +17,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assignment;
+pub mod births;
 pub mod catalogue;
 pub mod catalogue_scenario;
 pub mod ccsds;

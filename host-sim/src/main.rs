@@ -105,6 +105,12 @@ enum Command {
         out: PathBuf,
         #[command(flatten)]
         catalogue: CatalogueArgs,
+        /// radar-leo, optical-geo: fraction of the objects left out of the prior, in [0, 1].
+        #[arg(long, default_value_t = 0.0)]
+        missing_fraction: f64,
+        /// radar-leo: fragments of a break-up during the run (0: none).
+        #[arg(long, default_value_t = 0)]
+        breakup: usize,
     },
     /// Run a tracker on a scenario file; writes summary.json, scans.jsonl, estimates.csv and plots.
     Run {
@@ -261,6 +267,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Planar(Preset::FifteenCompare),
             AnyPreset::Planar(Preset::DebrisCrossing),
             AnyPreset::Planar(Preset::LinearSmall),
+            AnyPreset::Planar(Preset::Crossings),
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
@@ -321,8 +328,11 @@ impl std::fmt::Display for CliError {
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, catalogue } => {
+        Command::Generate { preset: AnyPreset::Planar(preset), seed, out, catalogue, missing_fraction, breakup } => {
             catalogue.only_for_catalogue()?;
+            if missing_fraction != 0.0 || breakup != 0 {
+                return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo").into());
+            }
             let simulation = preset.simulation(seed);
             let scenario = simulation.run();
             scenario.save(&out)?;
@@ -335,9 +345,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
-        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue } => {
+        Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue, missing_fraction, breakup } => {
             catalogue.only_for_catalogue()?;
-            let simulation = preset.simulate(seed)?;
+            let unknowns = host_sim::ssa::Unknowns { missing_fraction, breakup };
+            let simulation = preset.simulate_with(seed, &unknowns)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
             eprintln!(
@@ -352,7 +363,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
-        Command::Generate { preset: AnyPreset::Catalogue, seed, out, catalogue } => {
+        Command::Generate { preset: AnyPreset::Catalogue, seed, out, catalogue, missing_fraction, breakup } => {
+            if missing_fraction != 0.0 || breakup != 0 {
+                return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo").into());
+            }
             let missing = |flag: &str| Error::input(format!("generate catalogue: {flag} is required"));
             let catalogue_file = catalogue.catalogue.ok_or_else(|| missing("--catalogue"))?;
             let sensors = catalogue.sensors.ok_or_else(|| missing("--sensors"))?;

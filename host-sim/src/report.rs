@@ -42,6 +42,19 @@ pub struct RunSummary {
     pub births_confirmed: usize,
     /// Per born object, the scan of its confirmation.
     pub birth_confirmation_scans: Vec<BirthConfirmation>,
+    /// Per born object, detections and scans from its first detection to its confirmation.
+    #[serde(default)]
+    pub birth_confirmations: Vec<BirthRecord>,
+    /// Mean detections to confirmation of the confirmed births; `null` when none is.
+    #[serde(default)]
+    pub mean_detections_to_confirm: Option<f64>,
+    /// Largest detections to confirmation; `null` when no birth is confirmed.
+    #[serde(default)]
+    pub max_detections_to_confirm: Option<usize>,
+    /// MAP labels confirmed at some scan and never within the error bound of an object; `null` without
+    /// truth.
+    #[serde(default)]
+    pub false_tracks: Option<usize>,
     /// Label switches along GOSPA's assignment.
     pub label_switches: usize,
     /// Confirmed objects in view without a MAP estimate within the error bound, summed over scans.
@@ -79,6 +92,22 @@ pub struct BirthConfirmation {
     pub object: u64,
     /// Scan index.
     pub scan: Option<usize>,
+}
+
+/// A born object's way to confirmation ([`crate::births`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthRecord {
+    /// Truth id.
+    pub object: u64,
+    /// Scan of its first measurement (`null`: never detected).
+    pub first_detection_scan: Option<usize>,
+    /// Scan of its confirmation (`null`: never).
+    pub confirmation_scan: Option<usize>,
+    /// Its measurements up to and including the confirmation scan (`null`: never confirmed).
+    pub detections_to_confirm: Option<usize>,
+    /// Scans from the first detection to the confirmation, both counted (`null`: never confirmed).
+    pub scans_to_confirm: Option<usize>,
 }
 
 /// A scan the tracker rejected.

@@ -8,6 +8,7 @@
 //! when its position lies in the field of view of the scan's sensor (look angles, range and range-rate of
 //! [`SiteGeometry::look`]).
 
+use crate::births::{BirthTally, MapTrack};
 use crate::error::Error;
 use crate::evaluate::{mean, peak_resident_kib, progress, write_json};
 use crate::metrics::{LabelSwitches, gospa};
@@ -611,15 +612,17 @@ pub fn run(
     let evaluation = scenario.evaluation;
     let n = scenario.scans.len();
     let sensors = scenario.sensors.len();
-    let born: HashMap<u64, bool> =
-        scenario.truth.iter().flat_map(|t| t.objects.iter().map(|o| (o.id, !o.in_prior))).collect();
+    let mut births = BirthTally::new(
+        scenario.truth.iter().flat_map(|t| t.objects.iter().filter(|o| !o.in_prior).map(|o| o.id)),
+        evaluation.confirmation_existence,
+        evaluation.error_bound,
+    );
     // Sky plots: per sensor, per truth object, a point per scan of that sensor (None out of view).
     let mut sky_truth: Vec<SkyTruth> = vec![BTreeMap::new(); sensors];
     let mut sky_estimates: Vec<Vec<Option<(f64, f64)>>> = vec![vec![]; sensors];
     let mut records = vec![];
     let mut rejected = vec![];
     let mut switches = LabelSwitches::new();
-    let mut confirmed: BTreeMap<u64, Option<usize>> = BTreeMap::new();
     let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
     let mut peak_hypotheses = prior.hypotheses;
     let mut oem = crate::oem::OemTracks::new(scenario);
@@ -669,19 +672,18 @@ pub fn run(
             for e in bound.assignment.iter().flatten() {
                 within[*e] = Some(true);
             }
-            // Births: confirmed once an estimate of a label with existence ≥ the threshold is within the
-            // error bound.
+            // Births: confirmed once GOSPA (cut-off: the error bound) assigns them a MAP track of a
+            // label with existence ≥ the threshold.
+            let objects: Vec<(u64, &[f64])> = truth.iter().map(|t| (t.id, &t.state[..3])).collect();
+            let map: Vec<MapTrack<'_>> = posterior
+                .map
+                .iter()
+                .map(|t| MapTrack { label: t.label, position: &t.mean[..3], existence: t.existence })
+                .collect();
+            let detected = scenario.truth.as_ref().and_then(|t| t.scans[k].origins.as_ref());
+            births.record(k, &objects, detected.into_iter().flatten().flatten().copied(), &map, &bound.assignment);
             for (t, assigned) in truth.iter().zip(&bound.assignment) {
-                if born.get(&t.id).copied().unwrap_or(false) {
-                    let entry = confirmed.entry(t.id).or_insert(None);
-                    if entry.is_none()
-                        && assigned.is_some_and(|e| posterior.map[e].existence >= evaluation.confirmation_existence)
-                    {
-                        *entry = Some(k);
-                    }
-                }
-                let confirmed_track =
-                    !born.get(&t.id).copied().unwrap_or(false) || confirmed.get(&t.id).copied().flatten().is_some();
+                let confirmed_track = !births.is_birth(t.id) || births.confirmed_at(t.id).is_some();
                 if confirmed_track && assigned.is_none() && geometry.in_view(scan.sensor, scan.time, &t.state) {
                     in_view_misses += 1;
                 }
@@ -738,6 +740,7 @@ pub fn run(
     let gospas: Vec<f64> = records.iter().filter_map(|r| r.gospa).collect();
     let ospas: Vec<f64> = records.iter().filter_map(|r| r.ospa).collect();
     let last = records.last();
+    let figures = births.figures();
     let mut summary = RunSummary {
         scenario: scenario.name.clone(),
         tracker: kind.name().into(),
@@ -751,9 +754,17 @@ pub fn run(
         final_expected_cardinality: last.map_or(prior.expected_cardinality, |r| r.expected_cardinality),
         final_map_cardinality: last.map_or(prior.map.len(), |r| r.map_cardinality),
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
-        births_total: born.values().filter(|b| **b).count(),
-        births_confirmed: confirmed.values().filter(|c| c.is_some()).count(),
-        birth_confirmation_scans: confirmed.iter().map(|(&object, &scan)| BirthConfirmation { object, scan }).collect(),
+        births_total: figures.births_total,
+        births_confirmed: figures.births_confirmed,
+        birth_confirmation_scans: figures
+            .records
+            .iter()
+            .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
+            .collect(),
+        mean_detections_to_confirm: figures.mean_detections_to_confirm,
+        max_detections_to_confirm: figures.max_detections_to_confirm,
+        false_tracks: scenario.truth.is_some().then_some(figures.false_tracks),
+        birth_confirmations: figures.records,
         label_switches: switches.total(),
         in_view_misses_after_confirmation: in_view_misses,
         in_view_red_stars,

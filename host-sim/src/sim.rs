@@ -21,7 +21,7 @@ pub const EARTH_MU: f64 = 398_600.441_8;
 pub const EARTH_RADIUS: f64 = 6_378.137;
 
 /// The presets of `host-sim generate`.
-pub const PRESETS: [&str; 4] = ["fifty-birth-death", "fifteen-compare", "debris-crossing", "linear-small"];
+pub const PRESETS: [&str; 5] = ["fifty-birth-death", "fifteen-compare", "debris-crossing", "linear-small", "crossings"];
 
 /// A planar prograde Keplerian orbit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -585,6 +585,101 @@ pub fn linear_small(seed: u64) -> Simulation {
     }
 }
 
+/// Parameters of [`crossings_with`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrossingsConfig {
+    /// Times of the three crossings (s).
+    pub times: [f64; 3],
+    /// When the births appear, relative to their crossing (s; negative: before it).
+    pub birth_offset: f64,
+}
+
+impl CrossingsConfig {
+    /// The `crossings` preset.
+    pub const PRESET: CrossingsConfig = CrossingsConfig { times: [8.0, 15.0, 22.0], birth_offset: -2.0 };
+}
+
+/// The crossing points of [`crossings`]: (x, y, members, the member that is born).
+const CROSSINGS: [([f64; 2], u64, Option<u64>); 3] =
+    [([-20.0, -15.0], 3, Some(1)), ([20.0, 10.0], 3, Some(2)), ([0.0, 25.0], 2, None)];
+
+/// Eight constant-velocity objects in three crossings (3, 3 and 2 objects through one point at t = 8,
+/// 15 and 22), p_D 0.8, 15 clutter returns per scan, 30 scans. Two objects are births: one member of
+/// each of the first two crossings appears 2 s before its crossing, inside the birth cell centred on
+/// that crossing point (position σ 5, velocity σ 2, one cell per crossing).
+pub fn crossings(seed: u64) -> Simulation {
+    crossings_with(seed, &CrossingsConfig::PRESET)
+}
+
+/// [`crossings`] with other crossing and birth times.
+pub fn crossings_with(seed: u64, config: &CrossingsConfig) -> Simulation {
+    let sensor = SensorSpec {
+        detection_probability: 0.8,
+        clutter_rate: 15.0,
+        field_of_view: FieldOfViewSpec::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
+    };
+    let mut objects = vec![];
+    let mut cells = vec![];
+    for ((point, members, born), time) in CROSSINGS.into_iter().zip(config.times) {
+        let mut random = Random::stream(seed, Stream::Orbit, objects.len() as u64);
+        // Headings spread over half a turn so that the members cross at clearly different angles.
+        let start = random.between(0.0, std::f64::consts::PI);
+        for m in 0..members {
+            let id = objects.len() as u64;
+            let heading = start + m as f64 * std::f64::consts::PI / members as f64 + random.between(-0.2, 0.2);
+            let speed = random.between(1.5, 2.5);
+            let v = [speed * libm::cos(heading), speed * libm::sin(heading)];
+            let is_birth = born == Some(m);
+            let epoch = if is_birth { time + config.birth_offset } else { 0.0 };
+            let state = [point[0] - v[0] * (time - epoch), point[1] - v[1] * (time - epoch), v[0], v[1]];
+            objects.push(SimObject {
+                id,
+                state,
+                epoch,
+                in_prior: !is_birth,
+                birth_time: is_birth.then_some(epoch),
+                death_time: None,
+            });
+        }
+        if born.is_some() {
+            cells.push(GaussianSpec {
+                mean: [point[0], point[1], 0.0, 0.0],
+                covariance: [[25.0, 0.0, 0.0, 0.0], [0.0, 25.0, 0.0, 0.0], [0.0, 0.0, 4.0, 0.0], [0.0, 0.0, 0.0, 4.0]],
+            });
+        }
+    }
+    Simulation {
+        name: "crossings".into(),
+        description: "Eight constant-velocity objects in three crossings, two born inside a birth cell during a crossing; p_D 0.8, 15 clutter returns per scan, 30 scans".into(),
+        motion: MotionSpec::ConstantVelocity { acceleration_noise: 0.01 },
+        measurement_noise: [[0.25, 0.0], [0.0, 0.25]],
+        birth: BirthSpec { probability: 0.01, detection: BirthDetectionSpec::AllDetected, events: Default::default(), measured: None, cells },
+        sensor,
+        death_probability: 0.005,
+        tracker: TrackerSpec {
+            gate: Some(16.0),
+            max_children_per_scan: 1_000_000,
+            store_overflow: StoreOverflowSpec::PruneChildren,
+            numerical_failure: NumericalFailureSpec::DropTrack,
+            seed,
+            sampler: SamplerSpec::default(),
+            selection: SelectionSpec::default(),
+        },
+        evaluation: EvaluationSpec {
+            error_bound: 3.0,
+            gospa_cutoff: 10.0,
+            gospa_order: 2.0,
+            confirmation_existence: 0.5,
+        },
+        start_time: 0.0,
+        scan_interval: 1.0,
+        scans: 30,
+        objects,
+        prior_sigma: (0.3, 0.1),
+        seed,
+    }
+}
+
 /// The simulation of a preset, by name.
 pub fn preset(name: &str, seed: u64) -> Option<Simulation> {
     <Preset as clap::ValueEnum>::from_str(name, false).ok().map(|p| p.simulation(seed))
@@ -601,6 +696,8 @@ pub enum Preset {
     DebrisCrossing,
     /// A few constant-velocity objects in a rectangle, six scans.
     LinearSmall,
+    /// Eight constant-velocity objects in three crossings, two births, heavy clutter, 30 scans.
+    Crossings,
 }
 
 impl Preset {
@@ -611,6 +708,7 @@ impl Preset {
             Preset::FifteenCompare => fifteen_compare(seed),
             Preset::DebrisCrossing => debris_crossing(seed),
             Preset::LinearSmall => linear_small(seed),
+            Preset::Crossings => crossings(seed),
         }
     }
 }

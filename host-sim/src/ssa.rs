@@ -77,6 +77,8 @@ pub enum SsaError {
     OrbitSearch,
     /// Truth propagation failed.
     Orbit(OrbitError),
+    /// A missing fraction outside [0, 1], or a break-up asked of a preset without one.
+    BadUnknowns,
 }
 
 impl core::fmt::Display for SsaError {
@@ -90,6 +92,7 @@ impl core::fmt::Display for SsaError {
             }
             SsaError::OrbitSearch => f.write_str("no orbit with enough passes found for an object"),
             SsaError::Orbit(e) => write!(f, "truth propagation: {e}"),
+            SsaError::BadUnknowns => f.write_str("--missing-fraction must be in [0, 1]; --breakup needs radar-leo"),
         }
     }
 }
@@ -616,8 +619,104 @@ impl SensorSpec {
 pub struct ObjectTruth {
     /// Inertial state at t = 0 (km, km/s); propagate with [`crate::orbit::Propagator::EARTH`].
     pub initial_state: [f64; 6],
-    /// The crossing pair or co-located cluster it belongs to (index into `groups`), if any.
+    /// The crossing pair, co-located cluster or break-up it belongs to (index into `groups`), if any.
     pub group: Option<usize>,
+    /// Whether the prior knows the object.
+    #[serde(default = "known")]
+    pub in_prior: bool,
+    /// When the object starts to exist (a break-up fragment); `None`: from the start.
+    #[serde(default)]
+    pub birth_time: Option<f64>,
+}
+
+fn known() -> bool {
+    true
+}
+
+impl ObjectTruth {
+    /// An object of the prior that exists from the start.
+    pub fn known(initial_state: [f64; 6], group: Option<usize>) -> Self {
+        ObjectTruth { initial_state, group, in_prior: true, birth_time: None }
+    }
+
+    /// Whether the object exists at `time`.
+    pub fn exists_at(&self, time: f64) -> bool {
+        self.birth_time.is_none_or(|b| b <= time)
+    }
+}
+
+/// Objects unknown to the prior: a fraction of the objects missing from it, and a break-up.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Unknowns {
+    /// Fraction of the objects (break-up fragments aside) left out of the prior, rounded to the nearest
+    /// count; in [0, 1].
+    pub missing_fraction: f64,
+    /// Fragments of a break-up during the run (`radar-leo` only; 0: none).
+    pub breakup: usize,
+}
+
+/// Leaves `round(fraction × n)` of the first `n` objects out of the prior, chosen by the seed's stream
+/// [`Stream::Scenario`] 2,000,000 (no other draw moves).
+fn mark_missing(seed: u64, objects: &mut [ObjectTruth], n: usize, fraction: f64) -> Result<(), SsaError> {
+    if !(0.0..=1.0).contains(&fraction) {
+        return Err(SsaError::BadUnknowns);
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    Random::stream(seed, Stream::Scenario, 2_000_000).shuffle(&mut order);
+    let missing = (fraction * n as f64).round() as usize;
+    for &i in &order[..missing.min(n)] {
+        objects[i].in_prior = false;
+    }
+    Ok(())
+}
+
+/// An object's truth at every scan time.
+type Track = Vec<[f64; 6]>;
+
+/// A break-up of `parent` into `count` new fragments (stream [`Stream::Scenario`] 3,000,000): at a time
+/// 2 to 15 minutes before the start of one of the parent's passes after the first 5 minutes of the run,
+/// each fragment takes the parent's state and a velocity kick of 2 to 30 m/s in a uniformly random
+/// direction. The parent continues on its orbit. Returns the fragments (born then, unknown to the prior),
+/// each with its truth at `schedule`'s times.
+fn breakup(
+    seed: u64,
+    parent: &ObjectTruth,
+    count: usize,
+    group: usize,
+    schedule: &[(f64, usize)],
+    visible: &[bool],
+    sensors: usize,
+) -> Result<Vec<(ObjectTruth, Track)>, SsaError> {
+    let mut random = Random::stream(seed, Stream::Scenario, 3_000_000);
+    let mut starts = vec![];
+    let mut last = vec![f64::NEG_INFINITY; sensors];
+    for (k, (&(t, s), &v)) in schedule.iter().zip(visible).enumerate() {
+        if v {
+            if t - last[s] > PASS_GAP && t >= 300.0 {
+                starts.push(k);
+            }
+            last[s] = t;
+        }
+    }
+    let Some(&last_start) = starts.last() else { return Err(SsaError::OrbitSearch) };
+    let start = starts[((random.uniform() * starts.len() as f64) as usize).min(starts.len() - 1)];
+    let start = if schedule[start].0 < 300.0 { last_start } else { start };
+    let time = (schedule[start].0 - random.between(120.0, 900.0)).max(1.0);
+    let at_breakup = Propagator::EARTH.propagate(parent.initial_state, time)?;
+    let times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
+    let mut fragments = Vec::with_capacity(count);
+    for _ in 0..count {
+        let direction = [random.normal(), random.normal(), random.normal()];
+        let speed = random.between(0.002, 0.030);
+        let kick = scale(direction, speed / norm(direction).max(f64::MIN_POSITIVE));
+        let v = add(vel(&at_breakup), kick);
+        let state = [at_breakup[0], at_breakup[1], at_breakup[2], v[0], v[1], v[2]];
+        let initial = Propagator::EARTH.propagate(state, -time)?;
+        let fragment =
+            ObjectTruth { initial_state: initial, group: Some(group), in_prior: false, birth_time: Some(time) };
+        fragments.push((fragment, track(initial, &times)?));
+    }
+    Ok(fragments)
 }
 
 /// A deliberately close group of objects.
@@ -887,8 +986,9 @@ fn simulate(plan: Plan) -> Result<SsaScenario, SsaError> {
         (0..plan.objects.len()).map(|i| Random::stream(plan.seed, Stream::Detection, i as u64)).collect();
     let mut scans = Vec::with_capacity(plan.schedule.len());
     for (k, (&(time, s), observer)) in plan.schedule.iter().zip(&observers).enumerate() {
-        // An object the plan marks invisible at this scan (a telescope's unlit object) is not seen.
-        let visible = |i: usize| plan.visible.as_ref().is_none_or(|v| v[i][k]);
+        // An object that does not exist yet (a fragment before its break-up) or that the plan marks invisible
+        // at this scan (a telescope's unlit object) is not seen.
+        let visible = |i: usize| plan.objects[i].exists_at(time) && plan.visible.as_ref().is_none_or(|v| v[i][k]);
         let states = tracks.iter().enumerate().map(|(i, states)| visible(i).then_some(states[k]));
         scans.push(draw_scan(plan.seed, k, (time, s), &plan.sensors[s], observer, states, &mut detection)?);
     }
@@ -925,7 +1025,12 @@ pub fn simulate_tracks(
 ) -> Result<SsaScenario, SsaError> {
     let objects = tracks
         .iter()
-        .map(|t| ObjectTruth { initial_state: t.first().copied().unwrap_or([0.0; 6]), group: None })
+        .map(|t| ObjectTruth {
+            initial_state: t.first().copied().unwrap_or([0.0; 6]),
+            group: None,
+            in_prior: true,
+            birth_time: None,
+        })
         .collect();
     simulate(Plan {
         name: name.into(),
@@ -1001,12 +1106,20 @@ pub struct RadarLeoConfig {
     pub revisit: f64,
     /// Passes every object must have (orbits are redrawn until they do).
     pub min_passes: usize,
+    /// Objects unknown to the prior.
+    pub unknowns: Unknowns,
 }
 
 impl RadarLeoConfig {
     /// The `radar-leo` preset: 100 singles + 10 crossing pairs, 6 h, each radar every 20 s.
-    pub const PRESET: RadarLeoConfig =
-        RadarLeoConfig { singles: 100, pairs: 10, duration: 6.0 * 3600.0, revisit: 20.0, min_passes: 2 };
+    pub const PRESET: RadarLeoConfig = RadarLeoConfig {
+        singles: 100,
+        pairs: 10,
+        duration: 6.0 * 3600.0,
+        revisit: 20.0,
+        min_passes: 2,
+        unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
+    };
 }
 
 /// The two radars of `radar-leo`.
@@ -1134,9 +1247,29 @@ pub fn radar_leo_with(seed: u64, config: &RadarLeoConfig) -> Result<SsaScenario,
             groups.len() - 1
         });
         for (initial, states) in candidate {
-            objects.push(ObjectTruth { initial_state: initial, group });
+            objects.push(ObjectTruth::known(initial, group));
             tracks.push(states);
         }
+    }
+    let n = objects.len();
+    mark_missing(seed, &mut objects, n, config.unknowns.missing_fraction)?;
+    if config.unknowns.breakup > 0 && config.singles > 0 {
+        // The parent: a single, chosen by the break-up's own stream.
+        let mut random = Random::stream(seed, Stream::Scenario, 3_000_001);
+        let parent = ((random.uniform() * config.singles as f64) as usize).min(config.singles - 1);
+        let visible = visibility(&sensors, &schedule, &obs, &tracks[parent]);
+        groups.push(Group { kind: "breakup".into(), objects: vec![parent] });
+        let group = groups.len() - 1;
+        objects[parent].group = Some(group);
+        let fragments =
+            breakup(seed, &objects[parent], config.unknowns.breakup, group, &schedule, &visible, sensors.len())?;
+        for (fragment, states) in fragments {
+            groups[group].objects.push(objects.len());
+            objects.push(fragment);
+            tracks.push(states);
+        }
+    } else if config.unknowns.breakup > 0 {
+        return Err(SsaError::BadUnknowns);
     }
     simulate(Plan {
         name: "radar-leo".into(),
@@ -1175,7 +1308,7 @@ pub fn tiny_3d(seed: u64) -> Result<SsaScenario, SsaError> {
         let radius = WGS84_A + random.between(500.0, 1200.0);
         let lo = aim[1].abs() + deg(3.0);
         let at_aim = aimed_circular(aim, radius, random.between(lo, PI - lo), random.uniform() < 0.5);
-        objects.push(ObjectTruth { initial_state: Propagator::EARTH.propagate(at_aim, -t_aim)?, group: None });
+        objects.push(ObjectTruth::known(Propagator::EARTH.propagate(at_aim, -t_aim)?, None));
     }
     simulate(Plan {
         name: "tiny-3d".into(),
@@ -1206,6 +1339,8 @@ pub struct OpticalGeoConfig {
     pub duration: f64,
     /// Time between scans (s).
     pub cadence: f64,
+    /// Objects unknown to the prior (no break-up: [`Unknowns::breakup`] must be 0).
+    pub unknowns: Unknowns,
 }
 
 impl OpticalGeoConfig {
@@ -1217,6 +1352,7 @@ impl OpticalGeoConfig {
         cluster_size: 4,
         duration: 4.0 * 3600.0,
         cadence: 90.0,
+        unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
     };
 }
 
@@ -1288,7 +1424,7 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
     for _ in 0..config.singles {
         let longitude = sensor.site.longitude + deg(random.between(-2.0, 2.0));
         let s = state_at(&mut random, longitude, 2e-4, deg(0.1));
-        objects.push(ObjectTruth { initial_state: s, group: None });
+        objects.push(ObjectTruth::known(s, None));
     }
     for _ in 0..config.sweepers {
         let t_node = random.between(0.0, config.duration);
@@ -1301,7 +1437,7 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
             random.uniform() < 0.5,
         );
         let s = Propagator::EARTH.propagate(at_node, -t_node)?;
-        objects.push(ObjectTruth { initial_state: s, group: None });
+        objects.push(ObjectTruth::known(s, None));
     }
     for c in 0..config.clusters {
         let slot = sensor.site.longitude + deg(-1.5 + 1.5 * c as f64 + random.between(-0.3, 0.3));
@@ -1310,10 +1446,15 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
             let longitude = slot + deg(random.between(-0.015, 0.015));
             members.push(objects.len());
             let s = state_at(&mut random, longitude, 8e-5, deg(0.01));
-            objects.push(ObjectTruth { initial_state: s, group: Some(groups.len()) });
+            objects.push(ObjectTruth::known(s, Some(groups.len())));
         }
         groups.push(Group { kind: "cluster".into(), objects: members });
     }
+    if config.unknowns.breakup > 0 {
+        return Err(SsaError::BadUnknowns);
+    }
+    let n = objects.len();
+    mark_missing(seed, &mut objects, n, config.unknowns.missing_fraction)?;
     let steps = (config.duration / config.cadence).floor() as usize;
     simulate(Plan {
         name: "optical-geo".into(),
@@ -1573,8 +1714,78 @@ mod tests {
     }
 
     /// A short radar-leo (debug-friendly); the full preset is checked by the ignored test below.
-    const SHORT_LEO: RadarLeoConfig =
-        RadarLeoConfig { singles: 12, pairs: 3, duration: 3.0 * 3600.0, revisit: 40.0, min_passes: 2 };
+    const SHORT_LEO: RadarLeoConfig = RadarLeoConfig {
+        singles: 12,
+        pairs: 3,
+        duration: 3.0 * 3600.0,
+        revisit: 40.0,
+        min_passes: 2,
+        unknowns: Unknowns { missing_fraction: 0.0, breakup: 0 },
+    };
+
+    #[test]
+    fn missing_objects_and_a_breakup_are_unknown_to_the_prior() {
+        let config = RadarLeoConfig { unknowns: Unknowns { missing_fraction: 0.25, breakup: 10 }, ..SHORT_LEO };
+        let a = radar_leo_with(3, &config).unwrap();
+        assert_eq!(a, radar_leo_with(3, &config).unwrap(), "deterministic");
+        let n = SHORT_LEO.singles + 2 * SHORT_LEO.pairs;
+        assert_eq!(a.objects.len(), n + 10);
+        // The other objects are those of the preset without unknowns.
+        let plain = radar_leo_with(3, &SHORT_LEO).unwrap();
+        let initial = |s: &SsaScenario| s.objects[..n].iter().map(|o| o.initial_state).collect::<Vec<_>>();
+        assert_eq!(initial(&a), initial(&plain));
+        assert!(plain.objects.iter().all(|o| o.in_prior && o.birth_time.is_none()));
+        let missing = a.objects[..n].iter().filter(|o| !o.in_prior).count();
+        assert_eq!(missing, 5, "round(0.25 × 18)");
+        assert!(a.objects[..n].iter().all(|o| o.birth_time.is_none()));
+        // Fragments: born together, unknown, in the break-up group with the parent.
+        let fragments = &a.objects[n..];
+        let born = fragments[0].birth_time.expect("a birth time");
+        assert!(born > 0.0 && born < SHORT_LEO.duration, "{born}");
+        let group = fragments[0].group.expect("a group");
+        assert_eq!(a.groups[group].kind, "breakup");
+        assert_eq!(a.groups[group].objects.len(), 11);
+        let parent = a.groups[group].objects[0];
+        assert!(parent < SHORT_LEO.singles);
+        let at = Propagator::EARTH.propagate(a.objects[parent].initial_state, born).unwrap();
+        for f in fragments {
+            assert!(!f.in_prior && f.birth_time == Some(born) && f.group == Some(group));
+            // At the break-up: the parent's position, a kick of 2 to 30 m/s.
+            let s = Propagator::EARTH.propagate(f.initial_state, born).unwrap();
+            assert!(norm(sub(pos(&s), pos(&at))) < 1e-3, "{:?} {:?}", s, at);
+            let kick = norm(sub(vel(&s), vel(&at)));
+            assert!((0.002 - 1e-6..=0.030 + 1e-6).contains(&kick), "{kick}");
+        }
+        // Seen only after the break-up, and seen.
+        let seen: Vec<f64> = a.scans.iter().filter(|s| s.truth.iter().any(|t| t.object >= n)).map(|s| s.time).collect();
+        assert!(!seen.is_empty() && seen.iter().all(|&t| t >= born), "{seen:?}");
+        // Another seed, other choices.
+        let b = radar_leo_with(4, &config).unwrap();
+        assert_ne!(
+            a.objects.iter().map(|o| o.in_prior).collect::<Vec<_>>(),
+            b.objects.iter().map(|o| o.in_prior).collect::<Vec<_>>()
+        );
+        // The scenario file: the truth says who is unknown, the prior leaves them out, fragments appear
+        // in the truth from their birth.
+        let (file, _) = crate::generate3d::to_scenario(&a).unwrap();
+        let truth = file.truth.as_ref().unwrap();
+        assert_eq!(truth.objects.iter().filter(|o| !o.in_prior).count(), 15);
+        assert_eq!(file.prior.hypotheses[0].objects.len(), n - 5);
+        for (scan, objects) in file.scans.iter().zip(&truth.scans) {
+            let fragments = objects.objects.iter().filter(|o| o.id >= n as u64).count();
+            assert_eq!(fragments, if scan.time >= born { 10 } else { 0 }, "t = {}", scan.time);
+        }
+    }
+
+    #[test]
+    fn unknowns_out_of_range_are_refused() {
+        let bad = |missing_fraction, breakup| Unknowns { missing_fraction, breakup };
+        let leo = |u| radar_leo_with(1, &RadarLeoConfig { unknowns: u, ..SHORT_LEO });
+        assert_eq!(leo(bad(1.5, 0)).err(), Some(SsaError::BadUnknowns));
+        assert_eq!(leo(bad(f64::NAN, 0)).err(), Some(SsaError::BadUnknowns));
+        let geo = OpticalGeoConfig { unknowns: bad(0.0, 2), ..OpticalGeoConfig::PRESET };
+        assert_eq!(optical_geo_with(1, &geo).err(), Some(SsaError::BadUnknowns));
+    }
 
     fn check_radar_leo(s: &SsaScenario, config: &RadarLeoConfig) {
         assert_eq!(s.objects.len(), config.singles + 2 * config.pairs);
@@ -1684,10 +1895,20 @@ mod tests {
             cluster_size: 4,
             duration: 3600.0,
             cadence: 120.0,
+            unknowns: Unknowns::default(),
         };
         let a = optical_geo_with(5, &config).unwrap();
         check_optical_geo(&a, &config);
         assert_eq!(a, optical_geo_with(5, &config).unwrap());
+        // A quarter missing from the prior: round(0.25 × 18) objects, the same orbits.
+        let missing = OpticalGeoConfig { unknowns: Unknowns { missing_fraction: 0.25, breakup: 0 }, ..config };
+        let m = optical_geo_with(5, &missing).unwrap();
+        assert_eq!(m.objects.iter().filter(|o| !o.in_prior).count(), 5);
+        assert_eq!(
+            m.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>(),
+            a.objects.iter().map(|o| o.initial_state).collect::<Vec<_>>()
+        );
+        assert!(m.objects.iter().all(|o| o.birth_time.is_none()));
         // Measurement noise about 1.5″: residuals of detections.
         let mut sq = 0.0;
         let mut n = 0.0;

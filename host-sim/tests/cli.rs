@@ -1160,9 +1160,11 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
     let summary: Value = serde_json::from_str(&text).expect("json");
     let expected_summary = [
         "birth_confirmation_scans",
+        "birth_confirmations",
         "births_confirmed",
         "births_total",
         "error_bound",
+        "false_tracks",
         "final_expected_cardinality",
         "final_map_cardinality",
         "gospa_cutoff",
@@ -1170,8 +1172,10 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
         "in_view_misses_after_confirmation",
         "in_view_red_stars",
         "label_switches",
+        "max_detections_to_confirm",
         "max_ms_per_scan",
         "mean_captured_mass",
+        "mean_detections_to_confirm",
         "mean_gospa",
         "mean_ms_per_scan",
         "mean_ospa",
@@ -1670,4 +1674,109 @@ fn v2_digest_replays_radar_scans_and_needs_the_truth() {
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
     assert!(stderr(&output).contains("truth"), "{}", describe(&output));
     assert_eq!(stderr(&output).trim_end().lines().count(), 1, "{}", describe(&output));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Births: detections to confirmation and false tracks
+// ---------------------------------------------------------------------------------------------------
+
+/// Checks the birth keys of a summary against the scenario file: one record per object outside the
+/// prior, the first detection and the detections to confirmation counted from the truth's origins, and the
+/// mean and the largest of those.
+fn check_birth_keys(file: &Value, summary: &Value) {
+    let births: Vec<u64> = file["truth"]["objects"]
+        .as_array()
+        .expect("truth objects")
+        .iter()
+        .filter(|o| o["in_prior"] == json!(false))
+        .map(|o| o["id"].as_u64().expect("id"))
+        .collect();
+    let records = summary["birth_confirmations"].as_array().expect("birth_confirmations");
+    assert_eq!(summary["births_total"], json!(births.len()), "{summary}");
+    assert_eq!(records.iter().map(|r| r["object"].as_u64().expect("object")).collect::<Vec<_>>(), births);
+    let origins: Vec<Vec<Option<u64>>> = file["truth"]["scans"]
+        .as_array()
+        .expect("truth scans")
+        .iter()
+        .map(|s| s["origins"].as_array().expect("origins").iter().map(Value::as_u64).collect())
+        .collect();
+    let mut confirmed = vec![];
+    for r in records {
+        let id = r["object"].as_u64();
+        let detected_at = |k: usize| origins[k].contains(&id);
+        let first = (0..origins.len()).find(|&k| detected_at(k));
+        assert_eq!(r["first_detection_scan"], json!(first), "{r}");
+        if let Some(c) = r["confirmation_scan"].as_u64().map(|c| c as usize) {
+            let detections = (0..=c).filter(|&k| detected_at(k)).count();
+            assert_eq!(r["detections_to_confirm"], json!(detections), "{r}");
+            let first = first.expect("confirmed only once detected");
+            assert!(first <= c, "{r}");
+            let scans = c - first + 1;
+            assert_eq!(r["scans_to_confirm"], json!(scans), "{r}");
+            confirmed.push(detections);
+        } else {
+            assert_eq!((r["detections_to_confirm"].clone(), r["scans_to_confirm"].clone()), (json!(null), json!(null)));
+        }
+    }
+    assert_eq!(summary["births_confirmed"], json!(confirmed.len()), "{summary}");
+    if confirmed.is_empty() {
+        assert_eq!(summary["mean_detections_to_confirm"], json!(null));
+        assert_eq!(summary["max_detections_to_confirm"], json!(null));
+    } else {
+        let mean = confirmed.iter().sum::<usize>() as f64 / confirmed.len() as f64;
+        assert!((summary["mean_detections_to_confirm"].as_f64().expect("mean") - mean).abs() < 1e-12, "{summary}");
+        assert_eq!(summary["max_detections_to_confirm"], json!(confirmed.iter().max()));
+    }
+    assert!(summary["false_tracks"].as_u64().is_some(), "{summary}");
+}
+
+#[test]
+fn birth_keys_of_a_planar_run_match_the_truth() {
+    let dir = TempDir::new("birth-keys");
+    let file = linear_small(&dir, None);
+    let out = dir.join("out");
+    let output = host_sim(&["run".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let summary = read_json(&out.join("summary.json"));
+    // linear-small: one birth (object 3, at t = 2.5).
+    assert_eq!(summary["births_total"], json!(1), "{summary}");
+    check_birth_keys(&read_json(&file), &summary);
+}
+
+#[test]
+fn birth_keys_of_a_3d_run_with_an_object_missing_from_the_prior() {
+    let dir = TempDir::new("birth-keys-3d");
+    let file = tiny_3d(&dir);
+    // Object 0 leaves the prior: a birth the tracker (no birth cells) cannot confirm.
+    let mut value = read_json(&file);
+    value["truth"]["objects"][0]["in_prior"] = json!(false);
+    array(&mut value["prior"]["hypotheses"][0]["objects"]).retain(|o| o["label"] != json!(0));
+    write_json(&file, &value);
+    let out = dir.join("out");
+    let output = host_sim(&["run".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let summary = read_json(&out.join("summary.json"));
+    assert_eq!((summary["births_total"].clone(), summary["births_confirmed"].clone()), (json!(1), json!(0)));
+    assert!(summary["birth_confirmations"][0]["first_detection_scan"].as_u64().is_some(), "{summary}");
+    check_birth_keys(&value, &summary);
+    assert_eq!(summary["false_tracks"], json!(0), "{summary}");
+}
+
+#[test]
+fn generate_unknowns_need_a_3d_preset_and_a_fraction_in_range() {
+    let dir = TempDir::new("unknowns");
+    let path = dir.join("x.json");
+    for args in [
+        &["generate", "linear-small", "--missing-fraction", "0.2"][..],
+        &["generate", "tiny-3d", "--breakup", "3"],
+        &["generate", "optical-geo", "--breakup", "3"],
+        &["generate", "radar-leo", "--missing-fraction", "1.5"],
+    ] {
+        let mut args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_ref()).collect();
+        args.extend(["--out".as_ref(), path.as_os_str()]);
+        let output = host_sim(&args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {}", describe(&output));
+        assert_eq!(stderr(&output).lines().count(), 1, "{}", describe(&output));
+        assert!(!path.exists());
+    }
 }

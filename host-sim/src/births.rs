@@ -1,0 +1,223 @@
+//! Births and false tracks of a run, scan by scan, for `summary.json` of `host-sim run` (planar and 3-D).
+//!
+//! A *birth* is a true object the prior does not know (`in_prior` false, whether it exists from the
+//! start or is born during the run). It is *confirmed* at the first scan where the MAP hypothesis holds a
+//! track of existence ≥ `confirmation_existence` that GOSPA with cut-off `error_bound` (order 1) assigns
+//! to it, from its first detection on (before it, a track near the object is a neighbour's). Its *detections to confirmation* are the measurements the truth attributes to it (the scan's
+//! `origins`) from its first one up to and including the confirmation scan, and its *scans to
+//! confirmation* the scans from the first detection to the confirmation, both ends counted.
+//!
+//! A *false track* is a label that is in the MAP hypothesis with existence ≥ `confirmation_existence`
+//! at one scan at least, and whose MAP estimate is never closer than `error_bound` to a true object at
+//! any scan where the label is in the MAP hypothesis.
+
+use crate::report::BirthRecord;
+use std::collections::BTreeMap;
+
+/// One MAP track as the tally sees it: label, position, existence of the label.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapTrack<'a> {
+    /// Label.
+    pub label: u32,
+    /// Position (the first components of the state).
+    pub position: &'a [f64],
+    /// Existence probability of the label.
+    pub existence: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Birth {
+    first_detection: Option<usize>,
+    detections: usize,
+    /// (scan, detections by then).
+    confirmed: Option<(usize, usize)>,
+}
+
+/// What the tally knows of a label of the MAP hypothesis.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Label {
+    confirmed: bool,
+    near: bool,
+}
+
+/// The summary figures of a tally.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BirthFigures {
+    /// Births in the truth.
+    pub births_total: usize,
+    /// Births confirmed.
+    pub births_confirmed: usize,
+    /// Per birth, in id order.
+    pub records: Vec<BirthRecord>,
+    /// Mean detections to confirmation of the confirmed births (`None`: none confirmed).
+    pub mean_detections_to_confirm: Option<f64>,
+    /// Largest detections to confirmation (`None`: none confirmed).
+    pub max_detections_to_confirm: Option<usize>,
+    /// False tracks over the run.
+    pub false_tracks: usize,
+}
+
+/// Births and false tracks of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BirthTally {
+    births: BTreeMap<u64, Birth>,
+    labels: BTreeMap<u32, Label>,
+    threshold: f64,
+    error_bound: f64,
+}
+
+impl BirthTally {
+    /// A tally of the births `births` (truth ids), with the scenario's confirmation threshold and error
+    /// bound.
+    pub fn new(births: impl IntoIterator<Item = u64>, threshold: f64, error_bound: f64) -> Self {
+        BirthTally {
+            births: births.into_iter().map(|id| (id, Birth::default())).collect(),
+            labels: BTreeMap::new(),
+            threshold,
+            error_bound,
+        }
+    }
+
+    /// Records scan `k`: the true objects (id, position), the ids that produced a measurement, the MAP
+    /// tracks and, per true object, the MAP track GOSPA (cut-off `error_bound`) assigns to it.
+    pub fn record(
+        &mut self,
+        k: usize,
+        truth: &[(u64, &[f64])],
+        detected: impl IntoIterator<Item = u64>,
+        map: &[MapTrack<'_>],
+        assignment: &[Option<usize>],
+    ) {
+        for id in detected {
+            if let Some(b) = self.births.get_mut(&id) {
+                b.detections += 1;
+                b.first_detection.get_or_insert(k);
+            }
+        }
+        for ((id, _), assigned) in truth.iter().zip(assignment) {
+            let Some(b) = self.births.get_mut(id) else { continue };
+            // Not before its first detection: a track near an undetected birth is a neighbour's.
+            if b.confirmed.is_none()
+                && b.first_detection.is_some()
+                && assigned.is_some_and(|e| map.get(e).is_some_and(|t| t.existence >= self.threshold))
+            {
+                b.confirmed = Some((k, b.detections));
+            }
+        }
+        for t in map {
+            let near = truth.iter().any(|(_, p)| distance(p, t.position) < self.error_bound);
+            let label = self.labels.entry(t.label).or_default();
+            label.confirmed |= t.existence >= self.threshold;
+            label.near |= near;
+        }
+    }
+
+    /// The scan at which birth `id` was confirmed, if it is a birth and was.
+    pub fn confirmed_at(&self, id: u64) -> Option<usize> {
+        self.births.get(&id).and_then(|b| b.confirmed).map(|c| c.0)
+    }
+
+    /// Whether `id` is a birth.
+    pub fn is_birth(&self, id: u64) -> bool {
+        self.births.contains_key(&id)
+    }
+
+    /// The figures so far.
+    pub fn figures(&self) -> BirthFigures {
+        let records: Vec<BirthRecord> = self
+            .births
+            .iter()
+            .map(|(&object, b)| BirthRecord {
+                object,
+                first_detection_scan: b.first_detection,
+                confirmation_scan: b.confirmed.map(|c| c.0),
+                detections_to_confirm: b.confirmed.map(|c| c.1),
+                scans_to_confirm: b.confirmed.zip(b.first_detection).map(|((scan, _), first)| scan + 1 - first),
+            })
+            .collect();
+        let detections: Vec<usize> = records.iter().filter_map(|r| r.detections_to_confirm).collect();
+        BirthFigures {
+            births_total: records.len(),
+            births_confirmed: detections.len(),
+            mean_detections_to_confirm: (!detections.is_empty())
+                .then(|| detections.iter().sum::<usize>() as f64 / detections.len() as f64),
+            max_detections_to_confirm: detections.iter().copied().max(),
+            false_tracks: self.labels.values().filter(|l| l.confirmed && !l.near).count(),
+            records,
+        }
+    }
+}
+
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn track(label: u32, position: &[f64], existence: f64) -> MapTrack<'_> {
+        MapTrack { label, position, existence }
+    }
+
+    #[test]
+    fn counts_detections_and_scans_from_the_first_detection() {
+        // Object 7 is a birth, object 1 is not.
+        let mut tally = BirthTally::new([7], 0.5, 3.0);
+        let (p1, p7) = ([0.0, 0.0], [10.0, 10.0]);
+        let truth = [(1, &p1[..]), (7, &p7[..])];
+        // Scan 0 assigns it a confirmed track before any detection (a neighbour's): not a confirmation.
+        let neighbour = [11.0, 10.0];
+        tally.record(0, &truth, [], &[track(1, &p1, 0.99), track(2, &neighbour, 0.99)], &[Some(0), Some(1)]);
+        assert_eq!(tally.confirmed_at(7), None);
+        // Scan 0 again: not detected. Scan 1: detected, no track. Scan 2: missed. Scan 3: detected, a track of
+        // existence 0.4. Scan 4: detected, existence 0.6: confirmed with 3 detections over 4 scans.
+        tally.record(0, &truth, [1], &[track(1, &p1, 0.99)], &[Some(0), None]);
+        tally.record(1, &truth, [1, 7], &[track(1, &p1, 0.99)], &[Some(0), None]);
+        tally.record(2, &truth, [1], &[track(1, &p1, 0.99)], &[Some(0), None]);
+        let near = [10.5, 10.0];
+        tally.record(3, &truth, [7], &[track(1, &p1, 0.99), track(9, &near, 0.4)], &[Some(0), Some(1)]);
+        assert_eq!(tally.confirmed_at(7), None);
+        tally.record(4, &truth, [7], &[track(1, &p1, 0.99), track(9, &near, 0.6)], &[Some(0), Some(1)]);
+        assert_eq!(tally.confirmed_at(7), Some(4));
+        assert_eq!(tally.confirmed_at(1), None, "not a birth");
+        let f = tally.figures();
+        assert_eq!((f.births_total, f.births_confirmed, f.false_tracks), (1, 1, 0));
+        assert_eq!(
+            f.records,
+            vec![BirthRecord {
+                object: 7,
+                first_detection_scan: Some(1),
+                confirmation_scan: Some(4),
+                detections_to_confirm: Some(3),
+                scans_to_confirm: Some(4),
+            }]
+        );
+        assert_eq!((f.mean_detections_to_confirm, f.max_detections_to_confirm), (Some(3.0), Some(3)));
+    }
+
+    #[test]
+    fn none_confirmed_gives_no_mean() {
+        let mut tally = BirthTally::new([2, 3], 0.5, 3.0);
+        let p = [0.0, 0.0];
+        tally.record(0, &[(2, &p[..])], [2], &[], &[None]);
+        let f = tally.figures();
+        assert_eq!((f.births_total, f.births_confirmed), (2, 0));
+        assert_eq!((f.mean_detections_to_confirm, f.max_detections_to_confirm), (None, None));
+        assert_eq!(f.records[0].first_detection_scan, Some(0));
+        assert_eq!(f.records[1].first_detection_scan, None);
+    }
+
+    #[test]
+    fn a_false_track_is_confirmed_once_and_never_near() {
+        let mut tally = BirthTally::new([], 0.5, 3.0);
+        let p = [0.0, 0.0];
+        let truth = [(1, &p[..])];
+        let (far, near) = ([20.0, 0.0], [1.0, 0.0]);
+        // Label 5: far and confirmed: false. Label 6: far but never confirmed: not counted. Label 8:
+        // confirmed far away, later near an object: not false.
+        tally.record(0, &truth, [], &[track(5, &far, 0.9), track(6, &far, 0.3), track(8, &far, 0.9)], &[None]);
+        tally.record(1, &truth, [], &[track(5, &far, 0.2), track(8, &near, 0.9)], &[Some(1)]);
+        assert_eq!(tally.figures().false_tracks, 1);
+    }
+}
