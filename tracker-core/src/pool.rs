@@ -237,14 +237,14 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         update
     }
 
-    /// Adds `cell`, making room by removing the cell of smallest α when it is smaller than the new one's;
+    /// Adds `cell`, making room by removing the (oldest) cell of smallest α when it is not larger than the new one's;
     /// returns whether `cell` was kept (a cell that gives way is counted by the caller either way).
     fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> bool {
         if self.cells.len() < capacity {
             return self.cells.push(cell).is_ok();
         }
         match self.smallest() {
-            Some((index, probability)) if probability < cell.probability => {
+            Some((index, probability)) if probability <= cell.probability => {
                 self.remove_at(index);
                 self.cells.push(cell).is_ok()
             }
