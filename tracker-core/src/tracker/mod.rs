@@ -473,7 +473,7 @@ where
     /// use std::sync::Mutex;
     /// use tracker_core::{BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearConfig, LinearTracker};
     /// use tracker_core::{ConfigError, PositionMeasurement, PriorHypothesis, PriorObject, Region, Sensor, StepError};
-    /// use tracker_core::{TrackLabel, real::identity};
+    /// use tracker_core::{BirthEvents, TrackLabel, real::identity};
     /// use tracker_core::config::{ChildGeneration, Selection, StoreOverflow};
     ///
     /// const CONFIG: LinearConfig<f64, 1> = Config {
@@ -484,7 +484,13 @@ where
     ///         clutter_rate: 1.0,
     ///         field_of_view: Region::Everywhere { volume: 1e4 },
     ///     },
-    ///     birth: BirthModel { probability: 0.0, cells: heapless::Vec::new(), detection: BirthDetection::AllDetected, events: Default::default(), measured: None },
+    ///     birth: BirthModel {
+    ///         probability: 0.0,
+    ///         cells: heapless::Vec::new(),
+    ///         detection: BirthDetection::AllDetected,
+    ///         events: BirthEvents::FirstOrder,
+    ///         measured: None,
+    ///     },
     ///     death_probability: 0.0,
     ///     gate: None,
     ///     children: ChildGeneration::Exhaustive { max_children_per_scan: 10_000 },
