@@ -77,6 +77,26 @@ struct CatalogueArgs {
 }
 
 impl CatalogueArgs {
+    /// The scenario of `generate catalogue` (`command` names the command in messages).
+    fn generate(
+        self,
+        command: &str,
+        seed: u64,
+    ) -> Result<(host_sim::scenario3d::Scenario3d, host_sim::generate3d::Generated), Error> {
+        let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
+        let catalogue_file = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
+        let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
+        let start = self.start.ok_or_else(|| missing("--start"))?;
+        let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+        host_sim::catalogue_scenario::generate(host_sim::catalogue_scenario::Request {
+            catalogue: &catalogue_file,
+            sensors: &sensors,
+            start: &start,
+            duration_hours,
+            seed,
+        })
+    }
+
     /// The catalogue options are refused with a preset.
     fn only_for_catalogue(&self) -> Result<(), Error> {
         let given =
@@ -118,6 +138,24 @@ enum Command {
         file: PathBuf,
         /// Tracker to run.
         #[arg(long, value_enum, default_value_t = TrackerKind::Homht)]
+        tracker: TrackerKind,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Track your own catalogue: simulate what the sensors of a sensors file see of a TLE/OMM catalogue
+    /// (as `generate catalogue`) and track it (as `run`); writes scenario.json, summary.json, estimates.csv,
+    /// tracks.oem and the plots into the output directory.
+    RunCatalogue {
+        #[command(flatten)]
+        catalogue: CatalogueArgs,
+        /// Seed of the simulated detections, noise and clutter.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Tracker to run.
+        #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
         tracker: TrackerKind,
         /// Output directory.
         #[arg(long)]
@@ -367,18 +405,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             if missing_fraction != 0.0 || breakup != 0 {
                 return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo").into());
             }
-            let missing = |flag: &str| Error::input(format!("generate catalogue: {flag} is required"));
-            let catalogue_file = catalogue.catalogue.ok_or_else(|| missing("--catalogue"))?;
-            let sensors = catalogue.sensors.ok_or_else(|| missing("--sensors"))?;
-            let start = catalogue.start.ok_or_else(|| missing("--start"))?;
-            let duration_hours = catalogue.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
-            let (scenario, figures) = host_sim::catalogue_scenario::generate(host_sim::catalogue_scenario::Request {
-                catalogue: &catalogue_file,
-                sensors: &sensors,
-                start: &start,
-                duration_hours,
-                seed,
-            })?;
+            let (scenario, figures) = catalogue.generate("generate catalogue", seed)?;
             host_sim::catalogue_scenario::save_whole(&scenario, &out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
@@ -398,6 +425,15 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 AnyScenario::V2(scenario) => return run3d(&scenario, tracker, common, &out),
             };
             let (summary, clean) = evaluate::run(&scenario, tracker, &common.options(), &out)?;
+            println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
+            if clean { Ok(()) } else { Err(CliError::Rejected) }
+        }
+        Command::RunCatalogue { catalogue, seed, tracker, out, common } => {
+            let (scenario, _) = catalogue.generate("run-catalogue", seed)?;
+            let (summary, clean) = host_sim::tdm::stage(&out, |dir| {
+                scenario.save(&dir.join("scenario.json"))?;
+                host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, dir)
+            })?;
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
             if clean { Ok(()) } else { Err(CliError::Rejected) }
         }

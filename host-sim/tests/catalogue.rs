@@ -476,3 +476,33 @@ fn generate_catalogue_rejects_bad_input_with_one_line_and_no_file() {
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
     assert!(String::from_utf8_lossy(&output.stderr).contains("--catalogue is required"));
 }
+
+#[test]
+fn run_catalogue_tracks_a_catalogue_in_one_command() {
+    let dir = TempDir::new("run-catalogue");
+    let out = dir.join("out");
+    let run = |out: &Path, hours: &str| {
+        Command::new(BIN)
+            .args(["run-catalogue", "--catalogue", CATALOGUE, "--sensors", RADARS, "--start", START])
+            .args(["--duration-hours", hours, "--quiet", "--out"])
+            .arg(out)
+            .output()
+            .expect("run host-sim")
+    };
+    let output = run(&out, "0.25");
+    assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    for file in ["scenario.json", "summary.json", "estimates.csv", "tracks.oem"] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    // The tracks follow the catalogue: every object is held at the end.
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    let cardinality = summary["final_expected_cardinality"].as_f64().expect("cardinality");
+    let objects = summary["objects"].as_u64().or(summary["truth_objects"].as_u64());
+    assert!((cardinality - 24.0).abs() < 0.5, "{cardinality} ({objects:?})");
+    // A bad argument: one line, exit 2, nothing written.
+    let bad = dir.join("bad");
+    let output = run(&bad, "0");
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(!bad.exists());
+}
