@@ -5,9 +5,9 @@
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-const BIN: &str = env!("CARGO_BIN_EXE_host-sim");
+mod common;
+use common::{BIN, TempDir, host_sim};
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/sgp4-verification");
 
 const L1: &str = "1 00005U 58002B   00179.78495062  .00000023  00000-0  28098-4 0  4753";
@@ -18,33 +18,6 @@ ARG_OF_PERICENTER,MEAN_ANOMALY,EPHEMERIS_TYPE,CLASSIFICATION_TYPE,NORAD_CAT_ID,E
 BSTAR,MEAN_MOTION_DOT,MEAN_MOTION_DDOT";
 const OMM_ROW: &str = "ISS (ZARYA),1998-067A,2024-03-15T12:00:00.000000,15.5,.0005,51.64,120.5,80.1,280.2,0,U,\
 25544,999,44000,.00012,.00001,0";
-
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> Self {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let path = std::env::temp_dir().join(format!("host-sim-cat-{}-{tag}-{n}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path).expect("create temp dir");
-        TempDir(path)
-    }
-
-    fn join(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn host_sim<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
-    Command::new(BIN).args(args).output().expect("run host-sim")
-}
 
 fn describe(output: &Output) -> String {
     format!(
