@@ -226,3 +226,40 @@ fn measured_births_confirm_new_objects_anywhere_within_three_detections() {
     let report = t.step(4.0, &truth(4.0)).unwrap();
     assert_eq!(report.birth_pool.added, 0, "{:?}", report.birth_pool);
 }
+
+#[test]
+fn measured_birth_settings_are_checked_and_a_full_pool_loses_nothing_else() {
+    use tracker_core::model::AdmissibleRegion;
+    use tracker_core::pool::MeasuredBirths;
+    use tracker_core::{BirthEvents, ConfigError};
+    let measured = MeasuredBirths::new(AdmissibleRegion::planar(2.0));
+    let with = |events, measured, cells: &[Gaussian<f64, 4>]| {
+        let mut config = config_with_births(0.0, 0.0, cells, BirthDetection::AllDetected);
+        config.birth.events = events;
+        config.birth.measured = Some(measured);
+        Tracker::with_objects(config, &[], 0.0).map(|_| ())
+    };
+    assert!(matches!(with(BirthEvents::FirstOrder, measured, &[]), Err(ConfigError::MeasuredBirths(_))));
+    let bad = MeasuredBirths { max_probability: 1.0, ..measured };
+    assert!(matches!(with(BirthEvents::Independent, bad, &[]), Err(ConfigError::MeasuredBirths(_))));
+    let bad = MeasuredBirths { lifetime: f64::NAN, ..measured };
+    assert!(matches!(with(BirthEvents::Independent, bad, &[]), Err(ConfigError::MeasuredBirths(_))));
+    // The B = 3 cells all fixed: no room for cells from measurements.
+    let full = [birth_cell(), birth_cell(), birth_cell()];
+    assert!(matches!(with(BirthEvents::Independent, measured, &full), Err(ConfigError::MeasuredBirths(_))));
+    assert_eq!(with(BirthEvents::Independent, measured, &full[..2]), Ok(()));
+
+    // Four unexplained measurements (equal α) for a pool of three cells: each new cell goes in, the oldest
+    // gives way to the fourth; counted, the scan fine.
+    let mut config = config_with_births(0.0, 0.0, &[], BirthDetection::AllDetected);
+    config.birth.events = BirthEvents::Independent;
+    config.birth.measured = Some(MeasuredBirths { min_unexplained: 0.0, ..measured });
+    let mut t = Tracker::with_objects(config, &[], 0.0).unwrap();
+    let zs: Vec<V2> = (0..4).map(|i| V2::new(-40.0 + 20.0 * i as f64, 0.0)).collect();
+    let report = t.step(1.0, &zs).unwrap();
+    assert_eq!((report.birth_pool.added, report.birth_pool.evicted), (4, 1), "{:?}", report.birth_pool);
+    let digest = t.digest();
+    assert!(t.step(0.5, &zs).is_err(), "a scan back in time fails");
+    assert_eq!(t.digest(), digest, "and leaves the tracker as it was");
+    assert!(t.step(2.0, &zs).is_ok());
+}

@@ -99,9 +99,9 @@ pub struct PoolCell<T: Real, const S: usize> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PoolUpdate {
-    /// Cells made from this scan's measurements and kept.
+    /// Cells made from this scan's measurements and put in the pool.
     pub added: usize,
-    /// Cells that gave way (or were not kept) because the pool was full.
+    /// Cells that gave way because the pool was full: old ones removed, or new ones not put in.
     pub evicted: usize,
     /// Cells past their lifetime, or whose α fell to zero.
     pub expired: usize,
@@ -227,28 +227,26 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
                 if !(cell.probability > T::zero()) {
                     continue;
                 }
-                if self.insert(cell, capacity) {
-                    update.added += 1;
-                } else {
-                    update.evicted += 1;
-                }
+                let (kept, gave_way) = self.insert(cell, capacity);
+                update.added += usize::from(kept);
+                update.evicted += usize::from(gave_way);
             }
         }
         update
     }
 
-    /// Adds `cell`, making room by removing the (oldest) cell of smallest α when it is not larger than the new one's;
-    /// returns whether `cell` was kept (a cell that gives way is counted by the caller either way).
-    fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> bool {
+    /// Adds `cell`, making room by removing the (oldest) cell of smallest α unless that α is larger than
+    /// the new one's; returns whether `cell` was kept and whether a cell (old or new) gave way.
+    fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> (bool, bool) {
         if self.cells.len() < capacity {
-            return self.cells.push(cell).is_ok();
+            return (self.cells.push(cell).is_ok(), false);
         }
         match self.smallest() {
             Some((index, probability)) if probability <= cell.probability => {
                 self.remove_at(index);
-                self.cells.push(cell).is_ok()
+                (self.cells.push(cell).is_ok(), true)
             }
-            _ => false,
+            _ => (false, true),
         }
     }
 
