@@ -422,6 +422,15 @@ fn malformed_cases() -> Vec<Case> {
         mutated("missing field scans", "missing field `scans`", |v| {
             object(v).remove("scans");
         }),
+        mutated("measured births with first-order events", "birth.measured: needs birth.events", |v| {
+            v["birth"]["measured"] =
+                serde_json::json!({"expected_births": 0.5, "max_probability": 0.2, "lifetime": 5.0});
+        }),
+        mutated("measured births with max_probability 1", "birth.measured: measured births: max_probability", |v| {
+            v["birth"]["events"] = "independent".into();
+            v["birth"]["measured"] =
+                serde_json::json!({"expected_births": 0.5, "max_probability": 1.0, "lifetime": 5.0});
+        }),
         mutated("missing nested field", "sensor: missing field `clutter_rate`", |v| {
             object(&mut v["sensor"]).remove("clutter_rate");
         }),
