@@ -302,7 +302,7 @@ macro_rules! compare_for_profile {
                 { ssa_caps::TRACKS_3D },
                 { ssa_caps::BIRTH_CELLS },
             >($scenario, $kind, $budget),
-            Profile::Host => compare_with::<$x, $d, 256, 128, 64, 4096, 16>($scenario, $kind, $budget),
+            Profile::Host => compare_with::<$x, $d, 256, 128, 64, 4096, 64>($scenario, $kind, $budget),
         }
     };
 }
@@ -373,7 +373,7 @@ macro_rules! for_profile {
                 { ssa_caps::TRACKS_3D },
                 { ssa_caps::BIRTH_CELLS },
             >($scenario, $kind),
-            Profile::Host => core3d::<$x, $d, 256, 128, 64, 4096, 16>($scenario, $kind),
+            Profile::Host => core3d::<$x, $d, 256, 128, 64, 4096, 64>($scenario, $kind),
         }
     };
 }

@@ -40,7 +40,7 @@ pub enum Profile {
     /// H = 32, N = 64, Z = 32, K = 256, B = 8: the embedded default (tracker-core's `ssa_caps`).
     #[default]
     Embedded,
-    /// H = 256, N = 128, Z = 64, K = 4096, B = 16.
+    /// H = 256, N = 128, Z = 64, K = 4096, B = 64 (room for birth cells made from measurements).
     Host,
 }
 
@@ -63,7 +63,7 @@ impl Profile {
                 ssa_caps::TRACKS,
                 ssa_caps::BIRTH_CELLS,
             ),
-            Profile::Host => (256, 128, 64, 4096, 16),
+            Profile::Host => (256, 128, 64, 4096, 64),
         }
     }
 }
@@ -210,7 +210,7 @@ macro_rules! core_for_profile {
                 { ssa_caps::TRACKS },
                 { ssa_caps::BIRTH_CELLS },
             >($scenario, $motion, $children),
-            Profile::Host => core_runner::<_, 256, 128, 64, 4096, 16>($scenario, $motion, $children),
+            Profile::Host => core_runner::<_, 256, 128, 64, 4096, 64>($scenario, $motion, $children),
         }
     };
 }
