@@ -22,7 +22,7 @@ use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::rng::{Random, Stream};
 use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
 use crate::runner::{Profile, TrackerKind};
-use crate::soak::{Health, MAX_SCANS, Scenario, non_finite_values, progress, tenths, timing};
+use crate::soak::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;
@@ -141,8 +141,7 @@ where
 
     let bar = progress(scans, quiet);
     let mut health = Health::default();
-    // Grown scan by scan, never reserved for `scans` up front.
-    let mut durations: Vec<f32> = vec![];
+    let mut times = ScanTimes::new(scans);
     let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
     let (mut dropped, mut resident_start) = (0u64, None);
     let (mut tracked_sum, mut tracked_last_tenth, mut min_tracked) = (0u64, 0u64, (usize::MAX, 0u64));
@@ -164,7 +163,7 @@ where
         let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
         let step_started = Instant::now();
         let result = tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs);
-        durations.push(step_started.elapsed().as_secs_f32() * 1e3);
+        times.record(k, step_started.elapsed().as_secs_f64() * 1e3);
         health.record(k, result, non_finite_values(&*tracker));
         if k == 0 {
             resident_start = peak_resident_kib();
@@ -194,7 +193,7 @@ where
     errors.sort_unstable_by(f64::total_cmp);
     let final_median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
     let fraction = |(seen, within): (u64, u64)| within as f64 / seen.max(1) as f64;
-    let (max_ms, mean_ms, p50_ms, p99_ms) = timing(&durations);
+    let (max_ms, mean_ms, p50_ms, p99_ms) = times.timing();
     let sensors: Vec<String> = stream
         .sim
         .sensors
@@ -214,8 +213,8 @@ where
         p50_ms_per_scan: p50_ms,
         p99_ms_per_scan: p99_ms,
         max_over_median: max_ms / p50_ms,
-        mean_ms_per_scan_first_tenth: tenths(&durations).0,
-        mean_ms_per_scan_last_tenth: tenths(&durations).1,
+        mean_ms_per_scan_first_tenth: times.tenths().0,
+        mean_ms_per_scan_last_tenth: times.tenths().1,
         peak_resident_kib_start: resident_start,
         peak_resident_kib_end: peak_resident_kib(),
         numerical_drops: health.numerical_drops,
