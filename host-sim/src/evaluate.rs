@@ -12,8 +12,8 @@ use crate::error::Error;
 use crate::metrics::{LabelSwitches, gospa, ospa};
 use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
 use crate::report::{
-    BirthConfirmation, CompareReport, CompareScan, CompareSide, CompareSummary, LabelExistence, RejectedScan,
-    RunSummary, ScanHypothesis, ScanLine,
+    BirthsSummary, CompareReport, CompareScan, CompareSide, CompareSummary, LabelExistence, RejectedScan, RunSummary,
+    ScanHypothesis, ScanLine,
 };
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario};
@@ -357,17 +357,7 @@ pub fn run(scenario: &Scenario, kind: TrackerKind, options: &Options, out: &Path
         final_expected_cardinality: last.map_or(prior_cardinality.0, |r| r.expected_cardinality),
         final_map_cardinality: last.map_or(prior_cardinality.1, |r| r.map_cardinality),
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
-        births_total: figures.births_total,
-        births_confirmed: figures.births_confirmed,
-        birth_confirmation_scans: figures
-            .records
-            .iter()
-            .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
-            .collect(),
-        mean_detections_to_confirm: figures.mean_detections_to_confirm,
-        max_detections_to_confirm: figures.max_detections_to_confirm,
-        false_tracks: scenario.truth.is_some().then_some(figures.false_tracks),
-        birth_confirmations: figures.records,
+        births: BirthsSummary::new(figures, scenario.truth.is_some()),
         label_switches: switches.total(),
         in_view_misses_after_confirmation: in_view_misses,
         in_view_red_stars,

@@ -485,7 +485,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<BTreeMap<String, AblationVariant>, 
         let fifty = AblationFifty {
             mean_gospa: summary.mean_gospa,
             final_expected_cardinality: summary.final_expected_cardinality,
-            births_confirmed: summary.births_confirmed,
+            births_confirmed: summary.births.births_confirmed,
             in_view_red_stars: summary.in_view_red_stars,
             in_view_misses_after_confirmation: summary.in_view_misses_after_confirmation,
             mean_captured_mass: summary.mean_captured_mass,

@@ -36,25 +36,9 @@ pub struct RunSummary {
     pub final_map_cardinality: usize,
     /// True number of objects at the last scan.
     pub true_final_cardinality: Option<usize>,
-    /// Born objects in the truth.
-    pub births_total: usize,
-    /// Born objects confirmed.
-    pub births_confirmed: usize,
-    /// Per born object, the scan of its confirmation.
-    pub birth_confirmation_scans: Vec<BirthConfirmation>,
-    /// Per born object, detections and scans from its first detection to its confirmation.
-    #[serde(default)]
-    pub birth_confirmations: Vec<BirthRecord>,
-    /// Mean detections to confirmation of the confirmed births; `null` when none is.
-    #[serde(default)]
-    pub mean_detections_to_confirm: Option<f64>,
-    /// Largest detections to confirmation; `null` when no birth is confirmed.
-    #[serde(default)]
-    pub max_detections_to_confirm: Option<usize>,
-    /// MAP labels confirmed at some scan and never within the error bound of an object; `null` without
-    /// truth.
-    #[serde(default)]
-    pub false_tracks: Option<usize>,
+    /// Births: their confirmation, detections to confirmation and false tracks.
+    #[serde(flatten)]
+    pub births: BirthsSummary,
     /// Label switches along GOSPA's assignment.
     pub label_switches: usize,
     /// Confirmed objects in view without a MAP estimate within the error bound, summed over scans.
@@ -82,6 +66,49 @@ pub struct RunSummary {
     /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensors: Option<usize>,
+}
+
+/// The births of a run, flattened into its summary (docs/scenario-format.md, summary keys).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct BirthsSummary {
+    /// Born objects in the truth.
+    pub births_total: usize,
+    /// Born objects confirmed.
+    pub births_confirmed: usize,
+    /// Per born object, the scan of its confirmation.
+    pub birth_confirmation_scans: Vec<BirthConfirmation>,
+    /// Per born object, detections and scans from its first detection to its confirmation.
+    #[serde(default)]
+    pub birth_confirmations: Vec<BirthRecord>,
+    /// Mean detections to confirmation of the confirmed births; `null` when none is.
+    #[serde(default)]
+    pub mean_detections_to_confirm: Option<f64>,
+    /// Largest detections to confirmation; `null` when no birth is confirmed.
+    #[serde(default)]
+    pub max_detections_to_confirm: Option<usize>,
+    /// MAP labels confirmed at some scan and never within the error bound of an object; `null` without
+    /// truth.
+    #[serde(default)]
+    pub false_tracks: Option<usize>,
+}
+
+impl BirthsSummary {
+    /// The summary of `figures`; false tracks only with a truth to compare with.
+    pub fn new(figures: crate::births::BirthFigures, has_truth: bool) -> Self {
+        BirthsSummary {
+            births_total: figures.births_total,
+            births_confirmed: figures.births_confirmed,
+            birth_confirmation_scans: figures
+                .records
+                .iter()
+                .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
+                .collect(),
+            mean_detections_to_confirm: figures.mean_detections_to_confirm,
+            max_detections_to_confirm: figures.max_detections_to_confirm,
+            false_tracks: has_truth.then_some(figures.false_tracks),
+            birth_confirmations: figures.records,
+        }
+    }
 }
 
 /// A born object and the scan at which it was confirmed (`null`: never).

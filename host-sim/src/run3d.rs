@@ -13,7 +13,7 @@ use crate::error::Error;
 use crate::evaluate::{mean, peak_resident_kib, progress, write_json};
 use crate::metrics::{LabelSwitches, gospa};
 use crate::plots::{self, Scale, Series, SkySeries};
-use crate::report::{BirthConfirmation, RejectedScan, RunSummary};
+use crate::report::{BirthsSummary, RejectedScan, RunSummary};
 use crate::runner::{Profile, StepInfo, TrackerKind};
 use crate::scenario::{BirthDetectionSpec, NumericalFailureSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec};
 use crate::scenario3d::{Measurement3dSpec, Scenario3d, ShapeSpec};
@@ -754,17 +754,7 @@ pub fn run(
         final_expected_cardinality: last.map_or(prior.expected_cardinality, |r| r.expected_cardinality),
         final_map_cardinality: last.map_or(prior.map.len(), |r| r.map_cardinality),
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
-        births_total: figures.births_total,
-        births_confirmed: figures.births_confirmed,
-        birth_confirmation_scans: figures
-            .records
-            .iter()
-            .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
-            .collect(),
-        mean_detections_to_confirm: figures.mean_detections_to_confirm,
-        max_detections_to_confirm: figures.max_detections_to_confirm,
-        false_tracks: scenario.truth.is_some().then_some(figures.false_tracks),
-        birth_confirmations: figures.records,
+        births: BirthsSummary::new(figures, scenario.truth.is_some()),
         label_switches: switches.total(),
         in_view_misses_after_confirmation: in_view_misses,
         in_view_red_stars,
