@@ -15,8 +15,8 @@ use crate::orbit::Propagator;
 use crate::rng::{Random, Stream};
 use crate::run3d::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::{
-    BirthDetectionSpec, EvaluationSpec, NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec,
-    TrackerSpec, TruthObjectSpec,
+    AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
+    NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
 };
 use crate::scenario3d::*;
 use crate::ssa::{self, OpticalGeoConfig, RadarLeoConfig, SensorKind, SsaScenario, Unknowns};
@@ -44,7 +44,7 @@ impl Preset3d {
     }
 
     /// The simulation of this preset with `seed` and objects unknown to the prior (`radar-leo`: missing
-    /// objects and a break-up; `optical-geo`: missing objects; `tiny-3d`: none).
+    /// objects and a break-up; `optical-geo` and `tiny-3d`: missing objects).
     ///
     /// # Errors
     /// Bad input: unknowns the preset cannot have; otherwise the simulator's message.
@@ -56,8 +56,7 @@ impl Preset3d {
             Preset3d::OpticalGeo => {
                 ssa::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
             }
-            Preset3d::Tiny3d if *unknowns == Unknowns::default() => ssa::tiny_3d(seed),
-            Preset3d::Tiny3d => Err(ssa::SsaError::BadUnknowns),
+            Preset3d::Tiny3d => ssa::tiny_3d_with(seed, unknowns),
         };
         result.map_err(|e| match e {
             ssa::SsaError::BadUnknowns => Error::input(e.to_string()),
@@ -66,12 +65,14 @@ impl Preset3d {
     }
 }
 
-/// Prior standard deviations (position km, velocity km/s) and process noise q (km²/s³) of a preset.
+/// Prior standard deviations (position km, velocity km/s), process noise q (km²/s³) and the birth pool
+/// (used when some object is unknown to the prior) of a preset.
 struct Settings {
     position_sigma: f64,
     velocity_sigma: f64,
     q: f64,
     evaluation: EvaluationSpec,
+    births: MeasuredBirthsSpec,
 }
 
 fn settings(kind: SensorKind) -> Settings {
@@ -87,6 +88,7 @@ fn settings(kind: SensorKind) -> Settings {
                 gospa_order: 2.0,
                 confirmation_existence: 0.5,
             },
+            births: RADAR_LEO_BIRTHS,
         },
         // GEO telescope: angles only, range weakly observed: a looser prior and cut-off.
         SensorKind::Optical => Settings {
@@ -99,9 +101,43 @@ fn settings(kind: SensorKind) -> Settings {
                 gospa_order: 2.0,
                 confirmation_existence: 0.5,
             },
+            births: TELESCOPE_GEO_BIRTHS,
         },
     }
 }
+
+/// The birth pool a radar preset writes when objects are unknown to the prior (docs/results.md, "Births
+/// from the measurements"): 12 headings keep each component narrow enough for the EKF update of a new
+/// track (4 headings left it overconfident: the third detection fell outside its gate); λ_B and the cap
+/// on α set how fast a birth is confirmed against how often two clutter returns make a track.
+pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
+    region: AdmissiblePresetSpec::Leo,
+    velocity_sigma: 1.0,
+    headings: Some(12),
+    speeds: Some(1),
+    climbs: Some(1),
+    ranges: None,
+    expected_births: 1e-2,
+    max_probability: 1e-3,
+    min_unexplained: 0.5,
+    lifetime: 60.0,
+};
+
+/// The birth pool a telescope preset writes when objects are unknown to the prior: the GEO belt, one
+/// radius cell (range is not observed), cells that live 20 minutes (the revisit of a staring sensor's
+/// slow objects).
+pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
+    region: AdmissiblePresetSpec::Geo,
+    velocity_sigma: 1.0,
+    headings: Some(2),
+    speeds: None,
+    climbs: None,
+    ranges: Some(1),
+    expected_births: 1e-3,
+    max_probability: 1e-2,
+    min_unexplained: 0.5,
+    lifetime: 1200.0,
+};
 
 /// Figures of a generated file.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -222,12 +258,22 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         },
         measurement,
         sensors,
-        birth: Birth3dSpec {
-            probability: 0.0,
-            detection: BirthDetectionSpec::AllDetected,
-            events: Default::default(),
-            measured: None,
-            cells: vec![],
+        // Objects unknown to the prior: births from the measurements (docs/maths.md §5.8).
+        birth: match sim.objects.iter().any(|o| !o.in_prior) {
+            true => Birth3dSpec {
+                probability: 0.0,
+                detection: BirthDetectionSpec::AllDetected,
+                events: BirthEventsSpec::Independent,
+                measured: Some(settings.births),
+                cells: vec![],
+            },
+            false => Birth3dSpec {
+                probability: 0.0,
+                detection: BirthDetectionSpec::AllDetected,
+                events: Default::default(),
+                measured: None,
+                cells: vec![],
+            },
         },
         death_probability: 0.0,
         tracker: TrackerSpec {

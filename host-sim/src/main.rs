@@ -125,7 +125,7 @@ enum Command {
         out: PathBuf,
         #[command(flatten)]
         catalogue: CatalogueArgs,
-        /// radar-leo, optical-geo: fraction of the objects left out of the prior, in [0, 1].
+        /// radar-leo, optical-geo, tiny-3d: fraction of the objects left out of the prior, in [0, 1].
         #[arg(long, default_value_t = 0.0)]
         missing_fraction: f64,
         /// radar-leo: fragments of a break-up during the run (0: none).
@@ -137,7 +137,7 @@ enum Command {
         /// Scenario file.
         file: PathBuf,
         /// Tracker to run.
-        #[arg(long, value_enum, default_value_t = TrackerKind::Homht)]
+        #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
         tracker: TrackerKind,
         /// Output directory.
         #[arg(long)]
@@ -181,7 +181,7 @@ enum Command {
         #[arg(long)]
         config: PathBuf,
         /// Tracker to run.
-        #[arg(long, value_enum, default_value_t = TrackerKind::Homht)]
+        #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
         tracker: TrackerKind,
         /// Output directory.
         #[arg(long)]

@@ -302,7 +302,7 @@ macro_rules! compare_for_profile {
                 { ssa_caps::TRACKS_3D },
                 { ssa_caps::BIRTH_CELLS },
             >($scenario, $kind, $budget),
-            Profile::Host => compare_with::<$x, $d, 256, 128, 64, 4096, 64>($scenario, $kind, $budget),
+            Profile::Host => compare_with::<$x, $d, 256, HOST_OBJECTS_3D, 64, 4096, 64>($scenario, $kind, $budget),
         }
     };
 }
@@ -332,8 +332,13 @@ pub fn compare3d(
     }
 }
 
+/// N of the `host` profile on version 2 files: 256, twice the planar host profile's, so that a catalogue of
+/// more than 128 objects and its births fit (the radar-leo preset with a break-up has 130 objects).
+pub const HOST_OBJECTS_3D: usize = 256;
+
 /// The capacities (H, N, Z, K, B) of a profile for 3-D trackers: `embedded` is tracker-core's
-/// `RadarTracker` / `OpticalTracker` (K = `ssa_caps::TRACKS_3D`), `host` is [`Profile::caps`].
+/// `RadarTracker` / `OpticalTracker` (K = `ssa_caps::TRACKS_3D`), `host` is [`Profile::caps`] with
+/// N = [`HOST_OBJECTS_3D`].
 pub fn caps3d(profile: Profile) -> (usize, usize, usize, usize, usize) {
     match profile {
         Profile::Embedded => (
@@ -343,7 +348,7 @@ pub fn caps3d(profile: Profile) -> (usize, usize, usize, usize, usize) {
             ssa_caps::TRACKS_3D,
             ssa_caps::BIRTH_CELLS,
         ),
-        Profile::Host => Profile::Host.caps(),
+        Profile::Host => (256, HOST_OBJECTS_3D, 64, 4096, 64),
     }
 }
 
@@ -354,10 +359,27 @@ pub fn choose_profile(scenario: &Scenario3d, asked: Option<Profile>) -> Profile 
         return profile;
     }
     let (_, n, z, _, b) = caps3d(Profile::Embedded);
-    if scenario.max_prior_objects() < n && scenario.max_measurements() <= z && scenario.birth.cells.len() <= b {
+    if scenario.max_prior_objects() < n
+        && scenario.max_measurements() <= z
+        && scenario.birth.cells.len() <= b
+        && birth_components_per_measurement(scenario) <= b
+    {
         Profile::Embedded
     } else {
         Profile::Host
+    }
+}
+
+/// The most birth components one measurement of `scenario` can give (0 without measured births): radar
+/// headings × speeds × climbs; for the other models the region's bound
+/// ([`AdmissibleRegion::max_components`](tracker_core::model::AdmissibleRegion::max_components)). A
+/// measurement whose components do not fit the pool gives no birth.
+pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
+    let Some(measured) = &scenario.birth.measured else { return 0 };
+    let region = measured.core().region;
+    match scenario.measurement {
+        Measurement3dSpec::Radar => region.headings.saturating_mul(region.speeds).saturating_mul(region.climbs),
+        Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Optical => region.max_components(),
     }
 }
 
@@ -373,7 +395,7 @@ macro_rules! for_profile {
                 { ssa_caps::TRACKS_3D },
                 { ssa_caps::BIRTH_CELLS },
             >($scenario, $kind),
-            Profile::Host => core3d::<$x, $d, 256, 128, 64, 4096, 64>($scenario, $kind),
+            Profile::Host => core3d::<$x, $d, 256, HOST_OBJECTS_3D, 64, 4096, 64>($scenario, $kind),
         }
     };
 }
@@ -601,6 +623,15 @@ pub fn run(
 ) -> Result<(RunSummary, bool), Error> {
     std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let profile = choose_profile(scenario, profile);
+    let components = birth_components_per_measurement(scenario);
+    let pool = caps3d(profile).4.saturating_sub(scenario.birth.cells.len());
+    if components > pool {
+        eprintln!(
+            "warning: birth.measured gives up to {components} birth components per measurement, more than the \
+             {pool} free birth cells of the {} profile: measurements that need more give no birth (--profile host)",
+            profile.name()
+        );
+    }
     let mut runner = build3d(kind, profile, scenario)?;
     let geometry = SiteGeometry::new(scenario);
     let prior = runner.posterior();

@@ -1291,6 +1291,18 @@ pub fn radar_leo_with(seed: u64, config: &RadarLeoConfig) -> Result<SsaScenario,
 /// # Errors
 /// As [`radar_leo`].
 pub fn tiny_3d(seed: u64) -> Result<SsaScenario, SsaError> {
+    tiny_3d_with(seed, &Unknowns::default())
+}
+
+/// [`tiny_3d`] with objects unknown to the prior (no break-up): a small 3-D scenario with births, small
+/// enough for the unbounded reference.
+///
+/// # Errors
+/// [`SsaError::BadUnknowns`] for a break-up or a fraction outside [0, 1].
+pub fn tiny_3d_with(seed: u64, unknowns: &Unknowns) -> Result<SsaScenario, SsaError> {
+    if unknowns.breakup > 0 {
+        return Err(SsaError::BadUnknowns);
+    }
     let mut sensor = leo_radars().remove(0);
     sensor.detection_probability = 0.95;
     sensor.clutter_rate = 0.5;
@@ -1310,6 +1322,7 @@ pub fn tiny_3d(seed: u64) -> Result<SsaScenario, SsaError> {
         let at_aim = aimed_circular(aim, radius, random.between(lo, PI - lo), random.uniform() < 0.5);
         objects.push(ObjectTruth::known(Propagator::EARTH.propagate(at_aim, -t_aim)?, None));
     }
+    mark_missing(seed, &mut objects, 3, unknowns.missing_fraction)?;
     simulate(Plan {
         name: "tiny-3d".into(),
         seed,

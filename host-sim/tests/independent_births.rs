@@ -4,6 +4,8 @@
 //! the measurements instead (docs/maths.md §5.8). The reference keeps every child, so the scenario is
 //! short.
 
+mod common;
+
 use host_sim::exactness::{CompareFigures, Scan, compare_scans};
 use host_sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
@@ -200,4 +202,43 @@ fn measured_births_exhaustive_core_is_exact() {
     let figures = compare_measured(ChildGeneration::Exhaustive { max_children_per_scan: 10_000_000 });
     check(&figures, 1e-12);
     assert!(figures.scans.iter().all(|s| s.reference_hypotheses > 1));
+}
+
+/// The 3-D check of docs/results.md ("Births from the measurements"): `tiny-3d` with one of its three
+/// objects missing from the prior, as `generate tiny-3d --missing-fraction 0.34` writes it (with the
+/// preset's birth pool, 8 headings, 4 scans). The core on the embedded profile against the unbounded reference: the same MAP in
+/// every scan and all the mass kept; and `run` confirms the birth.
+#[test]
+fn measured_births_on_a_small_3d_scenario_are_exact_and_confirmed() {
+    // The host profile's trackers are built on the stack in debug builds: a large one.
+    let worker = std::thread::Builder::new().stack_size(1 << 30).spawn(small_3d_scenario_check).expect("thread");
+    worker.join().expect("the check passes");
+}
+
+fn small_3d_scenario_check() {
+    use host_sim::generate3d::{Preset3d, to_scenario};
+    use host_sim::runner::{Profile, TrackerKind};
+    use host_sim::ssa::Unknowns;
+    let sim =
+        Preset3d::Tiny3d.simulate_with(1, &Unknowns { missing_fraction: 0.34, breakup: 0 }).expect("tiny-3d simulates");
+    let (mut scenario, _) = to_scenario(&sim).expect("scenario");
+    let measured = scenario.birth.measured.as_mut().expect("a preset with unknown objects writes a birth pool");
+    // 8 headings instead of the preset's 12 fit the embedded profile's B = 8 (fast in a debug build).
+    measured.headings = Some(8);
+    // The first 4 of 11 scans: the birth is confirmed at its second detection (scan 1), and the reference's
+    // children grow quickly with the pool (11 scans take it over 9 GiB).
+    scenario.scans.truncate(4);
+    scenario.truth.as_mut().expect("truth").scans.truncate(4);
+    let figures =
+        host_sim::run3d::compare3d(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), 1 << 30).expect("compare");
+    assert_eq!(figures.map_agreement, 1.0);
+    assert!(figures.min_captured_mass >= 0.999, "captured {}", figures.min_captured_mass);
+    assert!(figures.max_map_weight_difference < 1e-9, "MAP weights differ by {}", figures.max_map_weight_difference);
+
+    let dir = common::TempDir::new("tiny3d-births");
+    let (summary, clean) =
+        host_sim::run3d::run(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), true, &dir.0).expect("run");
+    assert!(clean);
+    assert_eq!((summary.births.births_total, summary.births.births_confirmed), (1, 1));
+    assert_eq!(summary.births.false_tracks, Some(0));
 }
