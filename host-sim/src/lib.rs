@@ -19,6 +19,7 @@
 pub mod assignment;
 pub mod births;
 pub mod catalogue;
+pub mod catalogue_experiment;
 pub mod catalogue_scenario;
 pub mod ccsds;
 pub mod digest;
