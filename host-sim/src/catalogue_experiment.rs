@@ -334,9 +334,9 @@ fn births(kind: Measurement3dSpec) -> MeasuredBirthsSpec {
         headings: Some(4),
         speeds: Some(1),
         climbs: Some(1),
-        ranges: Some(if radar { 1 } else { 2 }),
-        expected_births: if radar { 1e-4 } else { 1e-3 },
-        max_probability: if radar { 1e-3 } else { 1e-2 },
+        ranges: Some(if radar { 1 } else { 3 }),
+        expected_births: if radar { 1e-4 } else { 1e-6 },
+        max_probability: if radar { 1e-3 } else { 1e-5 },
         min_unexplained: 0.5,
         lifetime: if radar { 60.0 } else { 120.0 },
     }
