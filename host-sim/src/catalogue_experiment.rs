@@ -43,8 +43,11 @@ use crate::ssa;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-/// The experiment's start (UTC): the catalogue's epoch and the scenarios'.
-pub const START: &str = "2026-03-20T00:00:00Z";
+/// The experiment's start (UTC): the catalogue's epoch and the scenarios'. The telescope's site turns dark
+/// (Sun 12° below the horizon) soon after, so that both trackers start from a current prior; its night
+/// ends about 10 hours later, and the next begins just after the 24 hours (the tracker's longest gap
+/// between scans is 20 s × 1100 sub-steps, shorter than a day).
+pub const START: &str = "2026-03-20T02:00:00Z";
 
 /// Earth's radius (km) and gravitational parameter (km³/s²) of SGP4's WGS-72.
 const WGS72_RADIUS: f64 = 6378.135;
@@ -162,7 +165,10 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
         .ok_or_else(|| Error::input(format!("start {start:?}: not YYYY-MM-DDTHH:MM:SS[Z]")))?;
     let hours = settings.duration_hours;
     if !(hours.is_finite() && hours > 0.0 && hours <= catalogue_scenario::MAX_DURATION_HOURS) {
-        return Err(Error::input(format!("duration {hours} h: not in (0, {}]", catalogue_scenario::MAX_DURATION_HOURS)));
+        return Err(Error::input(format!(
+            "duration {hours} h: not in (0, {}]",
+            catalogue_scenario::MAX_DURATION_HOURS
+        )));
     }
     let (mut entries, mut origins) = (vec![], vec![]);
     if settings.verification {
@@ -171,7 +177,9 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
         for mut entry in parsed {
             entry.epoch = epoch;
             entry.name = Some(entry.name.unwrap_or_else(|| format!("SGP4-VER {:05}", entry.norad_id)));
-            if propagates(&entry, epoch, hours * 3600.0) && !entries.iter().any(|e: &CatalogueEntry| e.norad_id == entry.norad_id) {
+            if propagates(&entry, epoch, hours * 3600.0)
+                && !entries.iter().any(|e: &CatalogueEntry| e.norad_id == entry.norad_id)
+            {
                 entries.push(entry);
                 origins.push(Origin::Verification);
             }
@@ -293,7 +301,7 @@ pub fn radars(scan_interval_s: f64) -> SensorsFile {
     }
 }
 
-/// The telescope: all sky above 20° elevation, 2″, at 32° N 110° W (dark from about 02:00 to 12:30 UTC in
+/// The telescope: all sky above 20° elevation, 2″, at 32° N 110° W (dark from about 02:15 to 12:30 UTC in
 /// March).
 pub fn telescope(scan_interval_s: f64) -> SensorsFile {
     SensorsFile {
@@ -370,7 +378,8 @@ pub fn forget(scenario: &mut Scenario3d, missing: &[bool]) -> Result<(), Error> 
     };
     scenario.evaluation = EVALUATION;
     let count = missing.iter().filter(|&&m| m).count();
-    scenario.description = format!("{}; {count} objects missing from the prior (experiment catalogue)", scenario.description);
+    scenario.description =
+        format!("{}; {count} objects missing from the prior (experiment catalogue)", scenario.description);
     scenario.validate().map_err(|e| Error::internal(format!("catalogue experiment scenario: {e}")))
 }
 
@@ -424,10 +433,7 @@ fn network(
     let (mut scenario, generated) = catalogue_scenario::generate(request)?;
     forget(&mut scenario, missing)?;
     if !quiet {
-        eprintln!(
-            "catalogue: {name}: {} scans, {} measurements; tracking",
-            generated.scans, generated.measurements
-        );
+        eprintln!("catalogue: {name}: {} scans, {} measurements; tracking", generated.scans, generated.measurements);
     }
     let out = dir.join(name);
     let (summary, _) = crate::run3d::run(&scenario, TrackerKind::Rfisst, Some(Profile::Host), quiet, &out)?;
@@ -485,12 +491,15 @@ fn figures(network: &Network, sensors: &SensorsFile, origins: &[Origin]) -> Cata
 /// Geocentric (longitude, latitude) in radians of an inertial position at `t` s after the epoch.
 fn ground_point(epoch_jd: f64, t: f64, p: [f64; 3]) -> (f64, f64) {
     let theta = ssa::earth_rotation_angle(epoch_jd, t);
-    let longitude = (p[1].atan2(p[0]) - theta + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-        - std::f64::consts::PI;
+    let longitude =
+        (p[1].atan2(p[0]) - theta + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
     (longitude, p[2].atan2(p[0].hypot(p[1])))
 }
 
-/// Ground tracks of a network's first three hours of scans (truth every minute, MAP tracks every five).
+/// The window of the ground-track plots: one LEO revolution.
+const GROUND_TRACK_WINDOW_S: f64 = 6000.0;
+
+/// Ground tracks of a network's first 100 minutes of scans (truth every minute, MAP tracks every five).
 fn plot_ground_tracks(network: &Network, epoch_jd: f64, dir: &Path) -> Result<(), Error> {
     let Some(truth) = &network.scenario.truth else { return Ok(()) };
     let scans = &network.scenario.scans;
@@ -498,7 +507,7 @@ fn plot_ground_tracks(network: &Network, epoch_jd: f64, dir: &Path) -> Result<()
     let mut lines: BTreeMap<u64, Vec<Option<(f64, f64)>>> = BTreeMap::new();
     let mut crosses = vec![];
     let (mut last_truth, mut last_map) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for (k, scan) in scans.iter().enumerate().take_while(|(_, s)| s.time <= first + 3.0 * 3600.0) {
+    for (k, scan) in scans.iter().enumerate().take_while(|(_, s)| s.time <= first + GROUND_TRACK_WINDOW_S) {
         if scan.time - last_truth >= 60.0 {
             last_truth = scan.time;
             for o in &truth.scans[k].objects {
@@ -517,11 +526,11 @@ fn plot_ground_tracks(network: &Network, epoch_jd: f64, dir: &Path) -> Result<()
         .map(|(i, (id, points))| SkySeries { name: format!("object {id}"), points, color: Some(i) })
         .collect();
     let estimates = [SkySeries { name: "MAP tracks".into(), points: crosses, color: None }];
-    let hours = first / 3600.0;
+    let minutes = first / 60.0;
     let title = format!(
-        "{}: ground tracks from {hours:.1} h to {:.1} h, truth (lines) and MAP tracks every 5 min",
+        "{}: ground tracks from {minutes:.0} to {:.0} min, truth (lines) and MAP tracks every 5 min",
         network.name,
-        hours + 3.0
+        minutes + GROUND_TRACK_WINDOW_S / 60.0
     );
     Ok(plots::ground_tracks(&dir.join(format!("ground_tracks_{}", network.name)), &title, &truth, &estimates)?)
 }

@@ -2169,4 +2169,33 @@ mod tests {
             assert!(error.0.contains("blocker"), "message names the path: {error}");
         }
     }
+
+    #[test]
+    fn ground_tracks_cut_at_the_antimeridian_and_refuse_bad_latitudes() {
+        let dir = TestDir::new("ground-tracks");
+        // An inclined orbit's track over 1.5 revolutions: longitude drifting west, crossing ±180°.
+        let track = SkySeries {
+            name: "leo".to_string(),
+            points: (0..=135)
+                .map(|k| {
+                    let u = f64::from(k) * 4_f64.to_radians();
+                    Some((u - 0.07 * f64::from(k), (53_f64.to_radians().sin() * u.sin()).asin()))
+                })
+                .collect(),
+            color: None,
+        };
+        let figure = GroundTrackFigure::new("t", std::slice::from_ref(&track), &[]).unwrap();
+        assert!(figure.truth[0].1.len() >= 2, "cut at the antimeridian");
+        for piece in &figure.truth[0].1 {
+            assert!(piece.windows(2).all(|pair| (pair[1].0 - pair[0].0).abs() <= 180.0));
+            assert!(piece.iter().all(|p| (-180.0..180.0).contains(&p.0) && p.1.abs() <= 53.0 + 1e-9));
+        }
+        let stem = dir.stem("ground");
+        let estimates = [SkySeries { name: "map".into(), points: vec![Some((0.1, 0.2))], color: None }];
+        ground_tracks(&stem, "ground tracks", &[track], &estimates).unwrap();
+        assert_png_and_svg(&stem);
+        let too_high = SkySeries { points: vec![Some((0.0, 1.6))], ..SkySeries::default() };
+        let error = ground_tracks(&dir.stem("bad"), "t", &[too_high], &[]).unwrap_err();
+        assert!(error.0.contains("latitude") && error.0.contains("outside"), "{error}");
+    }
 }
