@@ -2,10 +2,11 @@
 //! with objects missing from the prior (issue 15).
 //!
 //! The catalogue ([`build_catalogue`]): the SGP4 verification element sets shipped in
-//! `data/sgp4-verification` (MIT licence) that SGP4 propagates without error over the run, each re-epoched
-//! to the start (real element sets with their epoch moved, so that they are current); a generated
-//! constellation shell (6 planes × 12 satellites, 550 km, 53°, evenly phased); and a launch train of 12
-//! satellites on one 350 km, 53° orbit, 3 s apart along the track (about 23 km), the hard association case.
+//! `data/sgp4-verification` (MIT licence) that SGP4 propagates without error over the run (a repeated
+//! catalogue number kept once), each re-epoched to the start (real element sets with their epoch moved, so
+//! that they are current); a generated constellation shell (6 planes × 12 satellites, 550 km, 53°, evenly
+//! phased); and a launch train of 12 satellites on one 350 km, 53° orbit, 3 s apart along the track (about
+//! 23 km), the hard association case. 112 objects in all.
 //! It is written to `catalogue.omm.json` (OMM JSON, exact), with the two sensors files, so that
 //! `host-sim run-catalogue` can rerun either network (without the missing objects and births set here).
 //!
@@ -23,8 +24,9 @@
 //! accepted scan of both. Both are scored with the radar's evaluation settings (error bound 5 km, GOSPA
 //! cut-off 10 km, order 2), so that the GOSPA of the two means the same.
 //!
-//! Run time: about two minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not
-//! part of `experiment all`.
+//! Run time: about 2.5 minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not
+//! part of `experiment all`. The radars' run folder is about 660 MB (`tracks.oem`: every MAP track at every
+//! scan).
 
 use crate::catalogue::{self, CatalogueEntry, Satellite};
 use crate::catalogue_scenario::{self, Request, SENSORS_FORMAT, SensorsFile};
@@ -410,17 +412,19 @@ struct Network {
     per_scan: Vec<(f64, f64, usize, usize)>,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn network(
-    name: &'static str,
-    sensors: &SensorsFile,
-    catalogue_file: &Path,
-    missing: &[bool],
-    settings: &Settings,
-    seed: u64,
+/// What both networks share.
+struct Shared<'a> {
+    settings: &'a Settings,
+    catalogue_file: &'a Path,
+    missing: &'a [bool],
     quiet: bool,
-    dir: &Path,
-) -> Result<Network, Error> {
+    dir: &'a Path,
+}
+
+/// Generates a network's scenario (detections drawn with `seed`), takes the missing objects out of its prior
+/// and runs R-FISST on it into `dir/name`.
+fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared<'_>) -> Result<Network, Error> {
+    let Shared { settings, catalogue_file, missing, quiet, dir } = *shared;
     let sensors_file = dir.join(format!("sensors-{name}.json"));
     write_json(&sensors_file, sensors)?;
     let request = Request {
@@ -609,11 +613,10 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
     }
     let radar_sensors = radars(settings.radar_interval_s);
     let telescope_sensors = telescope(settings.telescope_interval_s);
+    let shared = Shared { settings, catalogue_file: &catalogue_file, missing: &missing, quiet, dir };
     // The telescope's detections from the complement of the seed, so that the two networks' draws differ.
-    let networks = [
-        network("radars", &radar_sensors, &catalogue_file, &missing, settings, seed, quiet, dir)?,
-        network("telescope", &telescope_sensors, &catalogue_file, &missing, settings, !seed, quiet, dir)?,
-    ];
+    let networks =
+        [network("radars", &radar_sensors, seed, &shared)?, network("telescope", &telescope_sensors, !seed, &shared)?];
     let epoch_jd = ssa::parse_iso8601(settings.start).map_err(|e| Error::input(format!("start: {e}")))?;
     for n in &networks {
         plot_ground_tracks(n, epoch_jd, dir)?;

@@ -2179,11 +2179,12 @@ mod tests {
             points: (0..=135)
                 .map(|k| {
                     let u = f64::from(k) * 4_f64.to_radians();
-                    Some((u - 0.07 * f64::from(k), (53_f64.to_radians().sin() * u.sin()).asin()))
+                    Some((u - 0.02 * f64::from(k), (53_f64.to_radians().sin() * u.sin()).asin()))
                 })
                 .collect(),
             color: None,
         };
+        ensure_font_registered().unwrap();
         let figure = GroundTrackFigure::new("t", std::slice::from_ref(&track), &[]).unwrap();
         assert!(figure.truth[0].1.len() >= 2, "cut at the antimeridian");
         for piece in &figure.truth[0].1 {
