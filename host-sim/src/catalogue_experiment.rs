@@ -24,7 +24,7 @@
 //! accepted scan of both. Both are scored with the radar's evaluation settings (error bound 5 km, GOSPA
 //! cut-off 10 km, order 2), so that the GOSPA of the two means the same.
 //!
-//! Run time: about 2.5 minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not
+//! Run time: about 2 minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not
 //! part of `experiment all`. The radars' run folder is about 660 MB (`tracks.oem`: every MAP track at every
 //! scan).
 
