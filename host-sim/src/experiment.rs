@@ -13,6 +13,10 @@
 //!   scan; GOSPA and cardinality over time; and for every scan, whether R-FISST finds the
 //!   truth-consistent association of the MAP parent (≥ 10³⁰ possible children). Writes `debris.json`.
 //!
+//! - `catalogue`: a catalogue seen by two radars and a telescope for 24 hours, with objects missing from the
+//!   prior; two trackers, one per measurement type ([`crate::catalogue_experiment`]). Writes
+//!   `catalogue.json`. Not part of `all`: it takes minutes.
+//!
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
@@ -56,7 +60,10 @@ pub enum Experiment {
     Debris,
     /// Clusters and the exact chain start, each switched off.
     Ablation,
-    /// Every experiment above, each in its own directory.
+    /// A catalogue (verification set, a shell, a launch train) seen by two radars and a telescope for 24 h,
+    /// with objects missing from the prior ([`crate::catalogue_experiment`]); not part of `all` (minutes).
+    Catalogue,
+    /// Every experiment above but `catalogue`, each in its own directory.
     All,
 }
 
@@ -73,6 +80,7 @@ impl Experiment {
             Experiment::Scaling => "scaling",
             Experiment::Debris => "debris",
             Experiment::Ablation => "ablation",
+            Experiment::Catalogue => "catalogue",
             Experiment::All => "all",
         }
     }
@@ -157,6 +165,7 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
         Experiment::Scaling => to_value(scaling(dir, seed)?),
         Experiment::Debris => to_value(debris(dir, seed, quiet)?),
         Experiment::Ablation => to_value(ablation(dir, seed)?),
+        Experiment::Catalogue => to_value(crate::catalogue_experiment::run(dir, seed, quiet)?),
         Experiment::All => return Err(err("`all` is not one experiment")),
     };
     Ok(figures)

@@ -9,7 +9,8 @@
 //! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
 //! - [`catalogue`] reads TLE and OMM element sets and propagates them with SGP4; [`sgp4_check`] verifies
 //!   that against the published SGP4 verification cases; [`catalogue_scenario`] makes version 2 scenarios
-//!   of a catalogue seen by a sensors file (`generate catalogue`).
+//!   of a catalogue seen by a sensors file (`generate catalogue`); [`catalogue_experiment`] is `experiment
+//!   catalogue` (a catalogue, two radars and a telescope, 24 hours).
 //! - [`report`] holds the typed records of every JSON file the commands write; [`error`] the one error
 //!   type of the commands and its exit codes.
 
@@ -19,6 +20,7 @@
 pub mod assignment;
 pub mod births;
 pub mod catalogue;
+pub mod catalogue_experiment;
 pub mod catalogue_scenario;
 pub mod ccsds;
 pub mod digest;

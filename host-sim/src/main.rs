@@ -202,7 +202,8 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// Reproduce a paper experiment (fifty, fifteen, scaling, debris), the ablation, or all of them.
+    /// Reproduce a paper experiment (fifty, fifteen, scaling, debris), the ablation, the 24-hour catalogue
+    /// (not in `all`), or all of them.
     Experiment {
         /// The experiment.
         #[arg(value_enum)]

@@ -1,0 +1,78 @@
+//! `experiment catalogue` on a short, small version: every key of `catalogue.json`, sane values, the files.
+
+use host_sim::catalogue_experiment::{Settings, build_catalogue, run_with};
+use serde_json::Value;
+
+/// Ten minutes of Tucson's night (the telescope scans), 2 planes × 3 satellites and a train of 3.
+const SHORT: Settings = Settings {
+    start: "2026-03-20T06:00:00Z",
+    duration_hours: 0.1,
+    radar_interval_s: 20.0,
+    telescope_interval_s: 60.0,
+    verification: false,
+    planes: 2,
+    per_plane: 3,
+    train: 3,
+    missing_fraction: 0.5,
+};
+
+#[test]
+fn the_full_catalogue_has_at_least_100_objects() {
+    let catalogue = build_catalogue(&Settings::FULL).expect("catalogue");
+    assert!(catalogue.entries.len() >= 100, "{}", catalogue.entries.len());
+}
+
+#[test]
+fn a_short_run_writes_every_figure() {
+    // Trackers hold several MiB inline: a large stack, as `main` gives them.
+    std::thread::Builder::new().stack_size(512 << 20).spawn(short_run).expect("thread").join().expect("no panic");
+}
+
+fn short_run() {
+    let dir = std::env::temp_dir().join(format!("host-sim-catalogue-experiment-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let report = run_with(&dir, 3, true, &SHORT).expect("runs");
+    let text = std::fs::read_to_string(dir.join("catalogue.json")).expect("catalogue.json");
+    let json: Value = serde_json::from_str(&text).expect("JSON");
+    for key in ["objects", "births_total", "births_confirmed", "mean_gospa", "mean_ms_per_scan", "max_ms_per_scan"] {
+        assert!(json.get(key).is_some_and(Value::is_number), "{key}: {json}");
+    }
+    assert_eq!(json["objects"], 9);
+    // The train and half of the six others are missing, a birth in both trackers' truth.
+    assert_eq!(report.missing_from_prior, 6);
+    assert_eq!(report.births_total, 12);
+    assert!(report.births_confirmed <= report.births_total);
+    assert!(report.mean_gospa.is_finite() && report.mean_gospa >= 0.0, "{}", report.mean_gospa);
+    // GOSPA is bounded by its cut-off c: at most c (n / 2)^(1/2) for n objects missed or false.
+    let cap = 10.0 * ((9 + 20) as f64 / 2.0).sqrt();
+    assert!(report.mean_gospa <= cap, "{}", report.mean_gospa);
+    assert!(report.mean_ms_per_scan > 0.0 && report.max_ms_per_scan >= report.mean_ms_per_scan);
+    let details = json["details"].as_array().expect("details");
+    assert_eq!(details.len(), 2);
+    assert_eq!((details[0]["network"].as_str(), details[1]["network"].as_str()), (Some("radars"), Some("telescope")));
+    for d in details {
+        assert!(d["scans"].as_u64().is_some_and(|s| s > 0), "{d}");
+        assert!(d["births_confirmed"].as_u64() <= d["births_detected"].as_u64(), "{d}");
+    }
+    // 0.1 h: 37 radar scans (every 10 s from 0 to 360 s); 7 telescope frames.
+    assert_eq!(details[0]["scans"], 37);
+    assert_eq!(details[1]["scans"], 7);
+    for file in [
+        "catalogue.omm.json",
+        "sensors-radars.json",
+        "sensors-telescope.json",
+        "radars/summary.json",
+        "radars/tracks.oem",
+        "telescope/summary.json",
+        "cardinality.png",
+        "gospa.png",
+        "ground_tracks_radars.png",
+        "ground_tracks_telescope.png",
+    ] {
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    // The catalogue written is the one a user can reload.
+    let entries = host_sim::catalogue::load(&dir.join("catalogue.omm.json")).expect("reload");
+    assert_eq!(entries.len(), 9);
+    let _ = std::fs::remove_dir_all(&dir);
+}
