@@ -18,8 +18,9 @@
 //! telescope right ascension/declination, D = 2; a const generic), so the radars and the telescope cannot be
 //! fused in one tracker today: the experiment runs two R-FISST trackers (host profile) on the same truth, one
 //! on the two-radar scenario (`radars/`), one on the telescope scenario (`telescope/`), each written by
-//! [`crate::run3d::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` and
-//! `births_confirmed` are sums over the two trackers (each missing object is a birth of both);
+//! [`crate::run3d::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
+//! objects missing from the prior that some sensor detected, `births_confirmed` those that at least one
+//! tracker confirmed (each object once; per tracker in `details`);
 //! `mean_gospa` is the mean over every scan of both; `mean_ms_per_scan` and `max_ms_per_scan` cover every
 //! accepted scan of both. Both are scored with the radar's evaluation settings (error bound 5 km, GOSPA
 //! cut-off 10 km, order 2), so that the GOSPA of the two means the same.
@@ -331,24 +332,27 @@ pub fn telescope(scan_interval_s: f64) -> SensorsFile {
     }
 }
 
-/// The measured birth pool of each network. Radars: the LEO region, 4 headings × 1 speed × 1 climb, λ_B
-/// 1e-4, α ≤ 1e-3, cells living 60 s (the settings that worked on `radar-leo`). Telescope: the LEO region
-/// too, since the objects it can start tracks for are LEO (the train and the shell; the deep-space
-/// verification objects are few), 2 ranges × 4 headings, λ_B 1e-3, α ≤ 1e-2 (optical-geo's), cells living
-/// 120 s (a LEO pass lasts minutes, not hours).
+/// The measured birth pool of each network. Radars: the `radar-leo` preset's
+/// ([`crate::generate3d::RADAR_LEO_BIRTHS`]: the LEO region, 12 headings, λ_B 1e-2, α ≤ 1e-3, cells living
+/// 60 s). Telescope: the LEO region too, since the objects it can start tracks for are LEO (the train and
+/// the shell; the deep-space verification objects are few), 3 ranges × 4 headings, λ_B 1e-6, α ≤ 1e-5
+/// (larger values confirmed hundreds of false tracks from single frames), cells living 120 s (a LEO pass
+/// lasts minutes, not hours).
 fn births(kind: Measurement3dSpec) -> MeasuredBirthsSpec {
-    let radar = kind != Measurement3dSpec::Optical;
-    MeasuredBirthsSpec {
-        region: AdmissiblePresetSpec::Leo,
-        velocity_sigma: 1.0,
-        headings: Some(4),
-        speeds: Some(1),
-        climbs: Some(1),
-        ranges: Some(if radar { 1 } else { 3 }),
-        expected_births: if radar { 1e-4 } else { 1e-6 },
-        max_probability: if radar { 1e-3 } else { 1e-5 },
-        min_unexplained: 0.5,
-        lifetime: if radar { 60.0 } else { 120.0 },
+    match kind {
+        Measurement3dSpec::Optical => MeasuredBirthsSpec {
+            region: AdmissiblePresetSpec::Leo,
+            velocity_sigma: 1.0,
+            headings: Some(4),
+            speeds: Some(1),
+            climbs: Some(1),
+            ranges: Some(3),
+            expected_births: 1e-6,
+            max_probability: 1e-5,
+            min_unexplained: 0.5,
+            lifetime: 120.0,
+        },
+        _ => crate::generate3d::RADAR_LEO_BIRTHS,
     }
 }
 
@@ -457,6 +461,18 @@ fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared
         })
         .collect();
     Ok(Network { name, scenario, summary, map, per_scan })
+}
+
+/// The objects missing from the prior for which `counts` holds in the run of at least one network (each
+/// object once).
+fn births_by_any(networks: &[Network], counts: impl Fn(&crate::report::BirthRecord) -> bool) -> usize {
+    let objects: BTreeSet<u64> = networks
+        .iter()
+        .flat_map(|n| n.summary.births.birth_confirmations.iter())
+        .filter(|r| counts(r))
+        .map(|r| r.object)
+        .collect();
+    objects.len()
 }
 
 /// One network's figures.
@@ -636,8 +652,8 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
         seed,
         objects: catalogue.entries.len(),
         missing_from_prior: missing.iter().filter(|&&m| m).count(),
-        births_total: details.iter().map(|d| d.births_total).sum(),
-        births_confirmed: details.iter().map(|d| d.births_confirmed).sum(),
+        births_total: births_by_any(&networks, |r| r.first_detection_scan.is_some()),
+        births_confirmed: births_by_any(&networks, |r| r.confirmation_scan.is_some()),
         mean_gospa: gospa_sum / scans.max(1) as f64,
         mean_ms_per_scan: details.iter().map(|d| d.mean_ms_per_scan * accepted(d)).sum::<f64>()
             / accepted_total.max(1.0),

@@ -4,8 +4,9 @@
 //! One segment per *confirmed* track: a label of the last scan's MAP hypothesis whose existence is at least
 //! the scenario's `evaluation.confirmation_existence` (the threshold of the birth confirmations in
 //! `summary.json`). Its ephemeris lines are the track's MAP mean (km, km/s; TEME, centre EARTH, UTC) at
-//! every accepted scan where the label is in the MAP hypothesis (a label that leaves the MAP and returns
-//! leaves a gap), each with its covariance (lower triangle, km², km²/s, km²/s²). Values are written in their
+//! accepted scans where the label is in the MAP hypothesis (a label that leaves the MAP and returns leaves
+//! a gap): the first such scan, then the first one at least [`OEM_STEP_S`] after the last line, and always
+//! the last one (a 24-hour catalogue run at every scan wrote 560 MB), each with its covariance (lower triangle, km², km²/s, km²/s²). Values are written in their
 //! shortest round-trip decimal form, the same f64 as `estimates.csv`; times as in [`crate::ccsds`].
 
 use crate::ccsds::{self, Instant};
@@ -19,12 +20,23 @@ use std::path::Path;
 /// One ephemeris point: time, mean, covariance.
 type Point = (Instant, [f64; 6], [[f64; 6]; 6]);
 
+/// The shortest time (s) between two ephemeris lines of a track, its last line aside.
+pub const OEM_STEP_S: f64 = 60.0;
+
+/// A track's ephemeris lines, the time of the last one, and its latest state when that is not a line yet.
+#[derive(Debug, Clone, Default)]
+struct Series {
+    points: Vec<Point>,
+    last_time: f64,
+    latest: Option<Point>,
+}
+
 /// The MAP tracks of a run, scan by scan, and their OEM.
 #[derive(Debug, Clone)]
 pub struct OemTracks {
     epoch: Instant,
     threshold: f64,
-    tracks: BTreeMap<u32, Vec<Point>>,
+    tracks: BTreeMap<u32, Series>,
     last: Vec<(u32, f64)>,
 }
 
@@ -44,7 +56,15 @@ impl OemTracks {
     pub fn record(&mut self, time: f64, map: &[Track6]) {
         let Ok(at) = self.epoch.after(time) else { return };
         for t in map {
-            self.tracks.entry(t.label).or_default().push((at.clone(), t.mean, t.covariance));
+            let series = self.tracks.entry(t.label).or_default();
+            let point = (at.clone(), t.mean, t.covariance);
+            if series.points.is_empty() || time - series.last_time >= OEM_STEP_S {
+                series.points.push(point);
+                series.last_time = time;
+                series.latest = None;
+            } else {
+                series.latest = Some(point);
+            }
         }
         self.last = map.iter().map(|t| (t.label, t.existence)).collect();
     }
@@ -64,7 +84,8 @@ impl OemTracks {
         let _ = writeln!(s, "CREATION_DATE = {}", ccsds::now());
         let _ = writeln!(s, "ORIGINATOR = R-FISST host-sim");
         for label in self.confirmed() {
-            let points = self.tracks.get(&label).map_or(&[][..], Vec::as_slice);
+            let Some(series) = self.tracks.get(&label) else { continue };
+            let points: Vec<&Point> = series.points.iter().chain(&series.latest).collect();
             let (Some(first), Some(last)) = (points.first(), points.last()) else { continue };
             let _ = writeln!(s, "\nMETA_START");
             let _ = writeln!(s, "OBJECT_NAME = TRACK {label}");
@@ -75,11 +96,11 @@ impl OemTracks {
             let _ = writeln!(s, "START_TIME = {}", first.0);
             let _ = writeln!(s, "STOP_TIME = {}", last.0);
             let _ = writeln!(s, "META_STOP\n");
-            for (t, m, _) in points {
+            for (t, m, _) in &points {
                 let _ = writeln!(s, "{} {} {} {} {} {} {}", t, m[0], m[1], m[2], m[3], m[4], m[5]);
             }
             let _ = writeln!(s, "\nCOVARIANCE_START");
-            for (t, _, p) in points {
+            for (t, _, p) in &points {
                 let _ = writeln!(s, "EPOCH = {}", t);
                 let _ = writeln!(s, "COV_REF_FRAME = TEME");
                 for (i, row) in p.iter().enumerate() {
