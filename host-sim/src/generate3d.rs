@@ -186,6 +186,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         return Err(Error::internal("the simulation's sensors mix measurement types"));
     }
     let settings = settings(kind);
+    let unknown = sim.objects.iter().any(|o| !o.in_prior);
     let sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
 
     // Truth: every object at every scan, RKF7(8) step by step from the epoch.
@@ -259,21 +260,12 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         measurement,
         sensors,
         // Objects unknown to the prior: births from the measurements (docs/maths.md §5.8).
-        birth: match sim.objects.iter().any(|o| !o.in_prior) {
-            true => Birth3dSpec {
-                probability: 0.0,
-                detection: BirthDetectionSpec::AllDetected,
-                events: BirthEventsSpec::Independent,
-                measured: Some(settings.births),
-                cells: vec![],
-            },
-            false => Birth3dSpec {
-                probability: 0.0,
-                detection: BirthDetectionSpec::AllDetected,
-                events: Default::default(),
-                measured: None,
-                cells: vec![],
-            },
+        birth: Birth3dSpec {
+            probability: 0.0,
+            detection: BirthDetectionSpec::AllDetected,
+            events: if unknown { BirthEventsSpec::Independent } else { BirthEventsSpec::FirstOrder },
+            measured: unknown.then_some(settings.births),
+            cells: vec![],
         },
         death_probability: 0.0,
         tracker: TrackerSpec {

@@ -6,8 +6,9 @@
 //! `summary.json`). Its ephemeris lines are the track's MAP mean (km, km/s; TEME, centre EARTH, UTC) at
 //! accepted scans where the label is in the MAP hypothesis (a label that leaves the MAP and returns leaves
 //! a gap): the first such scan, then the first one at least [`OEM_STEP_S`] after the last line, and always
-//! the last one (a 24-hour catalogue run at every scan wrote 560 MB), each with its covariance (lower triangle, km², km²/s, km²/s²). Values are written in their
-//! shortest round-trip decimal form, the same f64 as `estimates.csv`; times as in [`crate::ccsds`].
+//! the last one (a 24-hour catalogue run at every scan wrote 560 MB), each with its covariance (lower
+//! triangle, km², km²/s, km²/s²). Values are written in their shortest round-trip decimal form, the same
+//! f64 as `estimates.csv`; times as in [`crate::ccsds`].
 
 use crate::ccsds::{self, Instant};
 use crate::error::Error;

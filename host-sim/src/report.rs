@@ -1154,10 +1154,9 @@ pub struct CatalogueReport {
     pub objects: usize,
     /// Objects missing from the prior (the same in both scenarios).
     pub missing_from_prior: usize,
-    /// Births: objects missing from the prior, counted in each tracker's truth and summed over the two
-    /// trackers (each missing object counts twice).
+    /// Births: objects missing from the prior that some sensor detected, each counted once.
     pub births_total: usize,
-    /// Confirmed births, summed over the two trackers.
+    /// Births that at least one tracker confirmed, each counted once.
     pub births_confirmed: usize,
     /// GOSPA (km) averaged over every scan of both trackers.
     pub mean_gospa: f64,

@@ -1143,12 +1143,6 @@ where
         self.hypotheses().filter(|h| h.len() == n).fold(T::zero(), |sum, h| sum + h.weight())
     }
 
-    /// The birth pool's cells (docs/maths.md §5.8), each at the time of the measurement that made it; empty
-    /// without measured births.
-    pub fn birth_pool(&self) -> &[crate::pool::PoolCell<T, S>] {
-        self.pool.cells()
-    }
-
     /// Expected number of objects Σ_h w_h N_h.
     ///
     /// # Examples
