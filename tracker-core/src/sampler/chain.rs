@@ -9,13 +9,18 @@ use crate::children::{ChildGenerator, ChildSink, GenerateError};
 use crate::index::{At, NONE, below};
 use crate::optimal::best_association;
 use crate::real::{Real, exp};
-use core::hint::select_unpredictable;
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 /// Buckets of the informed proposal's guide table per row, and the shift from a 32-bit draw to its bucket.
 const GUIDE: usize = 32;
 const GUIDE_SHIFT: u32 = 27;
+
+/// The kinds of Metropolis step, as const parameters of the step: paper 003's uniform column of the
+/// matrix, a uniform column among the row's possible ones, and the informed draw from the row's weights.
+const PAPER: u8 = 0;
+const UNIFORM: u8 = 1;
+const INFORMED: u8 = 2;
 
 /// The first `count` of a row's possible columns.
 #[inline]
@@ -32,6 +37,8 @@ struct Chain<T, const N: usize, const Z: usize> {
     score: T,
     hash: u64,
     unassigned_required: usize,
+    /// Moves since the chain's start (the informed proposal alternates its kinds of step by it).
+    moves: u64,
 }
 
 /// A Metropolis chain per association matrix, keeping the best `C` distinct children.
@@ -147,6 +154,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 score: T::ZERO,
                 hash: 0,
                 unassigned_required: 0,
+                moves: 0,
             },
             row_columns: [[0; N]; Z],
             row_count: [0; Z],
@@ -499,7 +507,10 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         best.insert_absent(exact, chain.hash, assignment);
     }
 
-    /// One Metropolis move (propose, then accept or reject); returns whether the state changed.
+    /// One Metropolis move (propose, then accept or reject); returns whether the state changed. With the
+    /// informed proposal the chain's moves alternate, informed first: the chain's `i`-th move since its
+    /// start is informed for even `i`, uniform for odd `i`, whether it runs inside
+    /// [`MetropolisSampler::run`] or through this method.
     ///
     /// # Examples
     /// Moves on their own (after [`MetropolisSampler::run`] has built the matrix's tables):
@@ -517,54 +528,113 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// let moved = (0..100).filter(|_| sampler.metropolis_move(&matrix)).count() as u64;
     /// assert_eq!((sampler.steps_taken(), sampler.accepted()), (100, moved));
     /// ```
-    // The hot loop of the tracker (hundreds of thousands of moves per worst-case scan): proposal, the
-    // Metropolis–Hastings ratio of each proposal kind and acceptance are kept in one function so that the
-    // ratio's products stay in registers; splitting it measurably costs instructions.
     pub fn metropolis_move(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
         let Some(mut rng) = self.rng.take() else {
             self.steps_taken += 1;
             return false;
         };
-        let moved = self.step(matrix, &mut rng);
+        self.steps_taken += 1;
+        let moved = match self.config.proposal {
+            Proposal::Paper => self.step::<PAPER>(matrix, &mut rng),
+            Proposal::MoveOrSwap => self.step::<UNIFORM>(matrix, &mut rng),
+            Proposal::Informed if self.chain.moves % 2 == 0 => self.step::<INFORMED>(matrix, &mut rng),
+            Proposal::Informed => self.step::<UNIFORM>(matrix, &mut rng),
+        };
+        self.chain.moves += 1;
         self.rng = Some(rng);
         moved
     }
 
-    /// [`MetropolisSampler::metropolis_move`] with the random stream held outside the sampler, so that
-    /// inlined in a loop its state stays in registers.
+    /// `count` moves of the chain, recording each new state when `record` is set. The informed proposal's
+    /// alternation is unrolled into pairs, so that no step decides its kind at run time.
+    fn moves(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        stream: &mut Xoshiro256PlusPlus,
+        count: u32,
+        record: bool,
+    ) {
+        // A local copy of the stream, so that its state stays in registers.
+        let rng = &mut stream.clone();
+        let mut left = count;
+        match self.config.proposal {
+            Proposal::Paper => {
+                for _ in 0..left {
+                    self.step_and_record::<PAPER>(matrix, rng, record);
+                }
+            }
+            Proposal::MoveOrSwap => {
+                for _ in 0..left {
+                    self.step_and_record::<UNIFORM>(matrix, rng, record);
+                }
+            }
+            Proposal::Informed => {
+                if left > 0 && self.chain.moves % 2 == 1 {
+                    self.step_and_record::<UNIFORM>(matrix, rng, record);
+                    left -= 1;
+                }
+                for _ in 0..left / 2 {
+                    self.step_and_record::<INFORMED>(matrix, rng, record);
+                    self.step_and_record::<UNIFORM>(matrix, rng, record);
+                }
+                if left % 2 == 1 {
+                    self.step_and_record::<INFORMED>(matrix, rng, record);
+                }
+            }
+        }
+        self.chain.moves += u64::from(count);
+        self.steps_taken += u64::from(count);
+        *stream = rng.clone();
+    }
+
+    /// One step of `KIND`, and the new state recorded if it moved and `record` is set.
     #[inline(always)]
-    fn step(&mut self, matrix: &AssociationMatrix<T, N, Z>, rng: &mut Xoshiro256PlusPlus) -> bool {
+    fn step_and_record<const KIND: u8>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        rng: &mut Xoshiro256PlusPlus,
+        record: bool,
+    ) {
+        if self.step::<KIND>(matrix, rng) && record {
+            self.record(matrix);
+        }
+    }
+
+    /// [`MetropolisSampler::metropolis_move`] of a given kind ([`PAPER`], [`UNIFORM`] or [`INFORMED`]),
+    /// with the random stream held outside the sampler, so that inlined in a loop its state stays in
+    /// registers.
+    // The hot loop of the tracker (hundreds of thousands of moves per worst-case scan): proposal, the
+    // Metropolis–Hastings ratio of each proposal kind and acceptance are kept in one function so that the
+    // ratio's products stay in registers; splitting it measurably costs instructions.
+    #[inline(always)]
+    fn step<const KIND: u8>(&mut self, matrix: &AssociationMatrix<T, N, Z>, rng: &mut Xoshiro256PlusPlus) -> bool {
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
         let (rows, columns) = matrix.shape();
-        self.steps_taken += 1;
         let draw = rng.next_u64();
-        // Row from the high half of the draw (multiply-shift range), the rest picks the column.
-        let row = ((((draw >> 32) * rows as u64) >> 32) as usize).min(Z - 1);
-        let bits = (draw as u32) << 1;
-        let proposal = self.config.proposal;
-        // Informed: every other step (one bit of the draw) draws from the row's own distribution, the
-        // others uniformly among the row's possible columns and clutter. Each kind of step is a
-        // Metropolis–Hastings kernel that preserves the target on its own.
-        let informed = proposal == Proposal::Informed && draw & (1 << 31) != 0;
-        let new = match proposal {
-            Proposal::Paper => {
-                // Paper 003: any column of the matrix, or clutter.
-                let pick = ((u64::from(bits) * (columns as u64 + 1)) >> 32) as usize;
-                if pick >= columns { CLUTTER } else { pick as u16 }
+        // Row from the high half of the draw (multiply-shift range), the low half picks the column. The
+        // product's low half is the acceptance test's uniform: given the row, it is uniform on a lattice of
+        // spacing `rows` in [0, 2³²), and independent of the column's bits.
+        let spread = (draw >> 32) * rows as u64;
+        let row = ((spread >> 32) as usize).min(Z - 1);
+        let acceptance_bits = spread as u32;
+        let bits = draw as u32;
+        let informed = KIND == INFORMED;
+        let new = if KIND == PAPER {
+            // Paper 003: any column of the matrix, or clutter.
+            let pick = ((u64::from(bits) * (columns as u64 + 1)) >> 32) as usize;
+            if pick >= columns { CLUTTER } else { pick as u16 }
+        } else {
+            let count = usize::from(self.row_count[row]);
+            if count > N {
+                return false; // never: a row has at most N possible columns
             }
-            _ => {
-                let count = usize::from(self.row_count[row]);
-                if count > N {
-                    return false; // never: a row has at most N possible columns
-                }
-                let k = {
-                    // Both draws, then a branch-free choice: the kind of step is a coin flip, which no branch
-                    // predictor guesses (a misprediction every other step cost more than the second draw).
-                    let uniform = ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize;
-                    if informed { self.informed_index(row, count, bits) } else { uniform }
-                };
-                if k >= count { CLUTTER } else { self.row_columns[row][k] }
-            }
+            // Informed: from the row's own distribution; uniform: among its possible columns and clutter.
+            let k = if informed {
+                self.informed_index(row, count, bits)
+            } else {
+                ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize
+            };
+            if k >= count { CLUTTER } else { self.row_columns[row][k] }
         };
         let chain = &self.chain;
         let old = chain.assignment[row];
@@ -588,13 +658,12 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         // The acceptance ratio e^Δ q_reverse / q_forward as numerator / denominator of products of linear
         // weights (no exp, no log, no division), and the move.
         let (mut numerator, mut denominator, other_takes) = match other {
-            None => (
-                select_unpredictable(informed, T::one(), new_weight),
-                select_unpredictable(informed, T::one(), old_weight),
-                NONE,
-            ),
-            Some(other_row) => match proposal {
-                Proposal::MoveOrSwap | Proposal::Informed => {
+            None => (if informed { T::one() } else { new_weight }, if informed { T::one() } else { old_weight }, NONE),
+            Some(other_row) => {
+                if KIND == PAPER {
+                    // The other measurement goes to clutter.
+                    (new_weight * self.clutter_weight[other_row], old_weight * self.weight(other_row, new), CLUTTER)
+                } else {
                     let other_new_weight = self.weight(other_row, old);
                     if other_new_weight == T::zero()
                         && old != CLUTTER
@@ -611,26 +680,22 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     // proposes it ((k, clutter) would move k alone), and only (k, new) its reverse.
                     let (inverse_j, inverse_k) = (self.inverse_row_total[row], self.inverse_row_total[other_row]);
                     if old == CLUTTER {
-                        // Informed, or uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
-                        let (informed_up, informed_down) = (other_old_weight * inverse_k, new_weight * inverse_j);
-                        let uniform_up = T::of_f64(f64::from(self.row_count[row]) + 1.0);
-                        let uniform_down = T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
-                        numerator *= select_unpredictable(informed, informed_up, uniform_up);
-                        denominator *= select_unpredictable(informed, informed_down, uniform_down);
-                    } else {
-                        // The uniform ratio is 1 (the same products, unmultiplied).
-                        let up = numerator * (old_weight * inverse_j + other_old_weight * inverse_k);
-                        let down = denominator * (new_weight * inverse_j + other_new_weight * inverse_k);
-                        numerator = select_unpredictable(informed, up, numerator);
-                        denominator = select_unpredictable(informed, down, denominator);
+                        if informed {
+                            numerator *= other_old_weight * inverse_k;
+                            denominator *= new_weight * inverse_j;
+                        } else {
+                            // Uniform over a row's possible columns and clutter: q_j = 1 / (n_j + 1).
+                            numerator *= T::of_f64(f64::from(self.row_count[row]) + 1.0);
+                            denominator *= T::of_f64(f64::from(self.row_count[other_row]) + 1.0);
+                        }
+                    } else if informed {
+                        // (The uniform ratio is 1: the same products, unmultiplied.)
+                        numerator *= old_weight * inverse_j + other_old_weight * inverse_k;
+                        denominator *= new_weight * inverse_j + other_new_weight * inverse_k;
                     }
                     (numerator, denominator, old)
                 }
-                Proposal::Paper => {
-                    // The other measurement goes to clutter.
-                    (new_weight * self.clutter_weight[other_row], old_weight * self.weight(other_row, new), CLUTTER)
-                }
-            },
+            }
         };
         // Required columns freed or taken change the target by e^∓penalty.
         let frees_old = other.is_none() || other_takes == CLUTTER;
@@ -642,7 +707,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         }
         // Accept with probability min(1, numerator / denominator).
         if !(numerator >= denominator) {
-            let uniform = T::of_f64((rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
+            let uniform = T::of_f64(f64::from(acceptance_bits) * (1.0 / 4_294_967_296.0));
             if !(uniform * denominator < numerator) {
                 return false;
             }
@@ -852,6 +917,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             self.climb(matrix);
             self.record(matrix);
         }
+        self.chain.moves = 0;
         let (burn_in, steps) = self.config.moves_within(max_moves);
         let Some(mut rng) = self.rng.take() else {
             // No random stream (an `empty` sampler never reseeded): the steps are no-ops.
@@ -859,15 +925,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             self.record(matrix);
             return;
         };
-        for _ in 0..burn_in {
-            self.step(matrix, &mut rng);
-        }
+        self.moves(matrix, &mut rng, burn_in, false);
         self.record(matrix);
-        for _ in 0..steps {
-            if self.step(matrix, &mut rng) {
-                self.record(matrix);
-            }
-        }
+        self.moves(matrix, &mut rng, steps, true);
         self.rng = Some(rng);
     }
 }
