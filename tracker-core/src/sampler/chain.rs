@@ -646,8 +646,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             None => (self.clutter_weight[row], None),
             Some(column) => {
                 let weight = self.weights[row][column];
-                if weight == T::zero() && matrix.entry(row, column) == T::NEG_INFINITY {
-                    return false; // impossible (paper 003's uniform column)
+                // Impossible: only paper 003's uniform column can be (the others draw possible columns).
+                if KIND == PAPER && weight == T::zero() && matrix.entry(row, column) == T::NEG_INFINITY {
+                    return false;
                 }
                 (weight, below::<Z>(chain.owner[column]))
             }
@@ -697,13 +698,15 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                 }
             }
         };
-        // Required columns freed or taken change the target by e^∓penalty.
-        let frees_old = other.is_none() || other_takes == CLUTTER;
-        if frees_old && required(old) {
-            denominator *= self.penalty_factor;
-        }
-        if other.is_none() && required(new) {
-            numerator *= self.penalty_factor;
+        // Required columns freed or taken change the target by e^∓penalty (most matrices have none).
+        if matrix.required_count() != 0 {
+            let frees_old = other.is_none() || other_takes == CLUTTER;
+            if frees_old && required(old) {
+                denominator *= self.penalty_factor;
+            }
+            if other.is_none() && required(new) {
+                numerator *= self.penalty_factor;
+            }
         }
         // Accept with probability min(1, numerator / denominator).
         if !(numerator >= denominator) {
