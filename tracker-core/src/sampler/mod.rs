@@ -25,13 +25,16 @@
 //!   - [`Proposal::MoveOrSwap`]: the row takes the column; a measurement that held it takes the row's
 //!     old column (or clutter) instead. Symmetric, so Metropolis acceptance is exact detailed balance; it
 //!     moves along ridges of good associations instead of falling into clutter.
-//!   - [`Proposal::Informed`] (default): as `MoveOrSwap`, but on every other step the column is drawn
-//!     from the row's own distribution q_j(c) ∝ e^{δ_jc} (clutter e⁰) through a per-row cumulative table
-//!     built once per matrix (a guide table starts the search: usually one comparison per step). Such a
-//!     move to a free column is always accepted, so the chain rarely wastes a step on an impossible or
-//!     poor column; the uniform steps in between keep columns of small weight reachable.
+//!   - [`Proposal::Informed`] (default): as `MoveOrSwap`, but every other step (the chain's even-numbered
+//!     moves, in a fixed alternation) draws the column from the row's own distribution q_j(c) ∝ e^{δ_jc}
+//!     (clutter e⁰) through a per-row cumulative table built once per matrix (a guide table starts the
+//!     search: usually one comparison per step). Such a move to a free column is always accepted, so the
+//!     chain rarely wastes a step on an impossible or poor column; the uniform steps in between keep
+//!     columns of small weight reachable. Each kind of step leaves the target invariant, so the
+//!     alternation does too (docs/maths.md §7.5).
 //! - **Acceptance**: Metropolis–Hastings, min(1, e^Δ q_reverse / q_forward), with Δ the O(1) change of
-//!   the log-score.
+//!   the log-score; the uniform of the test comes from the step's one random draw (the row's
+//!   multiply-shift remainder).
 //! - **Budget**: `burn_in` steps unrecorded, then `steps` recorded steps; every feasible state visited
 //!   after burn-in (and the greedy start) goes to a [`BestChildren`] set that keeps the best `C`
 //!   distinct children, with duplicates found in O(1) through an incremental Zobrist-style hash.
@@ -55,9 +58,9 @@ pub enum Proposal {
     Paper,
     /// A random row takes a random column; a conflicting measurement takes the row's old column.
     MoveOrSwap,
-    /// As `MoveOrSwap`, but every other step draws the column in proportion to the row's entries e^δ
-    /// (clutter e⁰), so good associations are proposed often; the Metropolis–Hastings ratio corrects for
-    /// it exactly.
+    /// As `MoveOrSwap`, but every other step (in a fixed alternation) draws the column in proportion to
+    /// the row's entries e^δ (clutter e⁰), so good associations are proposed often; the
+    /// Metropolis–Hastings ratio corrects for it exactly.
     #[default]
     Informed,
 }
