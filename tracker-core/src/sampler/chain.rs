@@ -1095,6 +1095,30 @@ mod tests {
         }
     }
 
+    /// The informed chain alternates its kinds of step by the move's number since the chain's start, so
+    /// moves made one at a time follow the same chain as the moves of `run`, including an odd count
+    /// split across burn-in and recorded steps.
+    #[test]
+    fn single_moves_follow_the_same_chain_as_run() {
+        for proposal in [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed] {
+            for (seed, burn_in, steps) in [(1, 0, 101), (2, 7, 50), (3, 1, 1), (4, 33, 333)] {
+                let m = random_matrix(seed + 40, 6, 8);
+                let config = |burn_in, steps| SamplerConfig { burn_in, steps, proposal, ..SamplerConfig::default() };
+                let mut whole = MetropolisSampler::<f64, 8, 6, 16>::new(config(burn_in, steps), seed);
+                whole.run(&m);
+                let mut single = MetropolisSampler::<f64, 8, 6, 16>::new(config(0, 1), seed);
+                single.run_with_moves(&m, 0); // tables, start and neighbours; no move
+                for _ in 0..burn_in + steps {
+                    single.metropolis_move(&m);
+                }
+                assert_eq!(whole.steps_taken(), single.steps_taken());
+                assert_eq!(whole.accepted(), single.accepted(), "{proposal:?}, seed {seed}");
+                assert_eq!(whole.chain.assignment, single.chain.assignment, "{proposal:?}, seed {seed}");
+                assert_eq!(whole.chain.hash, single.chain.hash);
+            }
+        }
+    }
+
     #[test]
     fn a_chain_without_steps_offers_the_best_child_and_its_neighbours() {
         struct Sink(Vec<(f64, Vec<u16>)>);
