@@ -537,7 +537,7 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         let moved = match self.config.proposal {
             Proposal::Paper => self.step::<PAPER>(matrix, &mut rng),
             Proposal::MoveOrSwap => self.step::<UNIFORM>(matrix, &mut rng),
-            Proposal::Informed if self.chain.moves % 2 == 0 => self.step::<INFORMED>(matrix, &mut rng),
+            Proposal::Informed if self.chain.moves.is_multiple_of(2) => self.step::<INFORMED>(matrix, &mut rng),
             Proposal::Informed => self.step::<UNIFORM>(matrix, &mut rng),
         };
         self.chain.moves += 1;
