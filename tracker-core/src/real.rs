@@ -21,6 +21,8 @@ pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Displ
     const INFINITY: Self;
     /// Negative infinity: the log-weight of an impossible event.
     const NEG_INFINITY: Self;
+    /// Not a number: fails every comparison.
+    const NAN: Self;
     /// Converts from `f64`, rounding to nearest.
     fn of_f64(value: f64) -> Self;
     /// Converts to `f64` exactly.
@@ -50,6 +52,7 @@ macro_rules! impl_real {
             const ONE: Self = 1.0;
             const INFINITY: Self = <$t>::INFINITY;
             const NEG_INFINITY: Self = <$t>::NEG_INFINITY;
+            const NAN: Self = <$t>::NAN;
             #[inline]
             fn of_f64(value: f64) -> Self {
                 value as $t

@@ -22,6 +22,13 @@ const PAPER: u8 = 0;
 const UNIFORM: u8 = 1;
 const INFORMED: u8 = 2;
 
+/// Whether a step returns as soon as a swap turns out infeasible (the other measurement cannot take the
+/// row's old column), rather than computing the ratio, which is then NaN and rejected: the same decision
+/// either way. An in-order core (Cortex-M, RISC-V microcontrollers) pays little for the branch and saves the
+/// ratio; a speculative out-of-order core mispredicts it about as often as the draw makes a swap infeasible
+/// on a gated matrix, which costs more than the ratio (docs/performance.md, "Impossible weights as NaN").
+const EARLY_REJECT: bool = !cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
+
 /// The first `count` of a row's possible columns.
 #[inline]
 fn possible<const N: usize>(columns: &[u16; N], count: u16) -> &[u16] {
@@ -325,9 +332,15 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             let weights = &mut self.weights[row];
             for column in 0..columns {
                 let entry = matrix.entry(row, column);
-                let weight = if entry > T::NEG_INFINITY { exp(entry - top) } else { T::zero() };
-                weights[column] = weight;
-                total += weight;
+                weights[column] = if entry > T::NEG_INFINITY {
+                    let weight = exp(entry - top);
+                    total += weight;
+                    weight
+                } else {
+                    // Impossible: NaN, so that any ratio with this weight is NaN and fails the acceptance
+                    // test (a step needs no branch of its own for it; see `EARLY_REJECT`).
+                    T::NAN
+                };
             }
             self.clutter_weight[row] = clutter;
             self.inverse_row_total[row] = T::one() / total;
@@ -608,6 +621,16 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     // ratio's products stay in registers; splitting it measurably costs instructions.
     #[inline(always)]
     fn step<const KIND: u8>(&mut self, matrix: &AssociationMatrix<T, N, Z>, rng: &mut Xoshiro256PlusPlus) -> bool {
+        self.step_with::<KIND, EARLY_REJECT>(matrix, rng)
+    }
+
+    /// [`MetropolisSampler::step`], returning early on an infeasible swap if `EARLY` ([`EARLY_REJECT`]).
+    #[inline(always)]
+    fn step_with<const KIND: u8, const EARLY: bool>(
+        &mut self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        rng: &mut Xoshiro256PlusPlus,
+    ) -> bool {
         // The row is clamped below and the column checked by `below`: no need for the clamped sizes.
         let (rows, columns) = matrix.shape();
         let draw = rng.next_u64();
@@ -646,8 +669,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             None => (self.clutter_weight[row], None),
             Some(column) => {
                 let weight = self.weights[row][column];
-                // Impossible: only paper 003's uniform column can be (the others draw possible columns).
-                if KIND == PAPER && weight == T::zero() && matrix.entry(row, column) == T::NEG_INFINITY {
+                // NaN if impossible: only paper 003's uniform column can be (the others draw possible
+                // columns). Most of its draws are, so an early return is well predicted there.
+                if KIND == PAPER && !weight.is_finite_value() {
                     return false;
                 }
                 (weight, below::<Z>(chain.owner[column]))
@@ -665,11 +689,9 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     // The other measurement goes to clutter.
                     (new_weight * self.clutter_weight[other_row], old_weight * self.weight(other_row, new), CLUTTER)
                 } else {
+                    // NaN if the other measurement cannot take `old`: the swap is then rejected below.
                     let other_new_weight = self.weight(other_row, old);
-                    if other_new_weight == T::zero()
-                        && old != CLUTTER
-                        && matrix.entry(other_row, old as usize) == T::NEG_INFINITY
-                    {
+                    if EARLY && !other_new_weight.is_finite_value() {
                         return false;
                     }
                     let other_old_weight = self.weight(other_row, new);
@@ -1017,6 +1039,79 @@ mod tests {
                     sampler.metropolis_move(&m);
                     check_chain(&sampler, &m);
                 }
+            }
+        }
+    }
+
+    /// Entries hundreds of nats apart make linear weights underflow to 0 and ratios to 0 / 0: impossible
+    /// moves (NaN weights) must still never be accepted, and the state must stay consistent.
+    #[test]
+    fn underflowing_weights_never_let_an_impossible_move_through() {
+        for proposal in [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed] {
+            for seed in 0..20 {
+                let mut s = crate::random::test_stream(seed + 500);
+                let mut m = AssociationMatrix::<f64, 8, 6>::new(5, 6, -3.0);
+                for c in 0..6 {
+                    let entries: Vec<f64> = (0..5)
+                        .map(|_| {
+                            let u = (s.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+                            if u < 0.3 { f64::NEG_INFINITY } else { 2_000.0 * u - 1_300.0 }
+                        })
+                        .collect();
+                    m.set_column(c, &entries, false);
+                }
+                m.set_required((seed % 6) as usize, seed % 3 == 0);
+                let config = SamplerConfig { proposal, ..SamplerConfig::default() };
+                let mut sampler = MetropolisSampler::<f64, 8, 6, 16>::new(config, seed);
+                sampler.build_tables(&m);
+                sampler.start_greedy(&m);
+                check_chain(&sampler, &m);
+                for _ in 0..5_000 {
+                    sampler.metropolis_move(&m);
+                    check_chain(&sampler, &m);
+                }
+            }
+        }
+    }
+
+    /// Returning early on an infeasible swap (in-order targets) and rejecting its NaN ratio (speculative
+    /// ones) make the same decisions: the two chains stay identical, move for move.
+    #[test]
+    fn early_and_late_rejection_follow_the_same_chain() {
+        for proposal in [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed] {
+            for seed in 0..20 {
+                let mut m = random_matrix(seed + 700, 6, 8);
+                m.set_required((seed % 8) as usize, seed % 3 == 0);
+                let config = SamplerConfig { proposal, ..SamplerConfig::default() };
+                let mut early = MetropolisSampler::<f64, 8, 6, 16>::new(config, seed);
+                early.build_tables(&m);
+                early.start_greedy(&m);
+                let mut late = early.clone();
+                let (mut early_rng, mut late_rng) = (early.rng.take().unwrap(), late.rng.take().unwrap());
+                let mut moved = 0;
+                for i in 0..4_000 {
+                    let (a, b) = match (proposal, i % 2) {
+                        (Proposal::Paper, _) => (
+                            early.step_with::<PAPER, true>(&m, &mut early_rng),
+                            late.step_with::<PAPER, false>(&m, &mut late_rng),
+                        ),
+                        (Proposal::Informed, 0) => (
+                            early.step_with::<INFORMED, true>(&m, &mut early_rng),
+                            late.step_with::<INFORMED, false>(&m, &mut late_rng),
+                        ),
+                        _ => (
+                            early.step_with::<UNIFORM, true>(&m, &mut early_rng),
+                            late.step_with::<UNIFORM, false>(&m, &mut late_rng),
+                        ),
+                    };
+                    assert_eq!(a, b, "{proposal:?}, seed {seed}, move {i}");
+                    moved += usize::from(a);
+                }
+                assert!(moved > 0);
+                assert_eq!(early.chain.assignment, late.chain.assignment);
+                assert_eq!(early.chain.hash, late.chain.hash);
+                assert_eq!(early.chain.score.to_bits(), late.chain.score.to_bits());
+                check_chain(&late, &m);
             }
         }
     }
