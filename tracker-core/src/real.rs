@@ -21,7 +21,7 @@ pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Displ
     const INFINITY: Self;
     /// Negative infinity: the log-weight of an impossible event.
     const NEG_INFINITY: Self;
-    /// Not a number: fails every comparison.
+    /// Not a number: every comparison with it is false but `!=`.
     const NAN: Self;
     /// Converts from `f64`, rounding to nearest.
     fn of_f64(value: f64) -> Self;

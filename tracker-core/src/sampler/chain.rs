@@ -1015,6 +1015,15 @@ mod tests {
         assert_eq!(chain.hash, association_hash(&chain.assignment[..rows]));
     }
 
+    /// `moves` Metropolis moves, the chain's state checked after each.
+    fn checked_moves(sampler: &mut MetropolisSampler<f64, 8, 6, 16>, m: &AssociationMatrix<f64, 8, 6>, moves: usize) {
+        check_chain(sampler, m);
+        for _ in 0..moves {
+            sampler.metropolis_move(m);
+            check_chain(sampler, m);
+        }
+    }
+
     #[test]
     fn chain_state_stays_consistent_under_both_proposals() {
         for proposal in [Proposal::Paper, Proposal::MoveOrSwap, Proposal::Informed] {
@@ -1034,11 +1043,7 @@ mod tests {
                     check_chain(&sampler, &m);
                     sampler.climb(&m);
                 }
-                check_chain(&sampler, &m);
-                for _ in 0..2_000 {
-                    sampler.metropolis_move(&m);
-                    check_chain(&sampler, &m);
-                }
+                checked_moves(&mut sampler, &m, 2_000);
             }
         }
     }
@@ -1065,11 +1070,7 @@ mod tests {
                 let mut sampler = MetropolisSampler::<f64, 8, 6, 16>::new(config, seed);
                 sampler.build_tables(&m);
                 sampler.start_greedy(&m);
-                check_chain(&sampler, &m);
-                for _ in 0..5_000 {
-                    sampler.metropolis_move(&m);
-                    check_chain(&sampler, &m);
-                }
+                checked_moves(&mut sampler, &m, 5_000);
             }
         }
     }
