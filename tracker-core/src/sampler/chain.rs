@@ -7,7 +7,7 @@ use super::{Proposal, REQUIRED_PENALTY, SamplerConfig};
 use crate::association::{AssociationMatrix, CLUTTER};
 use crate::children::{ChildGenerator, ChildSink, GenerateError};
 use crate::index::{At, NONE, below};
-use crate::optimal::best_association;
+use crate::optimal::{best_association, best_association_sparse};
 use crate::real::{Real, exp};
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -413,7 +413,18 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// Optimal start: the association that maximises the chain's target ([`best_association`]). Returns
     /// `false` when that search fails (a NaN entry), leaving the state to [`MetropolisSampler::start_greedy`].
     fn start_optimal(&mut self, matrix: &AssociationMatrix<T, N, Z>) -> bool {
-        if !best_association(matrix, Self::penalty(), &mut self.chain.assignment) {
+        // On a gated matrix (at most half the entries possible), the search over the row tables' possible
+        // columns; on a dense one, the plain search. Both give the same association.
+        let (rows, columns) = matrix.shape();
+        let (row_columns, row_count) = (&self.row_columns, &self.row_count);
+        let entries: usize = row_count.iter().take(rows).map(|&count| usize::from(count)).sum();
+        let found = if 2 * entries <= rows * columns {
+            let possible_of = |row: usize| possible(row_columns.at(row), *row_count.at(row)).iter().copied();
+            best_association_sparse(matrix, Self::penalty(), &mut self.chain.assignment, possible_of)
+        } else {
+            best_association(matrix, Self::penalty(), &mut self.chain.assignment)
+        };
+        if !found {
             return false;
         }
         let chain = &mut self.chain;
@@ -768,9 +779,23 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         other: Option<usize>,
         other_takes: u16,
     ) {
-        let required = |column: u16| matrix.is_required(usize::from(column));
         let Some(&old) = self.chain.assignment.get(row) else { return };
-        let mut delta = Self::entry(matrix, row, new) - Self::entry(matrix, row, old);
+        let moved = self.moved_score(matrix, row, old, new, other, other_takes);
+        self.apply_moved(row, new, other, other_takes, moved);
+    }
+
+    /// [`MetropolisSampler::apply`] given the score and count of unassigned required columns that
+    /// [`MetropolisSampler::moved_score`] computed for the move.
+    #[inline(always)]
+    fn apply_moved(
+        &mut self,
+        row: usize,
+        new: u16,
+        other: Option<usize>,
+        other_takes: u16,
+        (score, unassigned_required): (T, usize),
+    ) {
+        let Some(&old) = self.chain.assignment.get(row) else { return };
         let mut hash = self.chain.hash ^ self.zobrist(row, old) ^ self.zobrist(row, new);
         if let Some(other_row) = other {
             hash ^= self.zobrist(other_row, new) ^ self.zobrist(other_row, other_takes);
@@ -785,26 +810,48 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             chain.owner[new] = row as u16;
         }
         if let Some(other_row) = other {
-            delta += Self::entry(matrix, other_row, other_takes) - Self::entry(matrix, other_row, new);
             chain.assignment[other_row] = other_takes;
             if let Some(column) = below::<N>(other_takes) {
                 chain.owner[column] = other_row as u16;
             }
         }
+        (chain.score, chain.unassigned_required) = (score, unassigned_required);
+    }
+
+    /// The chain's score and count of unassigned required columns after the move of
+    /// [`MetropolisSampler::apply`] (`row` from `old` to `new`, `other` to `other_takes`), from the log-score
+    /// by sums of entries; the state is not changed.
+    #[inline(always)]
+    fn moved_score(
+        &self,
+        matrix: &AssociationMatrix<T, N, Z>,
+        row: usize,
+        old: u16,
+        new: u16,
+        other: Option<usize>,
+        other_takes: u16,
+    ) -> (T, usize) {
+        let required = |column: u16| matrix.is_required(usize::from(column));
+        let mut delta = Self::entry(matrix, row, new) - Self::entry(matrix, row, old);
+        if let Some(other_row) = other {
+            delta += Self::entry(matrix, other_row, other_takes) - Self::entry(matrix, other_row, new);
+        }
         // Required columns: a single move frees `old` and takes `new`; paper 003's conflict move frees
         // `old`; a swap keeps the set of assigned columns.
-        let before = chain.unassigned_required;
-        if other.is_none() {
-            chain.unassigned_required = before + usize::from(required(old)) - usize::from(required(new));
+        let before = self.chain.unassigned_required;
+        let after = if other.is_none() {
+            before + usize::from(required(old)) - usize::from(required(new))
         } else if other_takes == CLUTTER && required(old) {
-            chain.unassigned_required += 1;
-        }
-        if chain.unassigned_required == before {
+            before + 1
+        } else {
+            before
+        };
+        if after == before {
             // delta − penalty × 0 is delta: the same bits without two integer-to-float conversions.
-            chain.score += delta;
+            (self.chain.score + delta, after)
         } else {
             let penalty = Self::penalty();
-            chain.score += delta - penalty * (T::of_f64(chain.unassigned_required as f64) - T::of_f64(before as f64));
+            (self.chain.score + (delta - penalty * (T::of_f64(after as f64) - T::of_f64(before as f64))), after)
         }
     }
 
@@ -876,11 +923,17 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     continue;
                 }
                 let (takes, gives_back) = if other.is_none() { (NONE, NONE) } else { (old, new) };
-                self.apply(matrix, row, new, other, takes);
+                // Most neighbours fall below the kept children: skip those without moving (`record`'s own
+                // test, on the score `apply` would give).
+                let moved = self.moved_score(matrix, row, old, new, other, takes);
+                if moved.1 != 0 || !(matrix.baseline() + moved.0 > self.best.threshold()) {
+                    continue;
+                }
+                self.apply_moved(row, new, other, takes, moved);
                 self.record(matrix);
-                // The reverse move restores the assignment and owners exactly; the saved values restore
+                // The reverse move restores the assignment, owners and hash exactly, and the saved values
                 // the running score's bits.
-                self.apply(matrix, row, old, other, gives_back);
+                self.apply_moved(row, old, other, gives_back, (saved.0, saved.2));
                 (self.chain.score, self.chain.hash, self.chain.unassigned_required) = saved;
             }
         }
