@@ -108,9 +108,11 @@ struct Search<T, const N: usize, const Z: usize> {
     predecessor: [usize; N],
     slack: [T; N],
     visited: [bool; N],
-    /// The sparse search's reached columns (finite slack), in the order reached.
+    /// The sparse search's reached columns (finite slack), in the order reached, and the least slack of
+    /// the unvisited ones with its column.
     reached: [u16; N],
     reached_count: usize,
+    least: Option<(T, usize)>,
 }
 
 /// Where a search ended: a free column, or clutter (`None`), with clutter's predecessor.
@@ -127,12 +129,60 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
             visited: [false; N],
             reached: [0; N],
             reached_count: 0,
+            least: None,
         }
     }
 
-    /// Adds `row` by a Dijkstra search over every column (∞ cost where impossible); returns `false` if the
-    /// search met no finite reduced cost.
-    // One function: the search's potentials, labels and scan state stay in registers in its inner loops.
+    /// Adds `row` by a Dijkstra search over reduced costs that ends at the first free column or at clutter,
+    /// then augments; returns `false` if the search met no finite reduced cost. The two searches differ only
+    /// in which columns they look at: `visit(search, tree_row, base, current)` lowers the slacks of the
+    /// columns `tree_row` (of potential `base`) can take, reached through `current`, and returns the least
+    /// slack of the unvisited columns with its column (the lowest of equal ones), if any;
+    /// `fall(search, delta, next)` moves the potentials of the visited columns and the slacks of the others
+    /// by `delta` once the search has chosen `next`.
+    #[inline(always)]
+    fn add_row(
+        &mut self,
+        row: usize,
+        columns: usize,
+        mut visit: impl FnMut(&mut Self, usize, T, usize) -> Option<(T, usize)>,
+        mut fall: impl FnMut(&mut Self, T, Option<usize>),
+    ) -> bool {
+        let (mut clutter_slack, mut clutter_predecessor) = (T::INFINITY, ROOT);
+        let mut current = ROOT;
+        for _ in 0..=columns {
+            let tree_row = if current == ROOT { row } else { *self.holder.at(current) };
+            let base = *self.row_potential.at(tree_row);
+            if -base < clutter_slack {
+                clutter_slack = -base;
+                clutter_predecessor = current;
+            }
+            // Ties go to clutter, which ends the search soonest.
+            let (delta, next) = match visit(self, tree_row, base, current) {
+                Some((least, column)) if least < clutter_slack => (least, Some(column)),
+                _ => (clutter_slack, None),
+            };
+            if !(delta < T::INFINITY) {
+                return false;
+            }
+            *self.row_potential.at_mut(row) += delta;
+            fall(self, delta, next);
+            clutter_slack -= delta;
+            match next {
+                Some(column) if *self.holder.at(column) != NONE => {
+                    *self.visited.at_mut(column) = true;
+                    current = column;
+                }
+                end => {
+                    self.augment(row, columns, (end, clutter_predecessor));
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    /// [`Search::add_row`] scanning every column at every visit (∞ cost where impossible).
     fn add_row_dense(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
@@ -140,20 +190,11 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
         row: usize,
         columns: usize,
     ) -> bool {
-        let Self { row_potential, column_potential, holder, predecessor, slack, visited, .. } = self;
-        slack[..columns].fill(T::INFINITY);
-        visited[..columns].fill(false);
-        let (mut clutter_slack, mut clutter_predecessor) = (T::INFINITY, ROOT);
-        let mut current = ROOT;
-        for _ in 0..=columns {
-            let tree_row = if current == ROOT { row } else { *holder.at(current) };
-            let base = *row_potential.at(tree_row);
-            if -base < clutter_slack {
-                clutter_slack = -base;
-                clutter_predecessor = current;
-            }
-            // Ties go to clutter, which ends the search soonest.
-            let (mut delta, mut next) = (clutter_slack, None);
+        self.slack[..columns].fill(T::INFINITY);
+        self.visited[..columns].fill(false);
+        let visit = |search: &mut Self, tree_row: usize, base: T, current: usize| {
+            let Self { column_potential, predecessor, slack, visited, .. } = search;
+            let (mut least, mut at) = (T::INFINITY, None);
             for column in 0..columns {
                 if visited[column] {
                     continue;
@@ -166,15 +207,15 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
                     slack[column] = reduced;
                     predecessor[column] = current;
                 }
-                if slack[column] < delta {
-                    delta = slack[column];
-                    next = Some(column);
+                if slack[column] < least {
+                    least = slack[column];
+                    at = Some(column);
                 }
             }
-            if !(delta < T::INFINITY) {
-                return false;
-            }
-            *row_potential.at_mut(row) += delta;
+            at.map(|column| (least, column))
+        };
+        let fall = |search: &mut Self, delta: T, _: Option<usize>| {
+            let Self { row_potential, column_potential, holder, slack, visited, .. } = search;
             for column in 0..columns {
                 if visited[column] {
                     *row_potential.at_mut(holder[column]) += delta;
@@ -183,23 +224,12 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
                     slack[column] -= delta;
                 }
             }
-            clutter_slack -= delta;
-            match next {
-                Some(column) if holder[column] != NONE => {
-                    visited[column] = true;
-                    current = column;
-                }
-                end => {
-                    self.augment(row, columns, (end, clutter_predecessor));
-                    return true;
-                }
-            }
-        }
-        false
+        };
+        self.add_row(row, columns, visit, fall)
     }
 
-    /// Adds `row` by a search over the reached columns only (those a reached row can take; the others'
-    /// slack is ∞ and stays ∞), as [`Search::add_row_dense`] decides, bit for bit.
+    /// [`Search::add_row`] over the reached columns only (those a reached row can take; the others' slack is
+    /// ∞ and stays ∞), deciding as [`Search::add_row_dense`] does, bit for bit.
     fn add_row_sparse<I: Iterator<Item = u16>>(
         &mut self,
         matrix: &AssociationMatrix<T, N, Z>,
@@ -208,31 +238,22 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
         columns: usize,
         possible: &impl Fn(usize) -> I,
     ) -> bool {
-        let Self { row_potential, column_potential, holder, predecessor, slack, visited, reached, reached_count } =
-            self;
-        for &column in &reached[..(*reached_count).min(N)] {
+        for &column in &self.reached[..self.reached_count.min(N)] {
             if let Some(column) = below::<N>(column) {
-                slack[column] = T::INFINITY;
-                visited[column] = false;
+                self.slack[column] = T::INFINITY;
+                self.visited[column] = false;
             }
         }
-        *reached_count = 0;
-        let (mut clutter_slack, mut clutter_predecessor) = (T::INFINITY, ROOT);
-        let mut current = ROOT;
+        self.reached_count = 0;
+        self.least = None;
         // The least slack of the unvisited reached columns and its column, the lowest of equal ones (the
         // dense search's first in column order), kept up to date as slacks fall.
-        let mut least: Option<(T, usize)> = None;
         let lower = |least: Option<(T, usize)>, value: T, index: usize| match least {
             Some((best, at)) if !(value < best || (value == best && index < at)) => least,
             _ => Some((value, index)),
         };
-        for _ in 0..=columns {
-            let tree_row = if current == ROOT { row } else { *holder.at(current) };
-            let base = *row_potential.at(tree_row);
-            if -base < clutter_slack {
-                clutter_slack = -base;
-                clutter_predecessor = current;
-            }
+        let visit = |search: &mut Self, tree_row: usize, base: T, current: usize| {
+            let Self { column_potential, predecessor, slack, visited, reached, reached_count, least, .. } = search;
             for column in possible(tree_row) {
                 let Some(index) = below::<N>(column) else { continue };
                 if visited[index] {
@@ -246,20 +267,16 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
                     }
                     slack[index] = reduced;
                     predecessor[index] = current;
-                    least = lower(least, reduced, index);
+                    *least = lower(*least, reduced, index);
                 }
             }
-            // Ties go to clutter, which ends the search soonest.
-            let (delta, next) = match least {
-                Some((value, index)) if value < clutter_slack => (value, Some(index)),
-                _ => (clutter_slack, None),
-            };
-            if !(delta < T::INFINITY) {
-                return false;
-            }
-            *row_potential.at_mut(row) += delta;
-            // Every unvisited slack falls by delta; the least of them, but for `next`, leads the next visit.
-            least = None;
+            *least
+        };
+        // Every unvisited slack falls by delta; the least of them, but for `next`, leads the next visit.
+        let fall = |search: &mut Self, delta: T, next: Option<usize>| {
+            let Self { row_potential, column_potential, holder, slack, visited, reached, reached_count, least, .. } =
+                search;
+            *least = None;
             for &column in &reached[..(*reached_count).min(N)] {
                 let Some(index) = below::<N>(column) else { continue };
                 if visited[index] {
@@ -268,23 +285,12 @@ impl<T: Real, const N: usize, const Z: usize> Search<T, N, Z> {
                 } else {
                     slack[index] -= delta;
                     if Some(index) != next {
-                        least = lower(least, slack[index], index);
+                        *least = lower(*least, slack[index], index);
                     }
                 }
             }
-            clutter_slack -= delta;
-            match next {
-                Some(column) if holder[column] != NONE => {
-                    visited[column] = true;
-                    current = column;
-                }
-                end => {
-                    self.augment(row, columns, (end, clutter_predecessor));
-                    return true;
-                }
-            }
-        }
-        false
+        };
+        self.add_row(row, columns, visit, fall)
     }
 
     /// Augments along the search's path: each column on it passes to the row that reached it; the row at
