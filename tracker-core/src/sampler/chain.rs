@@ -923,8 +923,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
                     continue;
                 }
                 let (takes, gives_back) = if other.is_none() { (NONE, NONE) } else { (old, new) };
-                // Most neighbours fall below the kept children: skip those without moving (`record`'s own
-                // test, on the score `apply` would give).
+                // A neighbour that cannot enter the kept children is skipped without being made (`record`'s
+                // own test, on the score `apply` would give).
                 let moved = self.moved_score(matrix, row, old, new, other, takes);
                 if moved.1 != 0 || !(matrix.baseline() + moved.0 > self.best.threshold()) {
                     continue;
