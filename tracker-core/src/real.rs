@@ -29,6 +29,8 @@ pub trait Real: RealField + Copy + Default + core::fmt::Debug + core::fmt::Displ
     fn as_f64(self) -> f64;
     /// `true` unless the value is NaN or infinite.
     fn is_finite_value(self) -> bool;
+    /// NaN if `poison`, else the value itself bit for bit; bitwise, without a branch or a select.
+    fn nan_if(self, poison: bool) -> Self;
     /// Natural logarithm (`libm::log` / `logf`).
     fn libm_ln(self) -> Self;
     /// Exponential (`libm::exp` / `expf`).
@@ -64,6 +66,11 @@ macro_rules! impl_real {
             #[inline]
             fn is_finite_value(self) -> bool {
                 <$t>::is_finite(self)
+            }
+            #[inline(always)]
+            fn nan_if(self, poison: bool) -> Self {
+                let mask = (<$t>::NAN.to_bits()).wrapping_mul(poison.into());
+                <$t>::from_bits(self.to_bits() | mask)
             }
             #[inline]
             fn libm_ln(self) -> Self {
@@ -375,6 +382,16 @@ impl<T: Real> LogSumExp<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn nan_if_poisons_or_keeps_every_bit() {
+        for value in [0.0f64, -0.0, 1.5e-310, -2.0, 7.25e300, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(value.nan_if(false).to_bits(), value.to_bits());
+            assert!(value.nan_if(true).is_nan());
+            assert_eq!((value as f32).nan_if(false).to_bits(), (value as f32).to_bits());
+            assert!((value as f32).nan_if(true).is_nan());
+        }
+    }
 
     #[test]
     fn log_sum_exp_matches_direct_sum() {
