@@ -773,7 +773,8 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
             } else {
                 ((u64::from(bits) * (count as u64 + 1)) >> 32) as usize
             };
-            if k >= count { CLUTTER } else { self.row_columns[row][k] }
+            // `at`: with the clamped count the compiler cannot see that k < N.
+            if k >= count { CLUTTER } else { *self.row_columns[row].at(k) }
         };
         Some(Draw { row, new, acceptance_bits })
     }
