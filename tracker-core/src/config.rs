@@ -3,7 +3,7 @@
 //! Every field is checked when a tracker is built ([`crate::Tracker::new`]); a bad value is a
 //! [`crate::ConfigError`], never a later surprise.
 
-use crate::ekf::Gaussian;
+use crate::gaussian::Gaussian;
 use crate::real::Real;
 use crate::sensor::Sensor;
 

@@ -50,6 +50,7 @@ pub mod config;
 pub mod digest;
 pub mod ekf;
 pub mod error;
+pub mod gaussian;
 pub mod hypothesis;
 mod index;
 pub mod model;
@@ -66,8 +67,9 @@ pub mod tracker;
 pub mod weight;
 
 pub use config::{BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
-pub use ekf::{Gaussian, NumericalError};
+pub use ekf::NumericalError;
 pub use error::{ConfigError, StepError};
+pub use gaussian::Gaussian;
 pub use model::{
     ConstantVelocity, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement, RadarRangeAzEl, ScanGeometry,
     SensorNetwork, TwoBody, TwoBodyJ2,

@@ -17,7 +17,8 @@
 //! `lifetime` seconds after its measurement; each scan its α is multiplied by the probability that it gave
 //! no birth in that scan. When the pool is full the cells with the smallest α give way.
 
-use crate::ekf::{self, Gaussian};
+use crate::ekf;
+use crate::gaussian::Gaussian;
 use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionModel};
 use crate::real::Real;
 use nalgebra::SVector;

@@ -26,7 +26,7 @@
 //! inclination) is [`BirthError::Degenerate`]: nothing is written and the caller keeps the measurement.
 
 use super::{EARTH_MU, EARTH_RADIUS};
-use crate::ekf::Gaussian;
+use crate::gaussian::Gaussian;
 use crate::real::{Real, atan2, c, cos, sin, sqrt};
 use nalgebra::{SMatrix, SVector};
 
