@@ -5,7 +5,7 @@
 
 use crate::gaussian::Gaussian;
 use crate::real::Real;
-use crate::sensor::Sensor;
+use crate::sensor::{Placement, Sensor};
 
 /// Whether a born object may go undetected in the scan it is born (docs/maths.md §5.2, [000] (34)–(43)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -352,8 +352,8 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     /// How the sensor measures an object.
     pub measurement: G,
     /// Detection, clutter and field of view. Not used (and not checked) when the measurement model's
-    /// sensors carry their own ([`MeasurementModel::detection`](crate::MeasurementModel::detection), e.g. a
-    /// [`SensorNetwork`](crate::SensorNetwork)).
+    /// sensors carry their own ([`Placement::detection`], e.g. a [`SensorNetwork`](crate::SensorNetwork));
+    /// [`Config::detection`] chooses.
     pub sensor: Sensor<T>,
     /// Births.
     pub birth: BirthModel<T, S, B>,
@@ -372,6 +372,17 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub numerical_failure: NumericalFailure,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
     pub seed: u64,
+}
+
+impl<T: Real, M, G, const S: usize, const B: usize> Config<T, M, G, S, B> {
+    /// The detection model of the sensor that `placed` (this configuration's measurement model placed at a
+    /// scan) stands for: its own when its sensors carry one, else [`Config::sensor`].
+    pub fn detection<const D: usize>(&self, placed: &G) -> Sensor<T>
+    where
+        G: Placement<T, D>,
+    {
+        placed.detection().unwrap_or(self.sensor)
+    }
 }
 
 #[cfg(all(test, feature = "serde"))]

@@ -31,7 +31,7 @@
 //! more per update.
 
 use crate::gaussian::Gaussian;
-use crate::model::{MeasurementModel, MotionModel};
+use crate::model::{Measure, MotionModel};
 use crate::real::{Real, c, ln};
 use nalgebra::{Cholesky, SMatrix, SVector};
 
@@ -220,7 +220,7 @@ pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
 /// assert!((l * l.transpose() - SMatrix::<f64, 2, 2>::identity() * 1.25).abs().max() < 1e-12);
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
-pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn innovation<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
 ) -> Result<Innovation<T, D>, NumericalError> {
@@ -245,7 +245,7 @@ pub struct Correction<T: Real, const S: usize, const D: usize> {
 /// # Errors
 /// [`NumericalError::NonFinite`] when they are not finite, [`NumericalError::NotPositiveDefinite`] when
 /// the posterior covariance does not factor.
-pub fn correction<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn correction<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
     innovation: &Innovation<T, D>,
@@ -307,7 +307,7 @@ impl<T: Real, const S: usize, const D: usize> Correction<T, S, D> {
 /// # Errors
 /// [`NumericalError::NonFinite`] when the result is not finite, [`NumericalError::NotPositiveDefinite`]
 /// when the posterior covariance does not factor.
-pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn update<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
     innovation: &Innovation<T, D>,

@@ -4,7 +4,7 @@
 //! which the tracker is exactly as it was before the call.
 
 use crate::ekf::NumericalError;
-use crate::model::PlacementError;
+use crate::sensor::PlacementError;
 use crate::store::TrackLabel;
 
 /// A configuration or prior that cannot be used.

@@ -71,12 +71,12 @@ pub use ekf::NumericalError;
 pub use error::{ConfigError, StepError};
 pub use gaussian::Gaussian;
 pub use model::{
-    ConstantVelocity, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement, RadarRangeAzEl, ScanGeometry,
-    SensorNetwork, TwoBody, TwoBodyJ2,
+    BirthGeometry, ConstantVelocity, Measure, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement,
+    RadarRangeAzEl, SensorNetwork, TwoBody, TwoBodyJ2,
 };
 pub use real::Real;
 pub use report::StepReport;
-pub use sensor::{Look, LookShape, Region, Sensor};
+pub use sensor::{Look, LookShape, Placement, Region, ScanGeometry, Sensor};
 pub use store::{Track, TrackLabel};
 pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, Tracker};
 

@@ -17,10 +17,11 @@
 //! refraction (docs/maths.md §6.8).
 
 use super::admissible::optical_births;
-use super::frames::wrap_angle;
 use super::radar::topocentric;
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
+use super::{AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure};
 use crate::real::Real;
+use crate::sensor::Placement;
+use crate::sensor::frames::wrap_angle;
 use nalgebra::{SMatrix, SVector};
 
 /// The "local" basis of [`topocentric`] for right ascension: (a, b, u) = (y, x, z), so that
@@ -48,7 +49,7 @@ fn basis<T: Real>() -> [[T; 3]; 3] {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OpticalRaDec<T> {
     /// The observer's inertial position and velocity (km, km/s) at the scan (a ground site:
-    /// [`crate::model::GroundSite::observer`]); set by the caller for every scan. Only the position enters
+    /// [`crate::sensor::GroundSite::observer`]); set by the caller for every scan. Only the position enters
     /// the measurement (the velocity would enter diurnal aberration, neglected).
     pub observer: [T; 6],
     /// Noise standard deviations: right ascension, declination (rad).
@@ -74,7 +75,7 @@ impl<T: Real> OpticalRaDec<T> {
     }
 }
 
-impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
+impl<T: Real> Measure<T, 6, 2> for OpticalRaDec<T> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, 2> {
         let (_, _, (_, ra, dec), _) = topocentric(&self.observer, &basis(), state);
         SVector::from([ra, dec])
@@ -101,7 +102,11 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
     fn residual(&self, z: &SVector<T, 2>, predicted: &SVector<T, 2>) -> SVector<T, 2> {
         OpticalRaDec::residual(self, z, predicted)
     }
+}
 
+impl<T: Real> Placement<T, 2> for OpticalRaDec<T> {}
+
+impl<T: Real> BirthGeometry<T, 6, 2> for OpticalRaDec<T> {
     /// Ranges from the line of sight against the region's shell, velocity over its cells
     /// (docs/maths.md §5.7).
     fn birth_components(
@@ -117,8 +122,9 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::EARTH_MU;
     use crate::model::radar::tests::{jacobian_error, site};
-    use crate::model::{EARTH_MU, GroundSite};
+    use crate::sensor::GroundSite;
     use core::f64::consts::PI;
 
     const ARCSEC: f64 = PI / (180.0 * 3600.0);
