@@ -109,9 +109,8 @@ const AZIMUTH_POINTS: usize = 64;
 /// Two radars; a scan of the second one, 100 s after the epoch.
 /// ```
 /// use tracker_core::model::{RadarRangeAzEl, SensorNetwork};
-/// use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
+/// use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
 /// use tracker_core::sensor::{LookShape, Region, Sensor};
-/// use tracker_core::MeasurementModel;
 /// let field_of_view = Region::Look {
 ///     shape: LookShape::Cone { azimuth: 0.0, elevation: 1.0, half_angle: 0.6 },
 ///     min_elevation: 0.2,

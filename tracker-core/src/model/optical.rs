@@ -37,7 +37,7 @@ fn basis<T: Real>() -> [[T; 3]; 3] {
 /// # Examples
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{MeasurementModel, OpticalRaDec};
+/// use tracker_core::model::{Measure, OpticalRaDec};
 /// let arcsec = 4.848_136_811e-6_f64;
 /// let telescope = OpticalRaDec { observer: [6378.0, 0.0, 0.0, 0.0, 0.465, 0.0], sigma: [arcsec, arcsec] };
 /// // A target 1000 km from the observer along the inertial y axis: RA 90°, Dec 0.

@@ -10,7 +10,7 @@ use nalgebra::{SMatrix, SVector};
 ///
 /// # Examples
 /// ```
-/// use tracker_core::model::{MeasurementModel, PositionMeasurement};
+/// use tracker_core::model::{Measure, PositionMeasurement};
 /// use nalgebra::{SMatrix, SVector};
 /// let sensor = PositionMeasurement::isotropic(0.5_f64);
 /// assert_eq!(sensor.measure(&SVector::from([1.0, 2.0, 3.0, 4.0])), SVector::from([1.0, 2.0]));

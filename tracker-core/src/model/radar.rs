@@ -56,7 +56,7 @@ pub(crate) fn topocentric<T: Real>(
 /// A target 1000 km due East of the site at 30° elevation.
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{MeasurementModel, RadarRangeAzEl};
+/// use tracker_core::model::{Measure, RadarRangeAzEl};
 /// use tracker_core::sensor::{EarthRotation, GroundSite};
 /// let site = GroundSite { latitude: 40.0_f64.to_radians(), longitude: -105.0_f64.to_radians(), height: 1.6 };
 /// let radar = RadarRangeAzEl::at_site(&site, &EarthRotation::new(0.3), 120.0, [0.01, 1e-3, 1e-3]);
