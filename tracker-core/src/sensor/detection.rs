@@ -15,26 +15,8 @@ use crate::real::Real;
 /// The sensor is checked when a tracker is built; an invalid one is [`ConfigError::Sensor`] with the
 /// reason:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use tracker_core::{Config, LinearTracker, Region, Sensor};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::ConfigError;
 /// let blind = Config { sensor: Sensor { detection_probability: 0.0, ..config.sensor }, ..config.clone() };
 /// match LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(blind, &[object], 0.0) {
