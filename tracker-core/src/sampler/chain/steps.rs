@@ -211,7 +211,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     // The hot loop of the tracker (hundreds of thousands of moves per worst-case scan): proposal, the
     // Metropolis–Hastings ratio of each proposal kind and acceptance are kept in one function so that the
     // ratio's products stay in registers; splitting it measurably costs instructions.
-
     #[inline(always)]
     pub(super) fn step<const KIND: u8>(
         &mut self,
@@ -395,7 +394,6 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
     /// `other_takes`. Updates owners, hash, required count and the log-score by sums of entries.
     // Inlined into the start's climb and the mode's neighbours (thousands of calls per chain on a dense
     // matrix); the step calls it out of line through `apply_accepted`, which keeps the hot loop small.
-
     #[inline(always)]
     pub(super) fn apply(
         &mut self,
