@@ -4,7 +4,7 @@
 //!
 //! After every scan, each measurement z gets r_U(z), the posterior probability that no object took it
 //! (the weight of the kept hypotheses that call it clutter). A measurement with r_U(z) at least
-//! `min_unexplained` becomes the cells of its birth density ([`MeasurementModel::birth_components`]: the
+//! `min_unexplained` becomes the cells of its birth density ([`BirthGeometry::birth_components`](crate::BirthGeometry::birth_components): the
 //! measurement's admissible region as a Gaussian mixture), with a birth probability
 //!
 //! ```text

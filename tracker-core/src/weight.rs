@@ -106,7 +106,7 @@ impl<T: Real> WeightModel<T> {
 
     /// The weight model of a scan whose sensor is `model` placed at the scan, with `detection` its p_D,
     /// clutter and field of view: λ_C is the clutter rate over the field of view's volume in the model's
-    /// measurement coordinates ([`MeasurementModel::clutter_volume`]).
+    /// measurement coordinates ([`Placement::clutter_volume`](crate::Placement::clutter_volume)).
     pub fn placed<M, G: MeasurementModel<T, S, D>, const S: usize, const D: usize, const B: usize>(
         config: &Config<T, M, G, S, B>,
         model: &G,

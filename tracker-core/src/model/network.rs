@@ -3,7 +3,7 @@
 //! (docs/maths.md §6.9).
 //!
 //! A scan names its sensor and, for a spacecraft, passes the observer's inertial state
-//! ([`ScanGeometry`]). [`SensorNetwork::place`](crate::MeasurementModel::place) turns that into the
+//! ([`ScanGeometry`]). [`SensorNetwork::place`](crate::Placement::place) turns that into the
 //! measurement model of the scan: the observer's inertial position and velocity, and the sensor's frame
 //! (East, North, Up of a ground site at the scan's Earth rotation angle; the inertial axes, arranged so that
 //! azimuth is right ascension and elevation declination, for a spacecraft). A ground site's Earth rotation

@@ -4,13 +4,13 @@
 //! With d = r − r_s the line of sight from the observer (inertial position r_s): right ascension
 //! α = atan2(d_y, d_x) ∈ (−π, π], declination δ = atan2(d_z, √(d_x² + d_y²)), in the inertial frame of the
 //! state (TEME for SGP4 truth: the RA/Dec of a catalogue in GCRF differ by precession and nutation,
-//! `frames.rs`). The Jacobian (2×6) is analytic and zero in the velocity.
+//! `sensor::frames`). The Jacobian (2×6) is analytic and zero in the velocity.
 //!
 //! **Celestial pole.** At d_x = d_y = 0 exactly α is undefined: it is returned as 0 with a zero Jacobian
 //! row, and δ's row (a cone point) is zero in its equatorial part. Off the pole α's row grows as 1 / (ρ cos δ).
 //!
 //! **Residual.** α of z − ẑ is wrapped into (−π, π] ([`OpticalRaDec::residual`], the model's
-//! `MeasurementModel::residual`); every innovation, gate and score of the tracker goes through it.
+//! `Measure::residual`); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (0.12 s at GEO range, ≈ 0.37 km of motion, ≈ 2″ seen from the ground),
 //! annual and diurnal aberration (≲ 20.5″ and 0.3″: the catalogue reduction is the caller's), atmospheric

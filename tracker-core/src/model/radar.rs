@@ -13,7 +13,7 @@
 //! (the radar's keyhole) needs its azimuth σ inflated or the azimuth dropped, which is the caller's choice.
 //!
 //! **Residual.** The azimuth of z − ẑ is wrapped into (−π, π] ([`RadarRangeAzEl::residual`], the
-//! model's [`MeasurementModel::residual`]); every innovation, gate and score of the tracker goes through it.
+//! model's [`Measure::residual`](super::Measure::residual)); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (ρ / c: 3.3 ms at 1000 km, ≈ 25 m along track in LEO), atmospheric
 //! refraction and the Earth-model terms of [`GroundSite`] (docs/maths.md §6.8).

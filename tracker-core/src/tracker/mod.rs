@@ -448,7 +448,7 @@ where
     }
 
     /// As [`Tracker::step`] for a scan of the sensor `geometry` names, at `geometry.time`, seen from its
-    /// observer: the measurement model is placed at the scan ([`MeasurementModel::place`]) before anything
+    /// observer: the measurement model is placed at the scan ([`Placement::place`](crate::Placement::place)) before anything
     /// else, and every innovation, field-of-view test and weight of the scan uses it.
     ///
     /// # Errors

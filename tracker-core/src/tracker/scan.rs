@@ -76,7 +76,7 @@ pub struct PlacedScan<T: Real, G> {
 }
 
 /// Checks a scan and places its sensor: the checks of [`check_scan`] with the time step against the motion
-/// model's bound and the geometry against the measurement model ([`MeasurementModel::place`]), in that
+/// model's bound and the geometry against the measurement model ([`Placement::place`](crate::Placement::place)), in that
 /// order, the field of view read through the placed model. The tracker and the host's unbounded reference
 /// both start a scan here.
 ///
