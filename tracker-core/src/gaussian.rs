@@ -26,7 +26,7 @@ use nalgebra::{SMatrix, SVector};
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
 ///
-/// [`update`] with P = I and R = 0.25 I: the position gain is 1 / 1.25 = 0.8.
+/// [`ekf::update`](crate::ekf::update) with P = I and R = 0.25 I: the position gain is 1 / 1.25 = 0.8.
 /// ```
 /// use nalgebra::{SMatrix, SVector};
 /// use tracker_core::{Gaussian, PositionMeasurement, ekf};
