@@ -13,13 +13,12 @@ use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::SplitMix64;
 use tracker_core::association::AssociationMatrix;
 use tracker_core::config::{ChildGeneration, Selection};
-use tracker_core::model::{
-    EARTH_MU as MU, EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor,
-};
+use tracker_core::model::{EARTH_MU as MU, ProcessNoise};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
+use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthModel, Config, Gaussian, MeasurementModel, MotionModel, PositionMeasurement, PriorHypothesis,
+    BirthDetection, BirthModel, Config, Gaussian, Measure, MotionModel, PositionMeasurement, PriorHypothesis,
     PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, StepError, StepReport, StoreOverflow,
     TrackLabel, Tracker, TwoBody, TwoBodyJ2, ssa_caps,
 };

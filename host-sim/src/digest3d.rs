@@ -21,7 +21,8 @@ use nalgebra::{SMatrix, SVector};
 use std::collections::HashSet;
 use std::fmt::Write as _;
 use tracker_core::digest::Fnv1a;
-use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SensorNetwork, SiteSensor};
+use tracker_core::model::{ProcessNoise, SensorNetwork};
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, ChildGeneration, Config, Gaussian, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real,
     Sensor, TrackLabel, TwoBodyJ2, ssa_caps,

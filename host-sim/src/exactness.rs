@@ -11,7 +11,7 @@
 use crate::reference::{ReferenceError, ReferenceTracker};
 use crate::snapshot::match_keys;
 use nalgebra::SVector;
-use tracker_core::model::ScanGeometry;
+use tracker_core::sensor::ScanGeometry;
 use tracker_core::{
     Config, Gaussian, MeasurementModel, MotionModel, PriorHypothesis, PriorObject, StepError, TrackLabel, Tracker,
 };

@@ -22,10 +22,8 @@ use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
-use tracker_core::model::{
-    EarthRotation, GroundSite, OpticalRaDec, Placeable, Platform, RadarRangeAzEl, RadarRangeRate, ScanGeometry,
-    SensorNetwork, SiteSensor,
-};
+use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, RadarRangeRate, SensorNetwork};
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, ChildGeneration, Config, Gaussian, Look, PriorHypothesis, PriorObject, Region, Sensor, StepError,
     TrackLabel, Tracker, TwoBodyJ2, ssa_caps,
@@ -518,7 +516,7 @@ fn sees_in<X: Placeable<f64, D>, const D: usize>(
     time: f64,
     z: &[f64],
 ) -> bool {
-    use tracker_core::MeasurementModel;
+    use tracker_core::Placement;
     if z.len() != D {
         return false;
     }
@@ -580,7 +578,7 @@ fn fov_outline(shape: &ShapeSpec, mask_deg: f64) -> Vec<(f64, f64)> {
                 (0..=steps).map(move |i| {
                     let f = i as f64 / steps as f64;
                     let f = if forward { f } else { 1.0 - f };
-                    (tracker_core::model::wrap_angle(a0 - w + 2.0 * w * f), el)
+                    (tracker_core::sensor::wrap_angle(a0 - w + 2.0 * w * f), el)
                 })
             };
             if w >= std::f64::consts::PI {
@@ -940,7 +938,7 @@ mod tests {
 
     #[test]
     fn look_angles_match_the_core_radar_model() {
-        use tracker_core::MeasurementModel;
+        use tracker_core::{Measure, Placement};
         let scenario = tiny();
         let geometry = SiteGeometry::new(&scenario);
         let network = network::<RadarRangeAzEl<f64>, 3>(&scenario).expect("network");

@@ -470,7 +470,7 @@ impl Scenario3d {
 
     /// The Earth rotation angle at the epoch: GMST (IAU-82) of the epoch's Julian date.
     pub fn earth_rotation_at_epoch(&self) -> f64 {
-        tracker_core::model::gmst_iau82(self.epoch_jd())
+        tracker_core::sensor::gmst_iau82(self.epoch_jd())
     }
 
     /// The core's motion model.

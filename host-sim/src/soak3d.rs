@@ -26,7 +26,8 @@ use crate::soak::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, pro
 use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;
-use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, ScanGeometry, SensorNetwork};
+use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, SensorNetwork};
+use tracker_core::sensor::ScanGeometry;
 use tracker_core::{PriorHypothesis, Tracker, TwoBodyJ2, ssa_caps};
 
 type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =

@@ -9,9 +9,10 @@ mod common;
 use host_sim::exactness::{CompareFigures, Scan, compare_scans};
 use host_sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
-use tracker_core::model::{AdmissibleRegion, ConstantVelocity, PositionMeasurement, ScanGeometry};
+use tracker_core::model::{AdmissibleRegion, ConstantVelocity, PositionMeasurement};
 use tracker_core::pool::MeasuredBirths;
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::ScanGeometry;
 use tracker_core::{
     BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, PriorObject, Region, Sensor, TrackLabel,
 };

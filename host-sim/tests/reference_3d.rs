@@ -10,14 +10,12 @@ use host_sim::orbit::Propagator;
 use host_sim::reference::{ReferenceError, ReferenceTracker};
 use host_sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
-use tracker_core::model::{
-    EARTH_MU, EarthRotation, GroundSite, PlacementError, Platform, ProcessNoise, RadarRangeAzEl, ScanGeometry,
-    SensorNetwork, SiteSensor, TwoBodyJ2,
-};
+use tracker_core::model::{EARTH_MU, ProcessNoise, RadarRangeAzEl, SensorNetwork, TwoBodyJ2};
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::{EarthRotation, GroundSite, Placement, PlacementError, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, LookShape, MeasurementModel, PriorObject, Region,
-    Sensor, StepError, TrackLabel, Tracker,
+    BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, LookShape, Measure, PriorObject, Region, Sensor,
+    StepError, TrackLabel, Tracker,
 };
 
 type Network = SensorNetwork<f64, RadarRangeAzEl<f64>, 3, 2>;
@@ -104,7 +102,7 @@ fn scans(network: &Network, truth: &[[f64; 6]]) -> Vec<Scan<3>> {
                 continue;
             }
             let mut z = exact + SVector::from(SIGMA.map(|s| s * rng.normal()));
-            z[1] = tracker_core::model::wrap_angle(z[1]);
+            z[1] = tracker_core::sensor::wrap_angle(z[1]);
             if view.sees(&placed, &z) {
                 zs.push(z);
             }

@@ -4,8 +4,8 @@
 
 use nalgebra::{SMatrix, SVector};
 use tracker_core::{
-    BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, LinearConfig, MeasurementModel, MotionModel,
-    PositionMeasurement, Real, Region, Sensor, StoreOverflow, Tracker,
+    BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, LinearConfig, Measure, MeasurementModel,
+    MotionModel, PositionMeasurement, Real, Region, Sensor, StoreOverflow, Tracker,
 };
 
 /// 2-vector.

@@ -11,9 +11,9 @@
 use conformance::fingerprint;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::model::{
-    EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, EarthRotation, GroundSite, MeasurementModel, MotionModel,
-    PlacementError, Platform, ProcessNoise, ScanGeometry, SensorNetwork, SiteSensor,
+    EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, Measure, MotionModel, ProcessNoise, SensorNetwork,
 };
+use tracker_core::sensor::{EarthRotation, GroundSite, Placement, PlacementError, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, Config, ConfigError, Gaussian, LookShape, OpticalRaDec, PositionMeasurement, PriorHypothesis,
     PriorObject, RadarRangeAzEl, Real, Region, Sensor, StepError, StepReport, TrackLabel, Tracker, TwoBodyJ2,

@@ -3,7 +3,7 @@
 //! P_D = 0.9, λ = 2 clutter returns in V = 100 (λ_C = 0.02), survival 0.98.
 
 use conformance::*;
-use tracker_core::{Gaussian, LinearTracker, MeasurementModel, PriorHypothesis, PriorObject, TrackLabel};
+use tracker_core::{Gaussian, LinearTracker, Measure, PriorHypothesis, PriorObject, TrackLabel};
 
 type Tracker = LinearTracker<f64, 16, 2, 4, 16, 1>;
 

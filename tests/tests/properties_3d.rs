@@ -24,10 +24,10 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use tracker_core::config::ChildGeneration;
 use tracker_core::model::{
-    EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, EarthRotation, GroundSite, MeasurementModel, MotionModel,
-    PlacementError, Platform, ProcessNoise, ScanGeometry, SensorNetwork, SiteSensor,
+    EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, Measure, MotionModel, ProcessNoise, SensorNetwork,
 };
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::{EarthRotation, GroundSite, Placement, PlacementError, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, Config, Gaussian, LookShape, PriorHypothesis, PriorObject, RadarRangeAzEl, Real, Region, Sensor,
     StepError, TrackLabel, Tracker, TwoBodyJ2,

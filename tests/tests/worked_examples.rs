@@ -3,7 +3,7 @@
 //! takes the example's values exactly.
 
 use conformance::*;
-use tracker_core::{Gaussian, LinearTracker, MeasurementModel};
+use tracker_core::{Gaussian, LinearTracker, Measure};
 
 type Tracker = LinearTracker<f64, 8, 2, 2, 8, 1>;
 

@@ -3,9 +3,9 @@
 //! Every field is checked when a tracker is built ([`crate::Tracker::new`]); a bad value is a
 //! [`crate::ConfigError`], never a later surprise.
 
-use crate::ekf::Gaussian;
+use crate::gaussian::Gaussian;
 use crate::real::Real;
-use crate::sensor::Sensor;
+use crate::sensor::{Placement, Sensor};
 
 /// Whether a born object may go undetected in the scan it is born (docs/maths.md §5.2, [000] (34)–(43)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -48,25 +48,8 @@ pub enum BirthEvents {
 /// One birth cell around (30, 30): a measurement there that no object explains becomes a new object.
 /// ```
 /// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use tracker_core::{BirthModel, Config, Gaussian, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::{BirthDetection, TrackLabel};
 /// let cell = Gaussian { mean: SVector::from([30.0, 30.0, 0.0, 0.0]), covariance: SMatrix::identity() * 25.0 };
 /// let mut cells = heapless::Vec::new();
@@ -125,26 +108,9 @@ impl<T: Real, const S: usize, const B: usize> BirthModel<T, S, B> {
 /// Exhaustive enumeration fails the scan when it needs more children than its budget; the sampler
 /// finds the same best hypothesis on a small scan:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::{Config, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::{ChildGeneration, StepError};
 /// use tracker_core::sampler::SamplerConfig;
 /// let scan = [SVector::from([1.0, 0.0]), SVector::from([-3.0, 2.0])];
@@ -197,26 +163,9 @@ impl Default for ChildGeneration {
 /// One object and two measurements give three children with three different tracks; a store of
 /// K = 2 tracks cannot hold them all:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::{Config, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::{StepError, StoreOverflow};
 /// let scan = [SVector::from([1.0, 0.0]), SVector::from([-3.0, 2.0])];
 /// let strict = Config { store_overflow: StoreOverflow::Error, ..config.clone() };
@@ -268,26 +217,9 @@ pub enum NumericalFailure {
 /// # Examples
 /// Both keep the best child when H∞ is large enough to keep every child:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::{Config, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::config::Selection;
 /// let scan = [SVector::from([1.0, 0.0])];
 /// let sampled = Config { selection: Selection::SampledByWeight, ..config.clone() };
@@ -352,8 +284,8 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     /// How the sensor measures an object.
     pub measurement: G,
     /// Detection, clutter and field of view. Not used (and not checked) when the measurement model's
-    /// sensors carry their own ([`MeasurementModel::detection`](crate::MeasurementModel::detection), e.g. a
-    /// [`SensorNetwork`](crate::SensorNetwork)).
+    /// sensors carry their own ([`Placement::detection`], e.g. a [`SensorNetwork`](crate::SensorNetwork));
+    /// [`Config::detection`] chooses.
     pub sensor: Sensor<T>,
     /// Births.
     pub birth: BirthModel<T, S, B>,
@@ -372,6 +304,17 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub numerical_failure: NumericalFailure,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
     pub seed: u64,
+}
+
+impl<T: Real, M, G, const S: usize, const B: usize> Config<T, M, G, S, B> {
+    /// The detection model of the sensor that `placed` (this configuration's measurement model placed at a
+    /// scan) stands for: its own when its sensors carry one, else [`Config::sensor`].
+    pub fn detection<const D: usize>(&self, placed: &G) -> Sensor<T>
+    where
+        G: Placement<T, D>,
+    {
+        placed.detection().unwrap_or(self.sensor)
+    }
 }
 
 #[cfg(all(test, feature = "serde"))]

@@ -30,64 +30,10 @@
 //! construction, but it changes the bits of every step (the QEMU digest and the golden files) and costs
 //! more per update.
 
-use crate::model::{MeasurementModel, MotionModel};
+use crate::gaussian::Gaussian;
+use crate::model::{Measure, MotionModel};
 use crate::real::{Real, c, ln};
 use nalgebra::{Cholesky, SMatrix, SVector};
-
-/// A Gaussian density N(mean, covariance): the pdf of one object under one hypothesis.
-///
-/// # Examples
-/// One EKF cycle: predict, score a measurement, update.
-/// ```
-/// use nalgebra::{SMatrix, SVector};
-/// use tracker_core::{ConstantVelocity, Gaussian, PositionMeasurement, ekf};
-/// let prior = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::<f64, 4, 4>::identity() };
-/// let motion = ConstantVelocity { acceleration_noise: 0.01 };
-/// let sensor = PositionMeasurement::isotropic(0.5);
-///
-/// let predicted = ekf::predict(&motion, &prior, 1.0)?;
-/// let innovation = ekf::innovation(&sensor, &predicted)?;
-/// let z = SVector::from([1.2, -0.1]);
-/// let (distance_squared, log_likelihood) = innovation.score(&z);
-/// assert!(distance_squared < 1.0 && log_likelihood.is_finite());
-/// let posterior = ekf::update(&sensor, &predicted, &innovation, &z)?;
-/// assert!(posterior.covariance[(0, 0)] < predicted.covariance[(0, 0)]);
-/// assert!(ekf::is_valid_covariance(&posterior.covariance));
-/// # Ok::<(), tracker_core::NumericalError>(())
-/// ```
-///
-/// [`update`] with P = I and R = 0.25 I: the position gain is 1 / 1.25 = 0.8.
-/// ```
-/// use nalgebra::{SMatrix, SVector};
-/// use tracker_core::{Gaussian, PositionMeasurement, ekf};
-/// let sensor = PositionMeasurement::isotropic(0.5);
-/// let track = Gaussian { mean: SVector::zeros(), covariance: SMatrix::<f64, 4, 4>::identity() };
-/// let innovation = ekf::innovation(&sensor, &track)?;
-/// let updated = ekf::update(&sensor, &track, &innovation, &SVector::from([1.0, -2.0]))?;
-/// assert!((updated.mean - SVector::from([0.8, -1.6, 0.0, 0.0])).abs().max() < 1e-12);
-/// assert!((updated.covariance[(0, 0)] - 0.2).abs() < 1e-12); // (1 − 0.8) · 1
-/// assert_eq!(updated.covariance[(2, 2)], 1.0); // the velocity is not correlated with the position
-/// # Ok::<(), tracker_core::NumericalError>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Gaussian<T: Real, const S: usize> {
-    /// Mean x̂.
-    pub mean: SVector<T, S>,
-    /// Covariance P (symmetric positive semi-definite).
-    pub covariance: SMatrix<T, S, S>,
-}
-
-impl<T: Real, const S: usize> Default for Gaussian<T, S> {
-    fn default() -> Self {
-        Self::ZERO
-    }
-}
-
-impl<T: Real, const S: usize> Gaussian<T, S> {
-    /// Zero mean and zero covariance (a placeholder in fixed storage).
-    pub const ZERO: Self = Self { mean: crate::real::zeros(), covariance: crate::real::zeros() };
-}
 
 /// Why an EKF operation failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -274,7 +220,7 @@ pub fn predict<T: Real, M: MotionModel<T, S>, const S: usize>(
 /// assert!((l * l.transpose() - SMatrix::<f64, 2, 2>::identity() * 1.25).abs().max() < 1e-12);
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
-pub fn innovation<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn innovation<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
 ) -> Result<Innovation<T, D>, NumericalError> {
@@ -299,7 +245,7 @@ pub struct Correction<T: Real, const S: usize, const D: usize> {
 /// # Errors
 /// [`NumericalError::NonFinite`] when they are not finite, [`NumericalError::NotPositiveDefinite`] when
 /// the posterior covariance does not factor.
-pub fn correction<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn correction<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
     innovation: &Innovation<T, D>,
@@ -361,7 +307,7 @@ impl<T: Real, const S: usize, const D: usize> Correction<T, S, D> {
 /// # Errors
 /// [`NumericalError::NonFinite`] when the result is not finite, [`NumericalError::NotPositiveDefinite`]
 /// when the posterior covariance does not factor.
-pub fn update<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+pub fn update<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     model: &G,
     predicted: &Gaussian<T, S>,
     innovation: &Innovation<T, D>,

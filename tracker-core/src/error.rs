@@ -4,7 +4,7 @@
 //! which the tracker is exactly as it was before the call.
 
 use crate::ekf::NumericalError;
-use crate::model::PlacementError;
+use crate::sensor::PlacementError;
 use crate::store::TrackLabel;
 
 /// A configuration or prior that cannot be used.
@@ -12,26 +12,9 @@ use crate::store::TrackLabel;
 /// # Examples
 /// A prior object whose covariance is not positive definite is named by its position:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SMatrix;
+/// # use tracker_core::{Gaussian, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::ConfigError;
 /// let flat = Gaussian { covariance: SMatrix::zeros(), ..object };
 /// match LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object, flat], 0.0) {
@@ -177,26 +160,9 @@ impl core::error::Error for ConfigError {}
 ///
 /// # Examples
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::LinearTracker;
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::StepError;
 /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
 /// let scan = [SVector::from([1.0, 0.0]); 5]; // the tracker holds Z = 4 measurements per scan

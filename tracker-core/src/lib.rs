@@ -8,17 +8,25 @@
 //!
 //! ## Layers
 //!
-//! - **Estimation** ([`model`], [`ekf`]): each object under each hypothesis is a Gaussian, predicted and
-//!   updated by an EKF (Joseph form, Cholesky-factored innovation covariance).
-//! - **Sensor** ([`sensor`]): a field of view (p_D inside, 0 outside) and Poisson clutter of intensity
-//!   λ_C over it.
-//! - **Association** ([`association`], [`children`], [`sampler`], [`cluster`], [`selection`]): for each
-//!   parent hypothesis and birth/death event, a data association matrix of log ratios δ_{z,o} and its
-//!   column layout; a child generator offers the children (association vectors) with their exact
+//! - **Estimation** ([`gaussian`], [`model`], [`ekf`]): each object under each hypothesis is a
+//!   [`Gaussian`], predicted and updated by an EKF (Joseph form, Cholesky-factored innovation covariance).
+//!   A measurement model is three traits: how it measures ([`Measure`]), its sensors placed at each scan
+//!   ([`Placement`]) and its birth geometry ([`BirthGeometry`]); [`MeasurementModel`] is the three.
+//! - **Sensor** ([`sensor`]): the one home of a sensor: where it is (a ground site or a spacecraft, placed
+//!   at each scan), its field of view (p_D inside, 0 outside) and its Poisson clutter of intensity λ_C over
+//!   it. The sensor module imports no measurement model.
+//! - **Weights** ([`weight`], [`pool`]): the event probabilities and detection factors of one scan, and
+//!   the birth cells made from measurements.
+//! - **Association** ([`association`], [`children`], [`sampler`], [`optimal`], [`cluster`], [`selection`]):
+//!   for each parent hypothesis and birth/death event, a data association matrix of log ratios δ_{z,o} and
+//!   its column layout; a child generator offers the children (association vectors) with their exact
 //!   log-weights to a sink that knows their (parent, event); the best H∞ are kept and the global
 //!   log-sum-exp normalises them.
 //! - **Hypotheses** ([`store`], [`hypothesis`], [`tracker`]): hypotheses hold indices into one track
 //!   store shared by all of them, so a track with one history is stored, predicted and scored once.
+//! - **Around them**: [`config`] and [`error`] (what a tracker is built from, and every typed failure),
+//!   [`report`] (what one scan did), [`digest`] (a hash of the state, for bit-identity checks), [`real`]
+//!   (the scalar type and its `libm` functions).
 //!
 //! ## The weight (docs/maths.md §4.1–§4.2, [000]'s FISST form)
 //!
@@ -50,6 +58,9 @@ pub mod config;
 pub mod digest;
 pub mod ekf;
 pub mod error;
+#[doc(hidden)]
+pub mod examples;
+pub mod gaussian;
 pub mod hypothesis;
 mod index;
 pub mod model;
@@ -66,15 +77,16 @@ pub mod tracker;
 pub mod weight;
 
 pub use config::{BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
-pub use ekf::{Gaussian, NumericalError};
+pub use ekf::NumericalError;
 pub use error::{ConfigError, StepError};
+pub use gaussian::Gaussian;
 pub use model::{
-    ConstantVelocity, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement, RadarRangeAzEl, ScanGeometry,
-    SensorNetwork, TwoBody, TwoBodyJ2,
+    BirthGeometry, ConstantVelocity, Measure, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement,
+    RadarRangeAzEl, SensorNetwork, TwoBody, TwoBodyJ2,
 };
 pub use real::Real;
 pub use report::StepReport;
-pub use sensor::{Look, LookShape, Region, Sensor};
+pub use sensor::{Look, LookShape, Placement, Region, ScanGeometry, Sensor};
 pub use store::{Track, TrackLabel};
 pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, Tracker};
 

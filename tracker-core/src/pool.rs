@@ -4,7 +4,7 @@
 //!
 //! After every scan, each measurement z gets r_U(z), the posterior probability that no object took it
 //! (the weight of the kept hypotheses that call it clutter). A measurement with r_U(z) at least
-//! `min_unexplained` becomes the cells of its birth density ([`MeasurementModel::birth_components`]: the
+//! `min_unexplained` becomes the cells of its birth density ([`BirthGeometry::birth_components`](crate::BirthGeometry::birth_components): the
 //! measurement's admissible region as a Gaussian mixture), with a birth probability
 //!
 //! ```text
@@ -17,7 +17,8 @@
 //! `lifetime` seconds after its measurement; each scan its α is multiplied by the probability that it gave
 //! no birth in that scan. When the pool is full the cells with the smallest α give way.
 
-use crate::ekf::{self, Gaussian};
+use crate::ekf;
+use crate::gaussian::Gaussian;
 use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionModel};
 use crate::real::Real;
 use nalgebra::SVector;

@@ -20,26 +20,9 @@ pub struct NumericalDrops {
 /// One object, one measurement and exhaustive children: two children (the object took it, or it is
 /// clutter), both kept.
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::LinearTracker;
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// # let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object], 0.0)?;
 /// let report = tracker.step(1.0, &[SVector::from([1.0, 0.0])])?;
 /// assert_eq!((report.scan, report.measurements, report.children, report.hypotheses), (1, 1, 2, 2));

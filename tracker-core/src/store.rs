@@ -5,7 +5,7 @@
 //! scan from the kept children: a new track is keyed by (source track or birth cell, measurement or
 //! missed), so two children that extend the same track with the same measurement share the result.
 
-use crate::ekf::Gaussian;
+use crate::gaussian::Gaussian;
 use crate::real::Real;
 
 /// The identity of an object: the same across scans and across hypotheses. Prior objects carry the

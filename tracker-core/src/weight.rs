@@ -83,26 +83,9 @@ impl<T: Real> WeightModel<T> {
     ///
     /// # Examples
     /// ```
-    /// # use nalgebra::{SMatrix, SVector};
-    /// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-    /// # let config = Config {
-    /// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-    /// #     measurement: PositionMeasurement::isotropic(0.5),
-    /// #     sensor: Sensor {
-    /// #         detection_probability: 0.9,
-    /// #         clutter_rate: 1.0,
-    /// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-    /// #     },
-    /// #     birth: BirthModel::<f64, 4, 1>::none(),
-    /// #     death_probability: 0.1,
-    /// #     gate: None,
-    /// #     children: Default::default(),
-    /// #     selection: Default::default(),
-    /// #     store_overflow: Default::default(),
-    /// #     numerical_failure: Default::default(),
-    /// #     seed: 1,
-    /// # };
-    /// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+    /// # use tracker_core::Config;
+    /// # let config = tracker_core::Config { death_probability: 0.1, ..tracker_core::examples::config() };
+    /// # let object = tracker_core::examples::object();
     /// use tracker_core::BirthDetection;
     /// use tracker_core::weight::WeightModel;
     /// let model = WeightModel::from_config(&config);
@@ -123,7 +106,7 @@ impl<T: Real> WeightModel<T> {
 
     /// The weight model of a scan whose sensor is `model` placed at the scan, with `detection` its p_D,
     /// clutter and field of view: λ_C is the clutter rate over the field of view's volume in the model's
-    /// measurement coordinates ([`MeasurementModel::clutter_volume`]).
+    /// measurement coordinates ([`Placement::clutter_volume`](crate::Placement::clutter_volume)).
     pub fn placed<M, G: MeasurementModel<T, S, D>, const S: usize, const D: usize, const B: usize>(
         config: &Config<T, M, G, S, B>,
         model: &G,

@@ -12,7 +12,8 @@ use crate::{Record, cycles, stack};
 use cortex_m_semihosting::{debug, hprintln};
 use nalgebra::{ArrayStorage, SMatrix, SVector};
 use tracker_core::config::Selection;
-use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor, gmst_iau82};
+use tracker_core::model::ProcessNoise;
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor, gmst_iau82};
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::{
     BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, PriorHypothesis,

@@ -12,7 +12,7 @@
 //! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
 //! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
 //! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
-//! sensor index and observer per scan), and the birth geometry `MeasurementModel::birth_components` of the
+//! sensor index and observer per scan), and the birth geometry `BirthGeometry::birth_components` of the
 //! radar (with and without range-rate), optical and planar models in f64 and f32 (any measurement, region,
 //! observer and output length).
 #![no_std]
@@ -21,7 +21,8 @@
 use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
-use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SiteSensor};
+use tracker_core::model::ProcessNoise;
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
 use tracker_core::{
@@ -273,7 +274,7 @@ fn radar<T: Real>(argc: i32) -> u64 {
 /// `birth_components` of every model with one, on opaque models, measurements, regions and output slices.
 fn births<T: Real>(argc: i32) -> u64 {
     use tracker_core::model::{AdmissibleRegion, BirthComponent, OpticalRaDec, RadarRangeAzEl, RadarRangeRate};
-    use tracker_core::{MeasurementModel, model::MAX_BIRTH_COMPONENTS};
+    use tracker_core::{BirthGeometry, model::MAX_BIRTH_COMPONENTS};
     let c = T::of_f64;
     let x = c(f64::from(argc));
     let mut out = [BirthComponent::<T, 6>::ZERO; MAX_BIRTH_COMPONENTS];

@@ -26,7 +26,7 @@
 //! inclination) is [`BirthError::Degenerate`]: nothing is written and the caller keeps the measurement.
 
 use super::{EARTH_MU, EARTH_RADIUS};
-use crate::ekf::Gaussian;
+use crate::gaussian::Gaussian;
 use crate::real::{Real, atan2, c, cos, sin, sqrt};
 use nalgebra::{SMatrix, SVector};
 
@@ -48,10 +48,8 @@ const CELL_SIGMA: f64 = 0.5;
 /// The birth density of a radar measurement 900 km away at 40° elevation, for a LEO object.
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{
-///     AdmissibleRegion, BirthComponent, EarthRotation, GroundSite, MAX_BIRTH_COMPONENTS, MeasurementModel,
-///     RadarRangeAzEl,
-/// };
+/// use tracker_core::model::{AdmissibleRegion, BirthComponent, BirthGeometry, MAX_BIRTH_COMPONENTS, RadarRangeAzEl};
+/// use tracker_core::sensor::{EarthRotation, GroundSite};
 /// let site = GroundSite { latitude: 0.7_f64, longitude: -1.8, height: 1.6 };
 /// let radar = RadarRangeAzEl::at_site(&site, &EarthRotation::new(0.3), 120.0, [0.02, 1e-3, 1e-3]);
 /// let region = AdmissibleRegion::leo();
@@ -750,7 +748,7 @@ pub(crate) fn planar_birth<T: Real>(
 mod tests {
     use super::*;
     use crate::model::radar::tests::site;
-    use crate::model::{MeasurementModel, OpticalRaDec, RadarRangeAzEl, RadarRangeRate};
+    use crate::model::{BirthGeometry, Measure, OpticalRaDec, RadarRangeAzEl, RadarRangeRate};
     use core::f64::consts::PI;
 
     /// χ²(6) 99.9 % quantile.
@@ -1038,17 +1036,7 @@ mod tests {
         assert!(ranges[0] < 17_900.0 && ranges[1] > 102_000.0, "{ranges:?}");
         // A model without a birth geometry.
         struct XOnly;
-        impl MeasurementModel<f64, 6, 1> for XOnly {
-            fn measure(&self, state: &SVector<f64, 6>) -> SVector<f64, 1> {
-                SVector::from([state[0]])
-            }
-            fn jacobian(&self, _state: &SVector<f64, 6>) -> SMatrix<f64, 1, 6> {
-                SMatrix::zeros()
-            }
-            fn noise_covariance(&self) -> SMatrix<f64, 1, 1> {
-                SMatrix::identity()
-            }
-        }
+        impl BirthGeometry<f64, 6, 1> for XOnly {}
         assert_eq!(XOnly.birth_components(&SVector::from([1.0]), &region, &mut out), Err(BirthError::Unsupported));
     }
 
@@ -1072,12 +1060,12 @@ mod tests {
     #[test]
     fn f32_gives_finite_mixtures_close_to_f64() {
         let (site_geo, rotation, t) = site();
-        let site32 = crate::model::GroundSite {
+        let site32 = crate::sensor::GroundSite {
             latitude: site_geo.latitude as f32,
             longitude: site_geo.longitude as f32,
             height: site_geo.height as f32,
         };
-        let rotation32 = crate::model::EarthRotation::new(rotation.angle_at_epoch as f32);
+        let rotation32 = crate::sensor::EarthRotation::new(rotation.angle_at_epoch as f32);
         let radar = RadarRangeRate::at_site(&site_geo, &rotation, t, [0.02, 1e-3, 1e-3, 1e-4]);
         let radar32 = RadarRangeRate::at_site(&site32, &rotation32, t as f32, [0.02, 1e-3, 1e-3, 1e-4]);
         let (mut out, mut out32) = ([BirthComponent::ZERO; 256], [BirthComponent::<f32, 6>::ZERO; 256]);
@@ -1126,7 +1114,8 @@ mod tests {
 
     #[test]
     fn network_forwards_to_the_placed_model() {
-        use crate::model::{EarthRotation, Platform, ScanGeometry, SensorNetwork, SiteSensor};
+        use crate::model::SensorNetwork;
+        use crate::sensor::{EarthRotation, Placement, Platform, ScanGeometry, SiteSensor};
         use crate::sensor::{LookShape, Region, Sensor};
         let (site_geo, _, _) = site();
         let field_of_view = Region::Look {

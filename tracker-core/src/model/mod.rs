@@ -1,10 +1,12 @@
-//! Motion and measurement models: what the EKF needs to know about how one object moves and how the
-//! sensor sees it.
+//! Motion and measurement models: what the EKF needs to know about how one object moves and how a
+//! sensor measures it.
 //!
 //! A [`MotionModel`] propagates a state over a time step and returns the state transition matrix (the
-//! Jacobian of the propagation, Φ) and the process noise Q. A [`MeasurementModel`] gives the predicted
-//! measurement h(x), its Jacobian H and the noise covariance R. Both are pure: the same inputs give the
-//! same bits, and a failure is a [`ModelError`] value.
+//! Jacobian of the propagation, Φ) and the process noise Q. A measurement model is three traits, one per
+//! job: [`Measure`] (the predicted measurement h(x), its Jacobian H, the noise covariance R and the
+//! residual), [`Placement`] (its sensor or sensors, placed at each scan; in [`crate::sensor`]) and
+//! [`BirthGeometry`] (the birth density from one measurement); [`MeasurementModel`] is the three together,
+//! the tracker's bound. All are pure: the same inputs give the same bits, and a failure is a value.
 //!
 //! Built in:
 //! - [`ConstantVelocity`]: 2-D constant velocity, linear, for exactness tests and cross-checks.
@@ -15,16 +17,16 @@
 //! - [`PositionMeasurement`]: the position (x, y) of a planar state with Gaussian noise.
 //! - [`RadarRangeAzEl`], [`RadarRangeRate`], [`OpticalRaDec`]: range, azimuth, elevation (and range-rate)
 //!   from a ground site, topocentric right ascension and declination, of a 3-D inertial state; with the
-//!   site geometry of `frames.rs` ([`GroundSite`], [`EarthRotation`]); their residuals wrap angles
-//!   ([`wrap_angle`]).
-//! - [`AdmissibleRegion`], [`MeasurementModel::birth_components`]: the birth density of a new object
+//!   site geometry of [`crate::sensor::frames`]; their residuals wrap angles
+//!   ([`wrap_angle`](crate::sensor::wrap_angle)).
+//! - [`AdmissibleRegion`], [`BirthGeometry::birth_components`]: the birth density of a new object
 //!   from one measurement, a weighted Gaussian mixture over its admissible states.
-//! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each with
-//!   its own noise, field of view, p_D and clutter, placed at every scan ([`ScanGeometry`]).
+//! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each a
+//!   [`SiteSensor`](crate::sensor::SiteSensor) with its own noise, field of view, p_D and clutter, placed at
+//!   every scan ([`ScanGeometry`](crate::sensor::ScanGeometry)).
 
 mod admissible;
 mod constant_velocity;
-mod frames;
 mod network;
 mod optical;
 mod position;
@@ -32,18 +34,20 @@ mod radar;
 mod two_body;
 mod two_body_j2;
 
+/// The Earth's equatorial radius, with the other Earth constants (it lives with the WGS-84 ellipsoid in
+/// [`crate::sensor::frames`]).
+pub use crate::sensor::EARTH_RADIUS;
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
-pub use frames::{EARTH_ROTATION_RATE, EarthRotation, GroundSite, WGS84_FLATTENING, gmst_iau82, wrap_angle};
-pub use network::{Placeable, PlacementError, Platform, ScanGeometry, SensorNetwork, SiteSensor};
+pub use network::{Placeable, SensorNetwork};
 pub use optical::OpticalRaDec;
 pub use position::PositionMeasurement;
 pub use radar::{RadarRangeAzEl, RadarRangeRate};
 pub use two_body::TwoBody;
-pub use two_body_j2::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, ProcessNoise, TwoBodyJ2};
+pub use two_body_j2::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, ProcessNoise, TwoBodyJ2};
 
 use crate::real::Real;
-use crate::sensor::{Look, LookAxes};
+use crate::sensor::Placement;
 use nalgebra::{SMatrix, SVector};
 
 /// Why a model could not produce a prediction.
@@ -147,18 +151,19 @@ pub trait MotionModel<T: Real, const S: usize> {
     }
 }
 
-/// How the sensor measures one object.
+/// How a sensor measures one object: the measurement function h, its Jacobian, the noise and the
+/// residual. This is all the EKF ([`crate::ekf`]) needs.
 ///
 /// # Examples
 /// A model of its own: the x coordinate alone of a planar state.
 /// ```
 /// use nalgebra::{SMatrix, SVector};
-/// use tracker_core::model::MeasurementModel;
+/// use tracker_core::model::Measure;
 /// use tracker_core::{Gaussian, ekf};
 ///
 /// struct XOnly;
 ///
-/// impl MeasurementModel<f64, 4, 1> for XOnly {
+/// impl Measure<f64, 4, 1> for XOnly {
 ///     fn measure(&self, state: &SVector<f64, 4>) -> SVector<f64, 1> {
 ///         SVector::from([state[0]])
 ///     }
@@ -176,7 +181,7 @@ pub trait MotionModel<T: Real, const S: usize> {
 /// assert_eq!(updated.mean, SVector::from([3.0, 7.0, 0.0, 0.0])); // gain 1/2 on x, y untouched
 /// # Ok::<(), tracker_core::NumericalError>(())
 /// ```
-pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
+pub trait Measure<T: Real, const S: usize, const D: usize> {
     /// The noise-free measurement h(x).
     fn measure(&self, state: &SVector<T, S>) -> SVector<T, D>;
 
@@ -187,60 +192,14 @@ pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
     fn noise_covariance(&self) -> SMatrix<T, D, D>;
 
     /// The residual ν = z − ẑ that every innovation, gate and score uses; models with angles wrap them
-    /// into (−π, π] ([`wrap_angle`]). The default is the plain difference.
+    /// into (−π, π] ([`wrap_angle`](crate::sensor::wrap_angle)). The default is the plain difference.
     fn residual(&self, z: &SVector<T, D>, predicted: &SVector<T, D>) -> SVector<T, D> {
         z - predicted
     }
+}
 
-    /// Which look coordinates a measurement of this model gives: `None` for models without a sensor
-    /// frame (planar positions), which cannot use a [`Region::Look`](crate::Region::Look) field of view.
-    fn look_axes(&self) -> Option<LookAxes> {
-        None
-    }
-
-    /// The look direction (azimuth, elevation, and range and range-rate when measured) of measurement `z`
-    /// in the sensor's frame at the current placement; `None` for models without a sensor frame.
-    fn look(&self, _z: &SVector<T, D>) -> Option<Look<T>> {
-        None
-    }
-
-    /// The clutter volume of `region` in this model's measurement coordinates. The default is the
-    /// region's own volume ([`Region::volume`](crate::Region::volume)), right when the measurement
-    /// coordinates are the look coordinates (planar positions, radar).
-    fn clutter_volume(&self, region: &crate::sensor::Region<T>) -> T {
-        region.volume()
-    }
-
-    /// How many sensors this model describes; every scan names one of `0..sensor_count()`.
-    fn sensor_count(&self) -> usize {
-        1
-    }
-
-    /// This model placed for one scan: the sensor the scan names, seen from where it was at the scan's
-    /// time. The default describes one sensor without an observer and returns a copy of itself.
-    ///
-    /// # Errors
-    /// [`PlacementError`] for an unknown sensor or an observer that is missing, unexpected, non-finite or
-    /// inside the Earth.
-    fn place(&self, scan: &ScanGeometry<T>) -> Result<Self, PlacementError>
-    where
-        Self: Sized + Clone,
-    {
-        if scan.sensor != 0 {
-            return Err(PlacementError::UnknownSensor { sensor: scan.sensor, sensors: 1 });
-        }
-        if scan.observer.is_some() {
-            return Err(PlacementError::UnexpectedObserver);
-        }
-        Ok(self.clone())
-    }
-
-    /// The detection model of the sensor this model is placed at, when the sensor has its own; `None`
-    /// uses the configuration's [`Sensor`](crate::Sensor).
-    fn detection(&self) -> Option<crate::sensor::Sensor<T>> {
-        None
-    }
-
+/// Where a new object may be, given one measurement: the birth geometry of a measurement kind.
+pub trait BirthGeometry<T: Real, const S: usize, const D: usize> {
     /// The birth density of a new object seen by measurement `z` at the current placement: a weighted
     /// Gaussian mixture over the states of `region` that explain `z` (docs/maths.md §5.7), written to
     /// `out`; returns how many components were written (their weights sum to 1). At most
@@ -258,6 +217,51 @@ pub trait MeasurementModel<T: Real, const S: usize, const D: usize> {
     ) -> Result<usize, BirthError> {
         Err(BirthError::Unsupported)
     }
+}
+
+/// Everything a tracker needs of its measurement model: how it measures ([`Measure`]), its sensor(s)
+/// placed at each scan ([`Placement`]) and its birth geometry ([`BirthGeometry`]). Implemented for every
+/// type that has the three; a model without sensors of its own or birth geometry takes the defaults
+/// with empty `impl`s.
+///
+/// # Examples
+/// The x coordinate alone of a planar state, as a tracker's measurement model.
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// use tracker_core::model::{BirthGeometry, Measure, MeasurementModel};
+/// use tracker_core::sensor::{Placement, ScanGeometry};
+///
+/// #[derive(Clone)]
+/// struct XOnly;
+///
+/// impl Measure<f64, 4, 1> for XOnly {
+///     fn measure(&self, state: &SVector<f64, 4>) -> SVector<f64, 1> {
+///         SVector::from([state[0]])
+///     }
+///     fn jacobian(&self, _state: &SVector<f64, 4>) -> SMatrix<f64, 1, 4> {
+///         SMatrix::from([[1.0], [0.0], [0.0], [0.0]])
+///     }
+///     fn noise_covariance(&self) -> SMatrix<f64, 1, 1> {
+///         SMatrix::from([[1.0]])
+///     }
+/// }
+/// impl Placement<f64, 1> for XOnly {} // one sensor, no sensor frame
+/// impl BirthGeometry<f64, 4, 1> for XOnly {} // no birth geometry
+///
+/// fn sensors<G: MeasurementModel<f64, 4, 1>>(model: &G) -> usize {
+///     model.sensor_count()
+/// }
+/// assert_eq!(sensors(&XOnly), 1);
+/// assert!(XOnly.place(&ScanGeometry { sensor: 1, time: 0.0, observer: None }).is_err());
+/// ```
+pub trait MeasurementModel<T: Real, const S: usize, const D: usize>:
+    Measure<T, S, D> + Placement<T, D> + BirthGeometry<T, S, D>
+{
+}
+
+impl<T: Real, G, const S: usize, const D: usize> MeasurementModel<T, S, D> for G where
+    G: Measure<T, S, D> + Placement<T, D> + BirthGeometry<T, S, D>
+{
 }
 
 /// The covariance of white acceleration noise of spectral density `q` over `dt` for a planar

@@ -3,7 +3,7 @@
 //! (docs/maths.md §6.9).
 //!
 //! A scan names its sensor and, for a spacecraft, passes the observer's inertial state
-//! ([`ScanGeometry`]). [`SensorNetwork::place`](crate::MeasurementModel::place) turns that into the
+//! ([`ScanGeometry`]). [`SensorNetwork::place`](crate::Placement::place) turns that into the
 //! measurement model of the scan: the observer's inertial position and velocity, and the sensor's frame
 //! (East, North, Up of a ground site at the scan's Earth rotation angle; the inertial axes, arranged so that
 //! azimuth is right ascension and elevation declination, for a spacecraft). A ground site's Earth rotation
@@ -14,99 +14,20 @@
 //! the network is built (the quadrature of the model's [`Placeable::density`], see [`crate::sensor::LookShape::area`]): Earth rotation
 //! turns a ground site's frame about the pole, which leaves the density unchanged.
 
-use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
 use super::{
-    AdmissibleRegion, BirthComponent, BirthError, MeasurementModel, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
-    WGS84_FLATTENING,
+    AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
 };
 use crate::real::{Real, c, cos, sin, sqrt};
-use crate::sensor::{Look, LookAxes, Region, Sensor};
+use crate::sensor::frames::{EarthRotation, look_angles, wrap_angle};
+use crate::sensor::{
+    EARTH_ROTATION_RATE, Look, LookAxes, Placement, PlacementError, Platform, Region, ScanGeometry, Sensor, SiteSensor,
+    WGS84_FLATTENING,
+};
 use nalgebra::{SMatrix, SVector};
-
-/// Where a sensor is.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Platform<T> {
-    /// A site on the rotating Earth.
-    Ground(GroundSite<T>),
-    /// A spacecraft: every scan of this sensor passes the observer's inertial state.
-    Spacecraft,
-}
-
-/// One sensor of a [`SensorNetwork`] (not serde: serde has no arrays of a const-generic length).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct SiteSensor<T, const D: usize> {
-    /// Where it is.
-    pub platform: Platform<T>,
-    /// Noise standard deviation of each measurement component (km, rad, km/s).
-    pub sigma: [T; D],
-    /// p_D, clutter and the field of view ([`Region::Look`]).
-    pub detection: Sensor<T>,
-}
-
-/// Which sensor made a scan, when, and from where.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScanGeometry<T> {
-    /// The sensor's index in its network (0 for a single sensor).
-    pub sensor: usize,
-    /// The scan time (s after the configuration's epoch).
-    pub time: f64,
-    /// A spacecraft observer's inertial position and velocity (km, km/s); `None` for ground sites and
-    /// for models without an observer.
-    pub observer: Option<[T; 6]>,
-}
-
-impl<T> ScanGeometry<T> {
-    /// The geometry of a scan of the only sensor, without an observer.
-    pub const fn single(time: f64) -> Self {
-        Self { sensor: 0, time, observer: None }
-    }
-}
-
-/// Why a scan's geometry cannot be placed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum PlacementError {
-    /// The scan names a sensor the model does not have.
-    UnknownSensor {
-        /// The sensor named.
-        sensor: usize,
-        /// How many sensors there are.
-        sensors: usize,
-    },
-    /// A spacecraft sensor's scan has no observer state.
-    MissingObserver,
-    /// The scan passes an observer state to a sensor that has none (a ground site, a planar model).
-    UnexpectedObserver,
-    /// The observer state has a NaN or an infinity.
-    NonFiniteObserver,
-    /// The observer is inside the Earth's WGS-84 ellipsoid.
-    ObserverInsideEarth,
-}
-
-impl core::fmt::Display for PlacementError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            PlacementError::UnknownSensor { sensor, sensors } => {
-                write!(f, "scan names sensor {sensor}, but there are {sensors} sensors")
-            }
-            PlacementError::MissingObserver => f.write_str("scan of a spacecraft sensor has no observer state"),
-            PlacementError::UnexpectedObserver => f.write_str("scan passes an observer state to a sensor without one"),
-            PlacementError::NonFiniteObserver => f.write_str("observer state is not finite"),
-            PlacementError::ObserverInsideEarth => f.write_str("observer is inside the Earth"),
-        }
-    }
-}
-
-impl core::error::Error for PlacementError {}
 
 /// A measurement model that a [`SensorNetwork`] places at each scan: built from the observer's inertial
 /// state, the sensor's frame (rows: East, North, Up in inertial coordinates) and the noise.
-pub trait Placeable<T: Real, const D: usize>: MeasurementModel<T, 6, D> + Copy {
+pub trait Placeable<T: Real, const D: usize>: Measure<T, 6, D> + BirthGeometry<T, 6, D> + Copy {
     /// The coordinates besides the angles.
     const AXES: LookAxes;
 
@@ -187,9 +108,9 @@ const AZIMUTH_POINTS: usize = 64;
 /// # Examples
 /// Two radars; a scan of the second one, 100 s after the epoch.
 /// ```
-/// use tracker_core::model::{EarthRotation, GroundSite, Platform, RadarRangeAzEl, ScanGeometry, SensorNetwork, SiteSensor};
+/// use tracker_core::model::{RadarRangeAzEl, SensorNetwork};
+/// use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
 /// use tracker_core::sensor::{LookShape, Region, Sensor};
-/// use tracker_core::MeasurementModel;
 /// let field_of_view = Region::Look {
 ///     shape: LookShape::Cone { azimuth: 0.0, elevation: 1.0, half_angle: 0.6 },
 ///     min_elevation: 0.2,
@@ -306,8 +227,8 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
                 // The rotation angle in f64 from the f64 scan time, then one cast.
                 // The nominal rate at f64 precision: its f32 rounding alone (3e-8 relative) would move a site
                 // by 13 m after ten days.
-                let nominal = self.rotation.rate == T::of_f64(super::EARTH_ROTATION_RATE);
-                let rate = if nominal { super::EARTH_ROTATION_RATE } else { self.rotation.rate.as_f64() };
+                let nominal = self.rotation.rate == T::of_f64(EARTH_ROTATION_RATE);
+                let rate = if nominal { EARTH_ROTATION_RATE } else { self.rotation.rate.as_f64() };
                 let angle = self.rotation.angle_at_epoch.as_f64() + rate * time;
                 let at = EarthRotation { angle_at_epoch: T::of_f64(wrap_angle(angle)), rate: self.rotation.rate };
                 (ground.observer(&at, T::zero()), ground.enu(&at, T::zero()))
@@ -370,9 +291,7 @@ fn angular_volume<T: Real, X: Placeable<T, D>, const D: usize>(region: &Region<T
     area * extent(range) * extent(range_rate)
 }
 
-impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementModel<T, 6, D>
-    for SensorNetwork<T, X, D, C>
-{
+impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> Measure<T, 6, D> for SensorNetwork<T, X, D, C> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, D> {
         self.placed.measure(state)
     }
@@ -388,7 +307,9 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
     fn residual(&self, z: &SVector<T, D>, predicted: &SVector<T, D>) -> SVector<T, D> {
         self.placed.residual(z, predicted)
     }
+}
 
+impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> Placement<T, D> for SensorNetwork<T, X, D, C> {
     fn look_axes(&self) -> Option<LookAxes> {
         Some(X::AXES)
     }
@@ -418,7 +339,9 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
     fn detection(&self) -> Option<Sensor<T>> {
         self.sensors().get(self.current).map(|sensor| sensor.detection)
     }
+}
 
+impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> BirthGeometry<T, 6, D> for SensorNetwork<T, X, D, C> {
     fn birth_components(
         &self,
         z: &SVector<T, D>,
@@ -433,7 +356,7 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> MeasurementMod
 mod tests {
     use super::*;
     use crate::model::{EARTH_MU, MotionModel, ProcessNoise, TwoBodyJ2};
-    use crate::sensor::LookShape;
+    use crate::sensor::{GroundSite, LookShape};
     use crate::store::TrackLabel;
     use crate::{BirthModel, Config, Gaussian, PriorObject, StepError, Tracker};
     use rand_core::Rng;

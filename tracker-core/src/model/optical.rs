@@ -4,23 +4,24 @@
 //! With d = r − r_s the line of sight from the observer (inertial position r_s): right ascension
 //! α = atan2(d_y, d_x) ∈ (−π, π], declination δ = atan2(d_z, √(d_x² + d_y²)), in the inertial frame of the
 //! state (TEME for SGP4 truth: the RA/Dec of a catalogue in GCRF differ by precession and nutation,
-//! `frames.rs`). The Jacobian (2×6) is analytic and zero in the velocity.
+//! `sensor::frames`). The Jacobian (2×6) is analytic and zero in the velocity.
 //!
 //! **Celestial pole.** At d_x = d_y = 0 exactly α is undefined: it is returned as 0 with a zero Jacobian
 //! row, and δ's row (a cone point) is zero in its equatorial part. Off the pole α's row grows as 1 / (ρ cos δ).
 //!
 //! **Residual.** α of z − ẑ is wrapped into (−π, π] ([`OpticalRaDec::residual`], the model's
-//! `MeasurementModel::residual`); every innovation, gate and score of the tracker goes through it.
+//! `Measure::residual`); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (0.12 s at GEO range, ≈ 0.37 km of motion, ≈ 2″ seen from the ground),
 //! annual and diurnal aberration (≲ 20.5″ and 0.3″: the catalogue reduction is the caller's), atmospheric
 //! refraction (docs/maths.md §6.8).
 
 use super::admissible::optical_births;
-use super::frames::wrap_angle;
 use super::radar::topocentric;
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
+use super::{AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure};
 use crate::real::Real;
+use crate::sensor::Placement;
+use crate::sensor::frames::wrap_angle;
 use nalgebra::{SMatrix, SVector};
 
 /// The "local" basis of [`topocentric`] for right ascension: (a, b, u) = (y, x, z), so that
@@ -36,7 +37,7 @@ fn basis<T: Real>() -> [[T; 3]; 3] {
 /// # Examples
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{MeasurementModel, OpticalRaDec};
+/// use tracker_core::model::{Measure, OpticalRaDec};
 /// let arcsec = 4.848_136_811e-6_f64;
 /// let telescope = OpticalRaDec { observer: [6378.0, 0.0, 0.0, 0.0, 0.465, 0.0], sigma: [arcsec, arcsec] };
 /// // A target 1000 km from the observer along the inertial y axis: RA 90°, Dec 0.
@@ -48,7 +49,7 @@ fn basis<T: Real>() -> [[T; 3]; 3] {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OpticalRaDec<T> {
     /// The observer's inertial position and velocity (km, km/s) at the scan (a ground site:
-    /// [`crate::model::GroundSite::observer`]); set by the caller for every scan. Only the position enters
+    /// [`crate::sensor::GroundSite::observer`]); set by the caller for every scan. Only the position enters
     /// the measurement (the velocity would enter diurnal aberration, neglected).
     pub observer: [T; 6],
     /// Noise standard deviations: right ascension, declination (rad).
@@ -74,7 +75,7 @@ impl<T: Real> OpticalRaDec<T> {
     }
 }
 
-impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
+impl<T: Real> Measure<T, 6, 2> for OpticalRaDec<T> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, 2> {
         let (_, _, (_, ra, dec), _) = topocentric(&self.observer, &basis(), state);
         SVector::from([ra, dec])
@@ -101,7 +102,11 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
     fn residual(&self, z: &SVector<T, 2>, predicted: &SVector<T, 2>) -> SVector<T, 2> {
         OpticalRaDec::residual(self, z, predicted)
     }
+}
 
+impl<T: Real> Placement<T, 2> for OpticalRaDec<T> {}
+
+impl<T: Real> BirthGeometry<T, 6, 2> for OpticalRaDec<T> {
     /// Ranges from the line of sight against the region's shell, velocity over its cells
     /// (docs/maths.md §5.7).
     fn birth_components(
@@ -117,8 +122,9 @@ impl<T: Real> MeasurementModel<T, 6, 2> for OpticalRaDec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::EARTH_MU;
     use crate::model::radar::tests::{jacobian_error, site};
-    use crate::model::{EARTH_MU, GroundSite};
+    use crate::sensor::GroundSite;
     use core::f64::consts::PI;
 
     const ARCSEC: f64 = PI / (180.0 * 3600.0);

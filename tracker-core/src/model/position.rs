@@ -1,15 +1,16 @@
 //! Position measurement of a planar state: z = (x, y) + v, v ~ N(0, R). Linear: H = [I 0].
 
 use super::admissible::planar_birth;
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
+use super::{AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure};
 use crate::real::Real;
+use crate::sensor::Placement;
 use nalgebra::{SMatrix, SVector};
 
 /// Measures the position (x, y) of a state (x, y, vx, vy) with Gaussian noise of covariance R.
 ///
 /// # Examples
 /// ```
-/// use tracker_core::model::{MeasurementModel, PositionMeasurement};
+/// use tracker_core::model::{Measure, PositionMeasurement};
 /// use nalgebra::{SMatrix, SVector};
 /// let sensor = PositionMeasurement::isotropic(0.5_f64);
 /// assert_eq!(sensor.measure(&SVector::from([1.0, 2.0, 3.0, 4.0])), SVector::from([1.0, 2.0]));
@@ -37,7 +38,7 @@ impl<T: Real> PositionMeasurement<T> {
     }
 }
 
-impl<T: Real> MeasurementModel<T, 4, 2> for PositionMeasurement<T> {
+impl<T: Real> Measure<T, 4, 2> for PositionMeasurement<T> {
     fn measure(&self, state: &SVector<T, 4>) -> SVector<T, 2> {
         SVector::from([state[0], state[1]])
     }
@@ -52,7 +53,11 @@ impl<T: Real> MeasurementModel<T, 4, 2> for PositionMeasurement<T> {
     fn noise_covariance(&self) -> SMatrix<T, 2, 2> {
         self.noise
     }
+}
 
+impl<T: Real> Placement<T, 2> for PositionMeasurement<T> {}
+
+impl<T: Real> BirthGeometry<T, 4, 2> for PositionMeasurement<T> {
     /// One component: position z with covariance R, velocity N(0, `velocity_sigma`² I).
     fn birth_components(
         &self,

@@ -13,16 +13,16 @@
 //! (the radar's keyhole) needs its azimuth σ inflated or the azimuth dropped, which is the caller's choice.
 //!
 //! **Residual.** The azimuth of z − ẑ is wrapped into (−π, π] ([`RadarRangeAzEl::residual`], the
-//! model's [`MeasurementModel::residual`]); every innovation, gate and score of the tracker goes through it.
+//! model's [`Measure::residual`](super::Measure::residual)); every innovation, gate and score of the tracker goes through it.
 //!
 //! **Neglected.** Light time (ρ / c: 3.3 ms at 1000 km, ≈ 25 m along track in LEO), atmospheric
 //! refraction and the Earth-model terms of [`GroundSite`] (docs/maths.md §6.8).
 
 use super::admissible::radar_births;
-use super::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
-use super::{AdmissibleRegion, BirthComponent, BirthError, MeasurementModel};
+use super::{AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure};
 use crate::real::Real;
-use crate::sensor::{Look, LookAxes};
+use crate::sensor::frames::{EarthRotation, GroundSite, look_angles, wrap_angle};
+use crate::sensor::{Look, LookAxes, Placement};
 use nalgebra::{SMatrix, SVector};
 
 /// Line of sight d = r − r_s and relative velocity w = v − v_s (inertial), the local components of d in
@@ -56,7 +56,8 @@ pub(crate) fn topocentric<T: Real>(
 /// A target 1000 km due East of the site at 30° elevation.
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{EarthRotation, GroundSite, MeasurementModel, RadarRangeAzEl};
+/// use tracker_core::model::{Measure, RadarRangeAzEl};
+/// use tracker_core::sensor::{EarthRotation, GroundSite};
 /// let site = GroundSite { latitude: 40.0_f64.to_radians(), longitude: -105.0_f64.to_radians(), height: 1.6 };
 /// let radar = RadarRangeAzEl::at_site(&site, &EarthRotation::new(0.3), 120.0, [0.01, 1e-3, 1e-3]);
 /// let [east, _, up] = radar.enu.map(SVector::from);
@@ -106,7 +107,7 @@ impl<T: Real> RadarRangeAzEl<T> {
     }
 }
 
-impl<T: Real> MeasurementModel<T, 6, 3> for RadarRangeAzEl<T> {
+impl<T: Real> Measure<T, 6, 3> for RadarRangeAzEl<T> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, 3> {
         let (_, _, (range, azimuth, elevation), _) = topocentric(&self.observer, &self.enu, state);
         SVector::from([range, azimuth, elevation])
@@ -131,7 +132,9 @@ impl<T: Real> MeasurementModel<T, 6, 3> for RadarRangeAzEl<T> {
     fn residual(&self, z: &SVector<T, 3>, predicted: &SVector<T, 3>) -> SVector<T, 3> {
         RadarRangeAzEl::residual(self, z, predicted)
     }
+}
 
+impl<T: Real> Placement<T, 3> for RadarRangeAzEl<T> {
     fn look_axes(&self) -> Option<LookAxes> {
         Some(LookAxes { range: true, range_rate: false })
     }
@@ -139,7 +142,9 @@ impl<T: Real> MeasurementModel<T, 6, 3> for RadarRangeAzEl<T> {
     fn look(&self, z: &SVector<T, 3>) -> Option<Look<T>> {
         Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None })
     }
+}
 
+impl<T: Real> BirthGeometry<T, 6, 3> for RadarRangeAzEl<T> {
     /// Position from (ρ, A, E), velocity over the admissible region's cells (docs/maths.md §5.7).
     fn birth_components(
         &self,
@@ -184,7 +189,7 @@ fn range_rate<T: Real>(d: &[T; 3], w: &[T; 3], range: T) -> T {
     if range > T::zero() { (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / range } else { T::zero() }
 }
 
-impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
+impl<T: Real> Measure<T, 6, 4> for RadarRangeRate<T> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, 4> {
         let (d, w, (range, azimuth, elevation), _) = topocentric(&self.observer, &self.enu, state);
         SVector::from([range, azimuth, elevation, range_rate(&d, &w, range)])
@@ -218,7 +223,9 @@ impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
     fn residual(&self, z: &SVector<T, 4>, predicted: &SVector<T, 4>) -> SVector<T, 4> {
         RadarRangeRate::residual(self, z, predicted)
     }
+}
 
+impl<T: Real> Placement<T, 4> for RadarRangeRate<T> {
     fn look_axes(&self) -> Option<LookAxes> {
         Some(LookAxes { range: true, range_rate: true })
     }
@@ -226,7 +233,9 @@ impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
     fn look(&self, z: &SVector<T, 4>) -> Option<Look<T>> {
         Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) })
     }
+}
 
+impl<T: Real> BirthGeometry<T, 6, 4> for RadarRangeRate<T> {
     /// Position from (ρ, A, E), velocity along the line of sight from ρ̇, across it over the admissible
     /// region's cells (docs/maths.md §5.7).
     fn birth_components(
@@ -243,13 +252,14 @@ impl<T: Real> MeasurementModel<T, 6, 4> for RadarRangeRate<T> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::model::{EARTH_MU, EarthRotation, GroundSite};
+    use crate::model::EARTH_MU;
+    use crate::sensor::{EarthRotation, GroundSite};
     use core::f64::consts::PI;
 
     /// Largest |H − H_fd| over each row, relative to the row's largest |H| entry, with central differences
     /// of step `steps[j]` in state component j.
     pub(crate) fn jacobian_error<const D: usize>(
-        model: &impl MeasurementModel<f64, 6, D>,
+        model: &impl Measure<f64, 6, D>,
         x: &SVector<f64, 6>,
         steps: [f64; 6],
         wrap: Option<usize>,

@@ -26,6 +26,7 @@
 
 use super::{ModelError, MotionModel, Propagation};
 use crate::real::{Real, c, sqrt};
+use crate::sensor::EARTH_RADIUS;
 use nalgebra::{SMatrix, SVector};
 
 /// The Earth's gravitational parameter μ (km³/s²): the WGS-84 value (EGM-96's own, 398600.4415, differs by
@@ -34,8 +35,6 @@ pub const EARTH_MU: f64 = 398_600.441_8;
 /// The Earth's second zonal harmonic J2 (dimensionless): the EGM-96 value, −√5 C̄20 with
 /// C̄20 = −4.841 653 717 36e-4.
 pub const EARTH_J2: f64 = 1.082_626_68e-3;
-/// The Earth's equatorial radius R_E (km), WGS-84; the reference radius of J2.
-pub const EARTH_RADIUS: f64 = 6378.137;
 /// The default `min_radius` (km): R_E − 78.137 km, 56.6 km below the WGS-84 polar radius (6356.752 km),
 /// so no object above the ground anywhere is rejected and anything below is inside the Earth.
 pub const EARTH_MIN_RADIUS: f64 = 6300.0;

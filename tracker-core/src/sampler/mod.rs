@@ -70,26 +70,9 @@ pub enum Proposal {
 /// # Examples
 /// A smaller budget and every cluster sampled, in a `const`; the tracker reports the steps its chains took:
 /// ```
-/// # use nalgebra::{SMatrix, SVector};
-/// # use tracker_core::{BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor};
-/// # let config = Config {
-/// #     motion: ConstantVelocity { acceleration_noise: 0.01 },
-/// #     measurement: PositionMeasurement::isotropic(0.5),
-/// #     sensor: Sensor {
-/// #         detection_probability: 0.9,
-/// #         clutter_rate: 1.0,
-/// #         field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0] },
-/// #     },
-/// #     birth: BirthModel::none(),
-/// #     death_probability: 0.0,
-/// #     gate: None,
-/// #     children: Default::default(),
-/// #     selection: Default::default(),
-/// #     store_overflow: Default::default(),
-/// #     numerical_failure: Default::default(),
-/// #     seed: 1,
-/// # };
-/// # let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
+/// # use nalgebra::SVector;
+/// # use tracker_core::{Config, LinearTracker};
+/// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
 /// use tracker_core::ChildGeneration;
 /// use tracker_core::sampler::SamplerConfig;
 /// const QUICK: SamplerConfig =

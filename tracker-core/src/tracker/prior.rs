@@ -178,7 +178,7 @@ fn prior_weight_total<T: Real, const S: usize, const H: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ekf::Gaussian;
+    use crate::gaussian::Gaussian;
     use crate::store::TrackLabel;
     use crate::tracker::PriorObject;
     use nalgebra::{SMatrix, SVector};

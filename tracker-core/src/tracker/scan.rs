@@ -2,8 +2,9 @@
 
 use crate::config::Config;
 use crate::error::StepError;
-use crate::model::{MeasurementModel, MotionModel, ScanGeometry};
+use crate::model::{MeasurementModel, MotionModel};
 use crate::real::Real;
+use crate::sensor::ScanGeometry;
 use crate::sensor::{Region, Sensor};
 use crate::weight::WeightModel;
 use nalgebra::SVector;
@@ -75,7 +76,7 @@ pub struct PlacedScan<T: Real, G> {
 }
 
 /// Checks a scan and places its sensor: the checks of [`check_scan`] with the time step against the motion
-/// model's bound and the geometry against the measurement model ([`MeasurementModel::place`]), in that
+/// model's bound and the geometry against the measurement model ([`Placement::place`](crate::Placement::place)), in that
 /// order, the field of view read through the placed model. The tracker and the host's unbounded reference
 /// both start a scan here.
 ///
@@ -85,7 +86,7 @@ pub struct PlacedScan<T: Real, G> {
 /// # Examples
 /// ```
 /// use nalgebra::SVector;
-/// use tracker_core::model::{PlacementError, ScanGeometry};
+/// use tracker_core::sensor::{PlacementError, ScanGeometry};
 /// use tracker_core::{BirthModel, Config, ConstantVelocity, PositionMeasurement, Region, Sensor, StepError};
 /// use tracker_core::tracker::place_scan;
 /// let config = Config {
@@ -130,7 +131,7 @@ where
         return Err(StepError::TimeStepTooLong { limit_seconds: limit as u64 });
     }
     let model = config.measurement.place(geometry).map_err(StepError::Placement)?;
-    let detection = model.detection().unwrap_or(config.sensor);
+    let detection = config.detection(&model);
     check_scan(&model, &detection.field_of_view, last_time, geometry.time, measurements, capacity)?;
     let weights = WeightModel::placed(config, &model, &detection);
     Ok(PlacedScan { model, detection, weights })

@@ -4,8 +4,9 @@
 
 use super::scan::PlacedScan;
 use crate::config::{Config, NumericalFailure};
-use crate::ekf::{self, Gaussian, Innovation, NumericalError};
+use crate::ekf::{self, Innovation, NumericalError};
 use crate::error::StepError;
+use crate::gaussian::Gaussian;
 use crate::index::{At, NONE};
 use crate::model::{MeasurementModel, MotionModel};
 use crate::pool::BirthPool;

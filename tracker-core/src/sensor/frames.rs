@@ -19,10 +19,12 @@
 //! **Precision in f32.** Positions near 6378 km carry ≈ 0.5 m of rounding, and θ(t) = θ₀ + ω t carries
 //! ≈ 6e-8 |ω t| rad (≈ 2.4 m at the surface after one day): keep the tracker's epoch within a day of the scans.
 
-use super::EARTH_RADIUS;
 use crate::real::{Real, atan2, c, cos, floor, sin, sqrt};
 use nalgebra::{SMatrix, SVector};
 
+/// The Earth's equatorial radius R_E (km): the WGS-84 semi-major axis, and the reference radius of J2
+/// ([`TwoBodyJ2`](crate::TwoBodyJ2)).
+pub const EARTH_RADIUS: f64 = 6378.137;
 /// WGS-84 flattening f = 1 / 298.257223563 (the semi-major axis is [`EARTH_RADIUS`]).
 pub const WGS84_FLATTENING: f64 = 1.0 / 298.257_223_563;
 /// The Earth's nominal rotation rate ω (rad/s), WGS-84 / IERS: 7.292115e-5 rad/s (one sidereal day of
@@ -38,7 +40,7 @@ fn pi<T: Real>() -> T {
 ///
 /// # Examples
 /// ```
-/// use tracker_core::model::wrap_angle;
+/// use tracker_core::sensor::wrap_angle;
 /// use core::f64::consts::PI;
 /// assert!((wrap_angle(2.0 * PI - 0.02_f64) + 0.02).abs() < 1e-12);
 /// assert_eq!(wrap_angle(-PI), PI);
@@ -67,7 +69,7 @@ pub fn wrap_angle<T: Real>(angle: T) -> T {
 /// Vallado, *Fundamentals of Astrodynamics and Applications*, Example 3-5: 1992 August 20, 12:14 UT1 →
 /// 152.578787810°.
 /// ```
-/// use tracker_core::model::gmst_iau82;
+/// use tracker_core::sensor::gmst_iau82;
 /// let jd = 2_448_854.5 + (12.0 + 14.0 / 60.0) / 24.0;
 /// assert!((gmst_iau82(jd).to_degrees() - 152.578_787_810).abs() < 1e-6);
 /// ```
@@ -110,7 +112,7 @@ impl<T: Real> EarthRotation<T> {
     /// A quarter of a sidereal day turns Greenwich from the inertial x axis to the y axis.
     /// ```
     /// use nalgebra::SVector;
-    /// use tracker_core::model::EarthRotation;
+    /// use tracker_core::sensor::EarthRotation;
     /// let rotation = EarthRotation::new(0.0_f64);
     /// let t = core::f64::consts::FRAC_PI_2 / rotation.rate;
     /// let r = rotation.earth_fixed_to_inertial(t) * SVector::from([1.0, 0.0, 0.0]);
@@ -152,7 +154,7 @@ impl<T: Real> GroundSite<T> {
     ///
     /// # Examples
     /// ```
-    /// use tracker_core::model::GroundSite;
+    /// use tracker_core::sensor::GroundSite;
     /// let origin = GroundSite { latitude: 0.0_f64, longitude: 0.0, height: 0.0 }.earth_fixed();
     /// assert_eq!((origin[0], origin[1], origin[2]), (6378.137, 0.0, 0.0));
     /// ```
