@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 fn config() -> &'static Scenario3d {
     static CONFIG: OnceLock<Scenario3d> = OnceLock::new();
     CONFIG.get_or_init(|| {
-        let simulation = host_sim::ssa::tiny_3d(1).expect("tiny-3d");
+        let simulation = host_sim::sim::presets::tiny_3d(1).expect("tiny-3d");
         host_sim::generate3d::to_scenario(&simulation).expect("scenario").0
     })
 }

@@ -36,13 +36,13 @@ use crate::evaluate::write_json;
 use crate::metrics::gospa;
 use crate::plots::{self, Scale, Series, SkySeries};
 use crate::report::{CatalogueReport, CatalogueTracker, RunSummary};
-use crate::rng::{Random, Stream};
 use crate::runner::{Profile, TrackerKind};
 use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
 use crate::scenario3d::{
     Birth3dSpec, FieldOfView3dSpec, Measurement3dSpec, NoiseSpec, Scenario3d, Sensor3dSpec, ShapeSpec, SiteSpec,
 };
-use crate::ssa;
+use crate::sim::rng::{Random, Stream};
+use crate::sim::time;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -510,7 +510,7 @@ fn figures(network: &Network, sensors: &SensorsFile, origins: &[Origin]) -> Cata
 
 /// Geocentric (longitude, latitude) in radians of an inertial position at `t` s after the epoch.
 fn ground_point(epoch_jd: f64, t: f64, p: [f64; 3]) -> (f64, f64) {
-    let theta = ssa::earth_rotation_angle(epoch_jd, t);
+    let theta = time::earth_rotation_angle(epoch_jd, t);
     let longitude =
         (p[1].atan2(p[0]) - theta + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
     (longitude, p[2].atan2(p[0].hypot(p[1])))
@@ -633,7 +633,7 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
     // The telescope's detections from the complement of the seed, so that the two networks' draws differ.
     let networks =
         [network("radars", &radar_sensors, seed, &shared)?, network("telescope", &telescope_sensors, !seed, &shared)?];
-    let epoch_jd = ssa::parse_iso8601(settings.start).map_err(|e| Error::input(format!("start: {e}")))?;
+    let epoch_jd = time::parse_iso8601(settings.start).map_err(|e| Error::input(format!("start: {e}")))?;
     for n in &networks {
         plot_ground_tracks(n, epoch_jd, dir)?;
     }

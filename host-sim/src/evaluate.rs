@@ -437,7 +437,7 @@ fn write_run_plots(
                 estimates_outside_bound: outside,
                 fov: fov_lines(scenario),
                 unit: unit.to_string(),
-                central_body_radius: is_ssa(scenario).then_some(crate::sim::EARTH_RADIUS),
+                central_body_radius: is_ssa(scenario).then_some(crate::sim::planar::EARTH_RADIUS),
             }
         })
         .collect();

@@ -30,7 +30,7 @@ use crate::report::{
 };
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::setup;
-use crate::sim;
+use crate::sim::planar;
 use crate::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -181,7 +181,7 @@ fn options(quiet: bool) -> Options {
 
 /// Paper 003 §IV with R-FISST on the embedded configuration.
 fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<RunSummary, Error> {
-    let scenario = sim::fifty_birth_death(seed).run();
+    let scenario = planar::fifty_birth_death(seed).run();
     scenario.save(&dir.join("scenario.json"))?;
     let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir)?;
     Ok(summary)
@@ -208,7 +208,7 @@ fn map_estimate_difference(a: &Snapshot, b: &Snapshot) -> f64 {
 
 /// Paper 003 §V-A: R-FISST vs HOMHT vs the unbounded reference on the same scans.
 fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigures, Error> {
-    let mut scenario = sim::fifteen_compare(seed).run();
+    let mut scenario = planar::fifteen_compare(seed).run();
     // HOMHT enumerates the product of every object's options: with 15 objects in view that is millions of
     // children per scan, so give it room (R-FISST does not use this bound).
     scenario.tracker.max_children_per_scan = 200_000_000;
@@ -476,8 +476,8 @@ fn ablation(dir: &Path, seed: u64) -> Result<BTreeMap<String, AblationVariant>, 
         ("no_exact_start", true, false),
         ("neither", false, false),
     ];
-    let fifty_scenario = sim::fifty_birth_death(seed).run();
-    let debris_scenario = sim::debris_crossing(seed).run();
+    let fifty_scenario = planar::fifty_birth_death(seed).run();
+    let debris_scenario = planar::debris_crossing(seed).run();
     let mut figures = BTreeMap::new();
     for (name, clusters, exact_start) in variants {
         let config = SamplerConfig { clusters, exact_start, ..SamplerConfig::default() };
@@ -540,7 +540,7 @@ fn ablation(dir: &Path, seed: u64) -> Result<BTreeMap<String, AblationVariant>, 
 /// at their truth with noise, every entry possible (no gate), so A_N(m) is the number of children.
 fn scaling_matrix(objects: usize, measurements: usize, seed: u64) -> (AssociationMatrix<f64, 64, 64>, Vec<u16>) {
     let mut random =
-        crate::rng::Random::stream(seed, crate::rng::Stream::Scenario, (objects * 100 + measurements) as u64);
+        crate::sim::rng::Random::stream(seed, crate::sim::rng::Stream::Scenario, (objects * 100 + measurements) as u64);
     let sigma = 1.0;
     let (pd, clutter) = (0.95f64, 1e-3f64);
     let mut matrix = AssociationMatrix::new(measurements, objects, 0.0);
@@ -724,7 +724,7 @@ fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
 
 /// Debris crossing: R-FISST vs HOMHT with the same time budget per scan, and the truth-association check.
 fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures, Error> {
-    let scenario = sim::debris_crossing(seed).run();
+    let scenario = planar::debris_crossing(seed).run();
     scenario.save(&dir.join("scenario.json"))?;
     let profile = Profile::Host;
 

@@ -11,7 +11,7 @@ use host_sim::experiment::Experiment;
 use host_sim::generate3d::Preset3d;
 use host_sim::runner::{Profile, TrackerKind};
 use host_sim::scenario3d::{AnyScenario, load_any};
-use host_sim::sim::Preset;
+use host_sim::sim::planar::Preset;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -386,7 +386,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         }
         Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue, missing_fraction, breakup } => {
             catalogue.only_for_catalogue()?;
-            let unknowns = host_sim::ssa::Unknowns { missing_fraction, breakup };
+            let unknowns = host_sim::sim::truth::Unknowns { missing_fraction, breakup };
             let simulation = preset.simulate_with(seed, &unknowns)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;

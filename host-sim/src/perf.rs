@@ -221,13 +221,13 @@ impl EkfBench {
 
     fn new() -> Result<Self, Error> {
         let look = 15f64.to_radians();
-        let (r, v) = (7_000.0, (crate::sim::EARTH_MU / 7_000.0f64).sqrt());
+        let (r, v) = (7_000.0, (crate::sim::planar::EARTH_MU / 7_000.0f64).sqrt());
         let prior = Gaussian {
             mean: SVector::from([r * look.cos(), r * look.sin(), -v * look.sin(), v * look.cos()]),
             covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, 4e-8, 4e-8])),
         };
         let two_body = TwoBody {
-            mu: crate::sim::EARTH_MU,
+            mu: crate::sim::planar::EARTH_MU,
             acceleration_noise: 1e-13,
             max_step: 20.0,
             max_substeps: 20_000,
@@ -515,7 +515,7 @@ struct FiftyBench {
 
 impl FiftyBench {
     fn new() -> Self {
-        let scenario = crate::sim::fifty_birth_death(1).run();
+        let scenario = crate::sim::planar::fifty_birth_death(1).run();
         let scans = scenario.scans.iter().map(|scan| (scan.time, setup::measurements(scan))).collect::<Vec<_>>();
         let times = vec![Vec::new(); scans.len()];
         Self { scenario, scans, times, rejected: 0 }

@@ -14,7 +14,7 @@
 use crate::error::Error;
 use crate::reference::ReferenceTracker;
 use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
-use crate::rng::{Random, Stream};
+use crate::sim::rng::{Random, Stream};
 use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::association::association_count;

@@ -6,12 +6,12 @@
 //! (a noisy return that falls outside the field of view is not reported: the sensor cannot see there),
 //! and adds Poisson clutter uniform over the field of view. Objects may be born (exist only from a time
 //! on, and be unknown to the prior) or die (stop existing). The truth records every object's state at
-//! every scan and the origin of every measurement. Everything is seeded (see [`crate::rng`]).
+//! every scan and the origin of every measurement. Everything is seeded (see [`crate::sim::rng`]).
 //!
 //! Units: length in km and time in s for the SSA presets; the linear preset uses abstract units.
 
-use crate::rng::{Random, Stream};
 use crate::scenario::*;
+use crate::sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::{ConstantVelocity, MotionModel, Region, TwoBody};
 
