@@ -11,7 +11,7 @@
 //! at one scan at least, and whose MAP estimate is never closer than `error_bound` to a true object at
 //! any scan where the label is in the MAP hypothesis.
 
-use crate::report::BirthRecord;
+use crate::io::report::BirthRecord;
 use std::collections::BTreeMap;
 
 /// One MAP track as the tally sees it: label, position, existence of the label.

@@ -1,5 +1,5 @@
 //! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario3d`]) from a TLE / OMM catalogue
-//! ([`crate::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
+//! ([`crate::io::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
 //! docs/scenario-format.md "Sensors files").
 //!
 //! Truth: SGP4 for every object at every scan (and at the prior, 1 s before the first scan), in the
@@ -10,8 +10,8 @@
 //! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
 
 use crate::Error;
-use crate::catalogue::{self, Satellite};
 use crate::generate3d::{self, Generated, KnownTruth};
+use crate::io::catalogue::{self, Satellite};
 use crate::scenario::{ScenarioError, error, read_limited};
 use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
 use crate::sim::field_of_view::{FieldOfView, LookShape};

@@ -62,7 +62,7 @@
 //! ```
 
 use crate::error::Error;
-use crate::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
+use crate::io::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
 use crate::scenario::FieldOfViewSpec;
 use crate::setup;
 use crate::sim::planar::{self, EARTH_MU, Orbit};

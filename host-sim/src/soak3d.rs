@@ -17,7 +17,7 @@
 use crate::error::Error;
 use crate::evaluate::peak_resident_kib;
 use crate::generate3d::to_scenario;
-use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
+use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
 use crate::runner::{Profile, TrackerKind};
 use crate::sim::orbit::Propagator;
@@ -238,7 +238,7 @@ where
             simulated_days: stream.time / 86_400.0,
         }),
         errors_by_kind: health.errors,
-        first_error: health.first_error.map(|(scan, message)| crate::report::SoakError { scan, message }),
+        first_error: health.first_error.map(|(scan, message)| crate::io::report::SoakError { scan, message }),
         track_store_high_water: health.max_tracks,
         track_store_capacity: K,
         hypothesis_capacity: H,

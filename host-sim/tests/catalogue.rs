@@ -334,7 +334,7 @@ fn generate(catalogue: &str, sensors: &str, start: &str, hours: &str, seed: &str
 
 #[test]
 fn generate_catalogue_truth_is_sgp4_and_deterministic() {
-    use host_sim::catalogue::{Satellite, load, parse_omm_epoch};
+    use host_sim::io::catalogue::{Satellite, load, parse_omm_epoch};
     use host_sim::scenario3d::Scenario3d;
     let dir = TempDir::new("gen-radar");
     let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));

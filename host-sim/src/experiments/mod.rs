@@ -14,20 +14,23 @@
 //!   truth-consistent association of the MAP parent (≥ 10³⁰ possible children). Writes `debris.json`.
 //!
 //! - `catalogue`: a catalogue seen by two radars and a telescope for 24 hours, with objects missing from the
-//!   prior; two trackers, one per measurement type ([`crate::catalogue_experiment`]). Writes
+//!   prior; two trackers, one per measurement type ([`crate::experiments::catalogue`]). Writes
 //!   `catalogue.json`. Not part of `all`: it takes minutes.
 //!
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
+pub mod catalogue;
+pub mod perf;
+
 use crate::error::Error;
 use crate::evaluate::{self, Options, score, truth_positions, write_json};
-use crate::plots::{self, Scale, Series};
-use crate::report::{
+use crate::io::report::{
     AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
     DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
     RunSummary, RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
 };
+use crate::plots::{self, Scale, Series};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::setup;
 use crate::sim::planar;
@@ -61,7 +64,7 @@ pub enum Experiment {
     /// Clusters and the exact chain start, each switched off.
     Ablation,
     /// A catalogue (verification set, a shell, a launch train) seen by two radars and a telescope for 24 h,
-    /// with objects missing from the prior ([`crate::catalogue_experiment`]); not part of `all` (minutes).
+    /// with objects missing from the prior ([`crate::experiments::catalogue`]); not part of `all` (minutes).
     Catalogue,
     /// Every experiment above but `catalogue`, each in its own directory.
     All,
@@ -165,7 +168,7 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
         Experiment::Scaling => to_value(scaling(dir, seed)?),
         Experiment::Debris => to_value(debris(dir, seed, quiet)?),
         Experiment::Ablation => to_value(ablation(dir, seed)?),
-        Experiment::Catalogue => to_value(crate::catalogue_experiment::run(dir, seed, quiet)?),
+        Experiment::Catalogue => to_value(crate::experiments::catalogue::run(dir, seed, quiet)?),
         Experiment::All => return Err(err("`all` is not one experiment")),
     };
     Ok(figures)

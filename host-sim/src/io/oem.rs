@@ -8,10 +8,10 @@
 //! a gap): the first such scan, then the first one at least [`OEM_STEP_S`] after the last line, and always
 //! the last one (a 24-hour catalogue run at every scan wrote 560 MB), each with its covariance (lower
 //! triangle, km², km²/s, km²/s²). Values are written in their shortest round-trip decimal form, the same
-//! f64 as `estimates.csv`; times as in [`crate::ccsds`].
+//! f64 as `estimates.csv`; times as in [`crate::io::ccsds`].
 
-use crate::ccsds::{self, Instant};
 use crate::error::Error;
+use crate::io::ccsds::{self, Instant};
 use crate::run3d::Track6;
 use crate::scenario3d::Scenario3d;
 use std::collections::BTreeMap;

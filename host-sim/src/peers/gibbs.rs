@@ -22,8 +22,8 @@
 //! update sums the weights of the free ones and draws from them, O(possible columns of the row), with no
 //! `exp` (a row whose free options all underflow falls back to weights relative to their own maximum).
 
-use crate::murty::Child;
-use crate::report::PerfGibbsCase;
+use crate::io::report::PerfGibbsCase;
+use crate::peers::murty::Child;
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use std::collections::HashSet;
@@ -499,7 +499,7 @@ mod tests {
             }
         }
         // The chain's own state never assigns a column twice, on a crossing matrix too.
-        let m: AssociationMatrix<f64, 64, 32> = crate::perf::crossing_matrix(32, 64, 8, 2);
+        let m: AssociationMatrix<f64, 64, 32> = crate::experiments::perf::crossing_matrix(32, 64, 8, 2);
         let mut chain = Gibbs::new(&m, 1);
         for _ in 0..500 {
             chain.sweep();
@@ -541,7 +541,7 @@ mod tests {
 
     #[test]
     fn gibbs_is_deterministic_per_seed() {
-        let m: AssociationMatrix<f64, 64, 32> = crate::perf::crossing_matrix(16, 32, 4, 1);
+        let m: AssociationMatrix<f64, 64, 32> = crate::experiments::perf::crossing_matrix(16, 32, 4, 1);
         let a: Vec<Vec<u16>> = distinct_samples(&m, 7, 300).into_iter().map(|c| c.assignment).collect();
         let b: Vec<Vec<u16>> = distinct_samples(&m, 7, 300).into_iter().map(|c| c.assignment).collect();
         assert_eq!(a, b);

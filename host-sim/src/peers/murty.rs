@@ -12,7 +12,7 @@
 //!   required column it can, then maximises the log-weight. So every feasible association (all required
 //!   columns assigned) ranks before every infeasible one, with no big-M constant and no rounding; the
 //!   enumeration stops at the first infeasible one.
-//! - **Solver**: the host's one assignment solver ([`crate::assignment::assign`]: shortest augmenting
+//! - **Solver**: the host's one assignment solver ([`crate::peers::assignment::assign`]: shortest augmenting
 //!   paths with dual potentials), O(r² c) for r free rows and c open columns; impossible
 //!   (`-inf`) entries, forbidden pairs and columns taken by forced rows are absent edges, and a row with no
 //!   augmenting path proves the subproblem infeasible.
@@ -29,7 +29,7 @@
 //! The log-weights returned are exact: recomputed from the matrix ([`AssociationMatrix::score`]), as every
 //! child generator of tracker-core does.
 
-use crate::assignment::{AssignmentCost, assign};
+use crate::peers::assignment::{AssignmentCost, assign};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use tracker_core::association::{AssociationMatrix, CLUTTER};

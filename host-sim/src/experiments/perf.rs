@@ -6,7 +6,7 @@
 //! fifty-object scenario, so a burst of load from other processes spreads over all of them instead of
 //! biasing one. Samples are short (about a millisecond or less), so most run undisturbed by the scheduler
 //! even on a loaded machine and the median ignores the others. The report is a
-//! [`PerfReport`](crate::report::PerfReport); the keys written:
+//! [`PerfReport`](crate::io::report::PerfReport); the keys written:
 //!
 //! - `mcmc_ns_per_step`: one Metropolis chain of 20,000 steps with the default (informed) proposal on the
 //!   32 × 64 crossing matrix ([`crossing_matrix`] seed 1, 8 objects in each gate), including the tables,
@@ -27,10 +27,10 @@
 //! - `murty_over_mcmc_time_at_equal_mass`: on crossing matrices (16 × 32 with 4 objects per gate, 16 × 64
 //!   and 32 × 64 with 8; seeds 1..=4), the default child generator (`ClusteredChildren`, default sampler,
 //!   C = 32 = H∞) captures a fraction of the mass of the exact 32 best children (from Murty); Murty's
-//!   algorithm ([`crate::murty`]) needs its k best to capture as much; the ratio of their times, median over
+//!   algorithm ([`crate::peers::murty`]) needs its k best to capture as much; the ratio of their times, median over
 //!   the matrices.
 //! - `gibbs_over_mcmc_time_at_equal_mass`: on the same matrices, the Gibbs sampler of GLMB trackers
-//!   ([`crate::gibbs`], from the all-clutter association) runs until its distinct samples capture the
+//!   ([`crate::peers::gibbs`], from the all-clutter association) runs until its distinct samples capture the
 //!   sampler's mass (at most 10⁶ sweeps; a matrix not reached counts as +∞); its time over the sampler's,
 //!   median over the matrices. Its runs on the 32-row matrices take milliseconds, longer than the other
 //!   samples.
@@ -40,11 +40,11 @@
 //! - `tracker_bytes_default`, `tracker_bytes_f32`: `size_of::<SsaTracker<f64>>()` and `<f32>`.
 
 use crate::error::Error;
-use crate::murty::Murty;
-use crate::report::{
+use crate::io::report::{
     PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsShape, PerfMachine, PerfMurty, PerfMurtyCase,
     PerfMurtyShape, PerfReport, PerfSsa,
 };
+use crate::peers::murty::Murty;
 use crate::setup;
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
@@ -581,7 +581,7 @@ pub fn run() -> Result<PerfReport, Error> {
     let mut ekf_bench = EkfBench::new()?;
     let mut exhaustive = ExhaustiveBench::new();
     let mut murty = MurtyBench::new();
-    let mut gibbs = crate::gibbs::Bench::new(
+    let mut gibbs = crate::peers::gibbs::Bench::new(
         murty.cases.iter().map(|c| (label(c.shape), c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)),
     );
     let mut fifty = FiftyBench::new();
@@ -702,7 +702,7 @@ pub fn run() -> Result<PerfReport, Error> {
             optical_geo,
             radar_leo,
             gibbs: PerfGibbs {
-                matrices: "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
+                matrices: "the Murty matrices; Gibbs (crate::peers::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
                 not_reached: gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
                 ratio_median_by_shape: gibbs_by_shape,
                 cases: gibbs_cases,
@@ -732,7 +732,7 @@ pub fn run() -> Result<PerfReport, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::PerfGibbsCase;
+    use crate::io::report::PerfGibbsCase;
     use serde_json::Value;
     use std::collections::BTreeSet;
 

@@ -1,18 +1,18 @@
 //! `host-sim sgp4-check`: the SGP4 verification cases of Vallado et al. (2006) ("Revisiting Spacetrack
-//! Report #3", AIAA 2006-6753) through [`crate::catalogue`]'s parser and the `sgp4` crate in
+//! Report #3", AIAA 2006-6753) through [`crate::io::catalogue`]'s parser and the `sgp4` crate in
 //! AFSPC-compatibility mode, against the published TEME states (`host-sim/data/sgp4-verification/`).
 //!
 //! Every expected state is compared (position and velocity errors as Euclidean norms); a case whose expected
 //! output ends in an SGP4 error must end in the same error at the same time.
 
 use crate::Error;
-use crate::catalogue::{self, PropagationError, Satellite};
+use crate::io::catalogue::{self, PropagationError, Satellite};
 use serde::Serialize;
 
 /// The verification element sets, as bundled.
-pub const VERIFICATION_TLE: &str = include_str!("../data/sgp4-verification/sgp4-ver.tle");
+pub const VERIFICATION_TLE: &str = include_str!("../../data/sgp4-verification/sgp4-ver.tle");
 /// Their expected TEME states, as bundled.
-pub const VERIFICATION_EXPECTED: &str = include_str!("../data/sgp4-verification/sgp4-ver-expected.txt");
+pub const VERIFICATION_EXPECTED: &str = include_str!("../../data/sgp4-verification/sgp4-ver-expected.txt");
 
 /// One expected line: a state, or the error the propagation ends in.
 #[derive(Debug, Clone, PartialEq)]

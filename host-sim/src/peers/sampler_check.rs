@@ -12,8 +12,8 @@
 //! - top-1 found: the sampler kept the exact MAP hypothesis (or one tied with it).
 
 use crate::error::Error;
-use crate::reference::ReferenceTracker;
-use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
+use crate::io::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
+use crate::peers::reference::ReferenceTracker;
 use crate::sim::rng::{Random, Stream};
 use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};

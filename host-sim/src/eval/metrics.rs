@@ -7,11 +7,11 @@
 //! - Assignments are optimal (Hungarian algorithm, O(n^3)) and deterministic: the same input always gives the
 //!   same output, ties being broken towards the lowest column index.
 
-use crate::assignment::assign;
+use crate::peers::assignment::assign;
 use std::collections::HashMap;
 
 /// Minimum-cost assignment (Hungarian / Kuhn-Munkres, O(n^3)) for a rectangular cost matrix given as rows,
-/// solved by the host's one solver ([`crate::assignment::assign`]).
+/// solved by the host's one solver ([`crate::peers::assignment::assign`]).
 /// Returns for each row the column it is assigned to (None when rows > columns and the row is left out).
 /// Every column is used at most once; the total cost is minimal. Costs are finite f64 (a NaN cost leaves
 /// every row unassigned).

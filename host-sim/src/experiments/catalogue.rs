@@ -29,13 +29,13 @@
 //! part of `experiment all`. The radars' run folder is about 660 MB (`tracks.oem`: every MAP track at every
 //! scan).
 
-use crate::catalogue::{self, CatalogueEntry, Satellite};
 use crate::catalogue_scenario::{self, Request, SENSORS_FORMAT, SensorsFile};
 use crate::error::Error;
+use crate::eval::metrics::gospa;
 use crate::evaluate::write_json;
-use crate::metrics::gospa;
+use crate::io::catalogue::{self, CatalogueEntry, Satellite};
+use crate::io::report::{CatalogueReport, CatalogueTracker, RunSummary};
 use crate::plots::{self, Scale, Series, SkySeries};
-use crate::report::{CatalogueReport, CatalogueTracker, RunSummary};
 use crate::runner::{Profile, TrackerKind};
 use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
 use crate::scenario3d::{
@@ -175,7 +175,7 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
     }
     let (mut entries, mut origins) = (vec![], vec![]);
     if settings.verification {
-        let parsed = catalogue::parse_tle("sgp4-ver.tle", crate::sgp4_check::VERIFICATION_TLE)
+        let parsed = catalogue::parse_tle("sgp4-ver.tle", crate::io::sgp4_check::VERIFICATION_TLE)
             .map_err(|e| Error::internal(format!("the shipped verification set: {e}")))?;
         for mut entry in parsed {
             entry.epoch = epoch;
@@ -465,7 +465,7 @@ fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared
 
 /// The objects missing from the prior for which `counts` holds in the run of at least one network (each
 /// object once).
-fn births_by_any(networks: &[Network], counts: impl Fn(&crate::report::BirthRecord) -> bool) -> usize {
+fn births_by_any(networks: &[Network], counts: impl Fn(&crate::io::report::BirthRecord) -> bool) -> usize {
     let objects: BTreeSet<u64> = networks
         .iter()
         .flat_map(|n| n.summary.births.birth_confirmations.iter())

@@ -131,7 +131,7 @@ pub fn plot_series(
 // ---------------------------------------------------------------------------------------------------------------
 
 const FONT: &str = "sans-serif";
-const FONT_BYTES: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+const FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Largest magnitude drawn; keeps axis spans finite.
 const MAX_PLOTTABLE: f64 = 1e300;

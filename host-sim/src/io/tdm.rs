@@ -9,12 +9,12 @@
 //! - a measurement is its components' lines in that order, all with the scan's time; every distinct time
 //!   is one scan; a scan without measurements is a data-section line `COMMENT EMPTY_SCAN <time>`;
 //! - values are written in their shortest round-trip decimal form (the scenario's own degrees: no unit
-//!   conversion happens), times as in [`crate::ccsds`]: the scans read back are bit-identical.
+//!   conversion happens), times as in [`crate::io::ccsds`]: the scans read back are bit-identical.
 //!
 //! Bad input is a [`TdmError`]: the line, the keyword and what is wrong.
 
-use crate::ccsds::{self, Instant};
 use crate::error::Error;
+use crate::io::ccsds::{self, Instant};
 use crate::scenario3d::{Measurement3dSpec, Scan3dSpec, Scenario3d};
 use std::fmt;
 use std::path::{Path, PathBuf};
