@@ -9,7 +9,7 @@ use host_sim::sim::ssa;
 
 fn main() {
     let seed = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(1);
-    type Preset = fn(u64) -> Result<ssa::SsaScenario, ssa::SsaError>;
+    type Preset = fn(u64) -> Result<ssa::SsaScenario, host_sim::sim::error::SsaError>;
     let presets: [(&str, Preset); 3] =
         [("tiny-3d", presets::tiny_3d), ("radar-leo", presets::radar_leo), ("optical-geo", presets::optical_geo)];
     for (name, preset) in presets {

@@ -14,12 +14,12 @@ use crate::generate3d::{self, Generated, KnownTruth};
 use crate::io::catalogue::{self, Satellite};
 use crate::scenario::{ScenarioError, error, read_limited};
 use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
+use crate::sim::error::SsaError;
 use crate::sim::field_of_view::{FieldOfView, LookShape};
 use crate::sim::sensor::{SensorKind, SensorSpec};
 use crate::sim::site;
 use crate::sim::site::Site;
 use crate::sim::ssa;
-use crate::sim::ssa::SsaError;
 use crate::sim::time;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -284,7 +284,7 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
             SsaError::TooManyMeasurements { scan } => Error::input(format!(
                 "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
                  narrower field of view or less clutter",
-                ssa::MAX_MEASUREMENTS
+                crate::sim::error::MAX_MEASUREMENTS
             )),
             other => Error::input(format!("{}: {other}", request.sensors.display())),
         })?;

@@ -24,7 +24,6 @@ use crate::sim::presets::{OpticalGeoConfig, RadarLeoConfig};
 use crate::sim::rng::{Random, Stream};
 use crate::sim::sensor;
 use crate::sim::sensor::SensorKind;
-use crate::sim::ssa;
 use crate::sim::ssa::SsaScenario;
 use crate::sim::truth::Unknowns;
 use nalgebra::SMatrix;
@@ -66,7 +65,7 @@ impl Preset3d {
             Preset3d::Tiny3d => presets::tiny_3d_with(seed, unknowns),
         };
         result.map_err(|e| match e {
-            ssa::SsaError::BadUnknowns => Error::input(e.to_string()),
+            crate::sim::error::SsaError::BadUnknowns => Error::input(e.to_string()),
             e => Error::internal(format!("simulation: {e}")),
         })
     }

@@ -264,3 +264,5 @@ pub(crate) fn panel_areas<DB: DrawingBackend>(
     let (columns, rows) = panel_grid(count);
     root.split_evenly((rows, columns)).into_iter().take(count).collect()
 }
+
+pub(crate) const CHART_MARGIN: u32 = 14;

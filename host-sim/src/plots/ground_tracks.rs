@@ -1,12 +1,11 @@
 //! Ground tracks: truth and estimated sub-satellite points on a longitude/latitude map.
 
 use super::figure::{FONT, Figure, PlotError, ensure_font_registered, format_tick, to_message, write_png_and_svg};
-use super::legend::PlacedLegendEntry;
+use super::legend::{PlacedLegendEntry, draw_snapshot_legend};
 use super::sky::{
     EstimateMarks, SkyAxes, SkySeries, TruthLines, check_sky_input, draw_sky_content, estimate_color, legend_height,
     sky_legend, sky_runs, truth_color,
 };
-use super::snapshots::draw_snapshot_legend;
 use crate::sim::vector::wrap_angle;
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -1,10 +1,10 @@
 //! Markers (truth dots, within-bound circles, estimate stars) and the legends that name them.
 
 use super::figure::{FONT, PALETTE, PlotError, to_message};
-use super::sky::{ESTIMATE_COLOR, SKY_TRUTH_WIDTH, estimate_marker};
 use plotters::coord::Shift;
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 const TRUTH_COLOR: RGBColor = RGBColor(20, 80, 220);
 
@@ -49,15 +49,15 @@ pub(crate) fn within_bound_marker<C, DB: DrawingBackend>(at: C) -> ComposedEleme
     EmptyElement::at(at) + ring(WITHIN_CIRCLE_RADIUS) + ring(WITHIN_CIRCLE_RADIUS - 1)
 }
 
-pub(crate) const LEGEND_FONT_SIZE: u32 = 18;
+const LEGEND_FONT_SIZE: u32 = 18;
 
 pub(crate) const LEGEND_LINE_HEIGHT: u32 = 32;
 
-pub(crate) const LEGEND_SYMBOL_WIDTH: u32 = 34;
+const LEGEND_SYMBOL_WIDTH: u32 = 34;
 
 const LEGEND_ENTRY_GAP: u32 = 34;
 
-pub(crate) const LEGEND_TEXT_GAP: u32 = 8;
+const LEGEND_TEXT_GAP: u32 = 8;
 
 pub(crate) const LEGEND_PADDING: u32 = 12;
 
@@ -75,7 +75,7 @@ pub(crate) enum LegendSymbol {
 }
 
 impl LegendSymbol {
-    pub(super) fn label(self) -> &'static str {
+    fn label(self) -> &'static str {
         match self {
             Self::Truth => "Truth",
             Self::WithinBound => "Estimate within bound",
@@ -90,8 +90,8 @@ impl LegendSymbol {
 
 /// A legend entry placed at pixel offset `x` within its line.
 pub(crate) struct PlacedLegendEntry {
-    pub(super) symbol: LegendSymbol,
-    pub(super) x: u32,
+    symbol: LegendSymbol,
+    x: u32,
 }
 
 /// Flows legend entries into lines no wider than `width`.
@@ -114,8 +114,26 @@ pub(crate) fn layout_legend(symbols: &[LegendSymbol], width: u32) -> Result<Vec<
     Ok(lines)
 }
 
+pub(crate) fn draw_snapshot_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: &[Vec<PlacedLegendEntry>],
+) -> Result<(), PlotError> {
+    let text_style = TextStyle::from((FONT, LEGEND_FONT_SIZE).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    for (row, line) in lines.iter().enumerate() {
+        let y = (LEGEND_PADDING + row as u32 * LEGEND_LINE_HEIGHT + LEGEND_LINE_HEIGHT / 2) as i32;
+        for entry in line {
+            let x = entry.x as i32;
+            draw_legend_symbol(area, entry.symbol, x, y).map_err(to_message)?;
+            // +2 px: plotters' ab_glyph text sits a little high in PNGs (SVG is centred by the viewer).
+            let text_x = x + (LEGEND_SYMBOL_WIDTH + LEGEND_TEXT_GAP) as i32;
+            area.draw(&Text::new(entry.symbol.label(), (text_x, y + 2), text_style.clone())).map_err(to_message)?;
+        }
+    }
+    Ok(())
+}
+
 /// Draws `symbol` in the legend slot starting at `x`, vertically centred on `y`.
-pub(crate) fn draw_legend_symbol<DB: DrawingBackend>(
+fn draw_legend_symbol<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     symbol: LegendSymbol,
     x: i32,
@@ -143,4 +161,14 @@ pub(crate) fn draw_legend_symbol<DB: DrawingBackend>(
             area.draw(&Rectangle::new(swatch, BODY_EDGE.stroke_width(1)))
         }
     }
+}
+
+pub(crate) const SKY_TRUTH_WIDTH: u32 = 2;
+
+pub(crate) const ESTIMATE_COLOR: RGBColor = BLACK;
+
+const ESTIMATE_CROSS_SIZE: i32 = 4;
+
+pub(crate) fn estimate_marker<C>(at: C, color: RGBColor) -> Cross<C, i32> {
+    Cross::new(at, ESTIMATE_CROSS_SIZE, color.stroke_width(2))
 }

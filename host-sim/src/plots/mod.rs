@@ -12,15 +12,17 @@
 //! RA/Dec) and `ground_tracks`; what they share is in `figure` (font, files, axes) and `legend` (markers and
 //! legends). The public names are re-exported here.
 
+mod clip;
 mod figure;
 mod ground_tracks;
 mod legend;
 mod line_chart;
 mod sky;
 mod snapshots;
+mod weights;
+
 #[cfg(test)]
 mod tests;
-mod weights;
 
 pub use figure::{PlotError, Scale};
 pub use ground_tracks::ground_tracks;

@@ -1,24 +1,19 @@
 //! Sky plots of one sensor: truth tracks, estimates and the field of view in azimuth/elevation (polar) or right ascension/declination.
 
+use super::clip::{Segment, circle_polygon, clip_polyline, clip_polyline_with};
 use super::figure::{
-    Bounds, FONT, Figure, PALETTE, PlotError, centered_text, ensure_font_registered, format_tick, to_message,
-    write_png_and_svg,
+    Bounds, CHART_MARGIN, FONT, Figure, PALETTE, PlotError, centered_text, ensure_font_registered, format_tick,
+    to_message, write_png_and_svg,
 };
-use super::legend::{FOV_COLOR, LEGEND_LINE_HEIGHT, LEGEND_PADDING, LegendSymbol, PlacedLegendEntry, layout_legend};
-use super::snapshots::{
-    CHART_MARGIN, Segment, circle_polygon, clip_polyline, clip_polyline_with, draw_snapshot_legend,
+use super::legend::{
+    ESTIMATE_COLOR, FOV_COLOR, LEGEND_LINE_HEIGHT, LEGEND_PADDING, LegendSymbol, PlacedLegendEntry, SKY_TRUTH_WIDTH,
+    draw_snapshot_legend, estimate_marker, layout_legend,
 };
 use crate::sim::vector::wrap_angle;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
 use std::path::Path;
-
-pub(crate) const SKY_TRUTH_WIDTH: u32 = 2;
-
-pub(crate) const ESTIMATE_COLOR: RGBColor = BLACK;
-
-const ESTIMATE_CROSS_SIZE: i32 = 4;
 
 const ISOLATED_TRUTH_RADIUS: i32 = 2;
 
@@ -170,10 +165,6 @@ pub(crate) fn truth_color(series: &SkySeries, index: usize) -> RGBColor {
 
 pub(crate) fn estimate_color(series: &SkySeries) -> RGBColor {
     series.color.map_or(ESTIMATE_COLOR, |index| PALETTE[index % PALETTE.len()])
-}
-
-pub(crate) fn estimate_marker<C>(at: C, color: RGBColor) -> Cross<C, i32> {
-    Cross::new(at, ESTIMATE_CROSS_SIZE, color.stroke_width(2))
 }
 
 /// The closed outline with each edge split into [`OUTLINE_STEPS_PER_EDGE`] pieces, the first angle interpolated

@@ -1,17 +1,16 @@
 //! Snapshots: truth against estimates (with their bounds) in the plane, a panel per scan, with the field of view and the central body.
 
+use super::clip::{circle_polygon, clip_polyline};
 use super::figure::{
-    Bounds, FONT, Figure, PlotError, canvas_side, draw_message, draw_panel_title, ensure_font_registered, format_tick,
-    is_plottable, panel_areas, panel_grid, to_message, write_png_and_svg,
+    Bounds, CHART_MARGIN, FONT, Figure, PlotError, canvas_side, draw_message, draw_panel_title, ensure_font_registered,
+    format_tick, is_plottable, panel_areas, panel_grid, to_message, write_png_and_svg,
 };
 use super::legend::{
-    BODY_EDGE, BODY_FILL, FOV_COLOR, LEGEND_FONT_SIZE, LEGEND_LINE_HEIGHT, LEGEND_PADDING, LEGEND_SYMBOL_WIDTH,
-    LEGEND_TEXT_GAP, LegendSymbol, PlacedLegendEntry, draw_legend_symbol, layout_legend, star_marker, truth_marker,
-    within_bound_marker,
+    BODY_EDGE, BODY_FILL, FOV_COLOR, LEGEND_LINE_HEIGHT, LEGEND_PADDING, LegendSymbol, PlacedLegendEntry,
+    draw_snapshot_legend, layout_legend, star_marker, truth_marker, within_bound_marker,
 };
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use std::path::Path;
 
@@ -64,8 +63,6 @@ pub(crate) const SNAPSHOT_PANEL_SIDE: u32 = 600;
 
 pub(crate) const PANEL_TITLE_HEIGHT: u32 = 40;
 
-pub(crate) const CHART_MARGIN: u32 = 14;
-
 pub(crate) const X_LABEL_AREA: u32 = 50;
 
 const Y_LABEL_AREA: u32 = 85;
@@ -113,24 +110,6 @@ impl Figure for SnapshotFigure<'_> {
     }
 }
 
-pub(crate) fn draw_snapshot_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    lines: &[Vec<PlacedLegendEntry>],
-) -> Result<(), PlotError> {
-    let text_style = TextStyle::from((FONT, LEGEND_FONT_SIZE).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    for (row, line) in lines.iter().enumerate() {
-        let y = (LEGEND_PADDING + row as u32 * LEGEND_LINE_HEIGHT + LEGEND_LINE_HEIGHT / 2) as i32;
-        for entry in line {
-            let x = entry.x as i32;
-            draw_legend_symbol(area, entry.symbol, x, y).map_err(to_message)?;
-            // +2 px: plotters' ab_glyph text sits a little high in PNGs (SVG is centred by the viewer).
-            let text_x = x + (LEGEND_SYMBOL_WIDTH + LEGEND_TEXT_GAP) as i32;
-            area.draw(&Text::new(entry.symbol.label(), (text_x, y + 2), text_style.clone())).map_err(to_message)?;
-        }
-    }
-    Ok(())
-}
-
 fn plottable_point(point: &[f64; 2]) -> Option<(f64, f64)> {
     (is_plottable(point[0]) && is_plottable(point[1])).then_some((point[0], point[1]))
 }
@@ -162,73 +141,6 @@ fn fov_polylines(fov: &FovLines) -> Vec<Vec<(f64, f64)>> {
     let last = fov.look_direction + fov.half_angle;
     let arc = (0..=ARC_SEGMENTS).map(|i| at_angle(first + (last - first) * i as f64 / ARC_SEGMENTS as f64)).collect();
     vec![vec![(ox, oy), at_angle(first)], vec![(ox, oy), at_angle(last)], arc]
-}
-
-pub(crate) fn circle_polygon(radius: f64) -> Vec<(f64, f64)> {
-    const SEGMENTS: usize = 180;
-    (0..SEGMENTS)
-        .map(|i| {
-            let angle = std::f64::consts::TAU * i as f64 / SEGMENTS as f64;
-            (radius * angle.cos(), radius * angle.sin())
-        })
-        .collect()
-}
-
-/// Clips segment `a`-`b` to the view rectangle (Liang–Barsky); None if it lies entirely outside.
-pub(crate) fn clip_segment(
-    a: (f64, f64),
-    b: (f64, f64),
-    x: &Range<f64>,
-    y: &Range<f64>,
-) -> Option<((f64, f64), (f64, f64))> {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (p, q) in [(-dx, a.0 - x.start), (dx, x.end - a.0), (-dy, a.1 - y.start), (dy, y.end - a.1)] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-            if t0 > t1 {
-                return None;
-            }
-        }
-    }
-    // Unclipped ends are returned exactly, so consecutive pieces of a polyline can be rejoined.
-    let start = if t0 == 0.0 { a } else { (a.0 + t0 * dx, a.1 + t0 * dy) };
-    let end = if t1 == 1.0 { b } else { (a.0 + t1 * dx, a.1 + t1 * dy) };
-    Some((start, end))
-}
-
-/// The visible pieces of a polyline, each still a polyline (so joins stay smooth).
-pub(crate) fn clip_polyline(points: &[(f64, f64)], x: &Range<f64>, y: &Range<f64>) -> Vec<Vec<(f64, f64)>> {
-    clip_polyline_with(points, |a, b| clip_segment(a, b, x, y))
-}
-
-/// A line segment's two ends.
-pub(crate) type Segment = ((f64, f64), (f64, f64));
-
-/// The pieces of a polyline that `clip` keeps of each segment, rejoined where a kept segment starts exactly where the
-/// previous one ended.
-pub(crate) fn clip_polyline_with(
-    points: &[(f64, f64)],
-    clip: impl Fn((f64, f64), (f64, f64)) -> Option<Segment>,
-) -> Vec<Vec<(f64, f64)>> {
-    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
-    for pair in points.windows(2) {
-        let Some((start, end)) = clip(pair[0], pair[1]) else { continue };
-        match pieces.last_mut() {
-            Some(piece) if piece.last() == Some(&start) => piece.push(end),
-            _ => pieces.push(vec![start, end]),
-        }
-    }
-    pieces
 }
 
 /// Bounds that must be visible in a snapshot panel.

@@ -1,5 +1,6 @@
 //! Tests of the figures.
 
+use super::clip::{clip_polyline, clip_segment};
 use super::figure::{
     Bounds, Scale, ensure_font_registered, format_scientific, format_tick, linear_axis, log_axis, path_with_extension,
 };
@@ -9,9 +10,7 @@ use super::sky::{
     PolarSkyFigure, RaDecView, SKY_POLAR_SIDE, SkySeries, clip_to_horizon, format_ra_tick, polar_projection,
     sky_plot_az_el, sky_plot_ra_dec,
 };
-use super::snapshots::{
-    FovLines, SNAPSHOT_PANEL_SIDE, SnapshotPanel, clip_polyline, clip_segment, equal_aspect_ranges, plot_snapshots,
-};
+use super::snapshots::{FovLines, SNAPSHOT_PANEL_SIDE, SnapshotPanel, equal_aspect_ranges, plot_snapshots};
 use super::weights::{WEIGHT_PANEL_SIZE, format_rank_tick, plot_hypothesis_weights, ranked_bars};
 use crate::sim::vector::wrap_angle;
 use std::path::{Path, PathBuf};

@@ -1,10 +1,10 @@
 //! Hypothesis-weight bar charts: a panel per scan, the weights ranked.
 
 use super::figure::{
-    FONT, Figure, PlotError, canvas_side, draw_message, draw_panel_title, ensure_font_registered, format_tick,
-    is_plottable, linear_axis, panel_areas, panel_grid, to_message, write_png_and_svg,
+    CHART_MARGIN, FONT, Figure, PlotError, canvas_side, draw_message, draw_panel_title, ensure_font_registered,
+    format_tick, is_plottable, linear_axis, panel_areas, panel_grid, to_message, write_png_and_svg,
 };
-use super::snapshots::{CHART_MARGIN, PANEL_TITLE_HEIGHT, X_LABEL_AREA};
+use super::snapshots::{PANEL_TITLE_HEIGHT, X_LABEL_AREA};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;

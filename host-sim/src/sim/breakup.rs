@@ -1,6 +1,7 @@
 //! Break-ups: fragments released from a parent object at a time, which the prior does not know.
 
-use super::ssa::{PASS_GAP, SsaError};
+use super::error::SsaError;
+use super::ssa::PASS_GAP;
 use super::truth::{ObjectTruth, Track, track};
 use super::vector::{add, norm, scale, vel};
 use crate::sim::orbit::Propagator;

@@ -1,11 +1,12 @@
 //! The 3-D presets: `radar-leo` (ground radars, LEO objects), `optical-geo` (a telescope, GEO objects) and `tiny-3d`.
 
 use super::breakup::breakup;
+use super::error::SsaError;
 use super::field_of_view::{FieldOfView, LookShape};
 use super::frames::{fixed_to_inertial, radec};
 use super::sensor::{SensorKind, SensorSpec};
 use super::site::{Site, WGS84_A};
-use super::ssa::{Plan, SsaError, SsaScenario, count_passes, observers, simulate, visibility};
+use super::ssa::{Plan, SsaScenario, count_passes, observers, simulate, visibility};
 use super::time::{EARTH_ROTATION_RATE, earth_rotation_angle, parse_iso8601};
 use super::truth::{Group, MU, ObjectTruth, Unknowns, aimed_circular, kepler_state, mark_missing, track};
 use super::vector::{add, deg, norm, pos, rotate, scale, vel};

@@ -1,9 +1,9 @@
 //! A simulated sensor: its kind (radar, optical), site, field of view, p_D, clutter and noise; it measures, draws clutter and adds noise.
 
+use super::error::SsaError;
 use super::field_of_view::{FieldOfView, LookShape};
 use super::frames::{radec, radec_direction};
 use super::site::{Observer, Site};
-use super::ssa::SsaError;
 use super::vector::{pos, wrap_angle};
 use crate::sim::rng::Random;
 use core::f64::consts::{FRAC_PI_2, PI};

@@ -1,5 +1,6 @@
 //! Tests of the 3-D SSA simulator.
 
+use super::error::{MAX_MEASUREMENTS, SsaError};
 use super::field_of_view::{FieldOfView, LookShape};
 use super::frames::{radec, radec_direction};
 use super::presets::{
@@ -7,7 +8,7 @@ use super::presets::{
 };
 use super::sensor::{SensorKind, SensorSpec};
 use super::site::{Site, WGS84_A, WGS84_F};
-use super::ssa::{MAX_MEASUREMENTS, SsaError, SsaScenario};
+use super::ssa::SsaScenario;
 use super::time::{EARTH_ROTATION_RATE, earth_rotation_angle, gmst, julian_date, parse_iso8601};
 use super::truth::{MU, Unknowns, aimed_circular, kepler_state};
 use super::vector::{add, angle_between, cross, deg, dot, norm, pos, scale, sub, vel, wrap_angle};

@@ -1,6 +1,6 @@
 //! UTC and the Earth's rotation: Julian dates, the ISO-8601 UTC form, GMST (IAU-82) and the Earth rotation angle.
 
-use super::ssa::SsaError;
+use super::error::SsaError;
 use core::f64::consts::TAU;
 
 /// Earth rotation rate ω_E (rad/s).

@@ -1,6 +1,6 @@
 //! The truth of the simulated objects: their initial states and groups, which are unknown to the prior, their tracks, and Keplerian orbit construction.
 
-use super::ssa::SsaError;
+use super::error::SsaError;
 use super::vector::{add, scale};
 use crate::sim::orbit::Propagator;
 use crate::sim::rng::{Random, Stream};
