@@ -512,9 +512,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     let tle_text = host_sim::scenario::read_limited(&tle)?;
                     let expected_text = host_sim::scenario::read_limited(&expected)?;
                     let names = (tle.display().to_string(), expected.display().to_string());
-                    host_sim::io::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
+                    host_sim::io::catalogue::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
                 }
-                _ => host_sim::io::sgp4_check::run()?,
+                _ => host_sim::io::catalogue::sgp4_check::run()?,
             };
             write_report(&out, &report)?;
             if report.mismatched_cases > 0 {

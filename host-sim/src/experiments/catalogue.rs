@@ -175,7 +175,7 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
     }
     let (mut entries, mut origins) = (vec![], vec![]);
     if settings.verification {
-        let parsed = catalogue::parse_tle("sgp4-ver.tle", crate::io::sgp4_check::VERIFICATION_TLE)
+        let parsed = catalogue::parse_tle("sgp4-ver.tle", crate::io::catalogue::sgp4_check::VERIFICATION_TLE)
             .map_err(|e| Error::internal(format!("the shipped verification set: {e}")))?;
         for mut entry in parsed {
             entry.epoch = epoch;

@@ -10,9 +10,9 @@ use crate::io::catalogue::{self, PropagationError, Satellite};
 use serde::Serialize;
 
 /// The verification element sets, as bundled.
-pub const VERIFICATION_TLE: &str = include_str!("../../data/sgp4-verification/sgp4-ver.tle");
+pub const VERIFICATION_TLE: &str = include_str!("../../../data/sgp4-verification/sgp4-ver.tle");
 /// Their expected TEME states, as bundled.
-pub const VERIFICATION_EXPECTED: &str = include_str!("../../data/sgp4-verification/sgp4-ver-expected.txt");
+pub const VERIFICATION_EXPECTED: &str = include_str!("../../../data/sgp4-verification/sgp4-ver-expected.txt");
 
 /// One expected line: a state, or the error the propagation ends in.
 #[derive(Debug, Clone, PartialEq)]
