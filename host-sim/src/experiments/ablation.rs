@@ -8,7 +8,6 @@ use crate::evaluate::{self, write_json};
 use crate::io::report::{AblationDebris, AblationFifty, AblationVariant};
 use crate::runner::TrackerKind;
 use crate::sim::planar;
-use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::path::Path;
 use tracker_core::cluster::ClusteredChildren;

@@ -8,12 +8,11 @@ use crate::io::report::{
     AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht, DebrisReport, DebrisRfisst, DebrisScan,
 };
 use crate::plots::{self, Scale, Series};
-use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
+use crate::runner::{Profile, ReferenceBudget, TrackerKind, build};
 use crate::setup;
 use crate::sim::planar;
 use crate::snapshot::Snapshot;
 use nalgebra::SVector;
-use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;

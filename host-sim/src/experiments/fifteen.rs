@@ -9,7 +9,6 @@ use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::setup;
 use crate::sim::planar;
 use crate::snapshot::Snapshot;
-use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 

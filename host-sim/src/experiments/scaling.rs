@@ -5,7 +5,6 @@ use crate::error::Error;
 use crate::evaluate::write_json;
 use crate::io::report::{ScalingFigures, ScalingReport, ScalingSampler, ScalingSize};
 use crate::plots::{self, Scale, Series};
-use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 use tracker_core::association::{AssociationMatrix, association_count};
