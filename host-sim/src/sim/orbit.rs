@@ -15,6 +15,8 @@
 //! **Frame and model.** As the core's: inertial, Earth-centred, z along the pole (TEME for SGP4 states),
 //! km and km/s; point mass plus the J2 zonal term, nothing else.
 
+use super::vector::norm;
+
 /// Point-mass + J2 gravity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Gravity {
@@ -99,8 +101,8 @@ impl Propagator {
         let mut t = 0.0_f64;
         let direction = if dt < 0.0 { -1.0 } else { 1.0 };
         // First guess: 1/100 of the time to cross the radius at the current speed; the control adapts.
-        let r = norm(&[y[0], y[1], y[2]]);
-        let v = norm(&[y[3], y[4], y[5]]);
+        let r = norm([y[0], y[1], y[2]]);
+        let v = norm([y[3], y[4], y[5]]);
         let mut h = (0.01 * r / v.max(1e-9)).min(dt.abs()).max(1e-6) * direction;
         for _ in 0..self.max_steps {
             let remaining = dt - t;
@@ -156,16 +158,12 @@ impl Propagator {
         if next.iter().any(|v| !v.is_finite()) {
             return Err(OrbitError::NonFinite);
         }
-        let scale_r = self.tolerance * norm(&[y[0], y[1], y[2]]).max(norm(&[next[0], next[1], next[2]]));
-        let scale_v = self.tolerance * norm(&[y[3], y[4], y[5]]).max(norm(&[next[3], next[4], next[5]])) + 1e-300;
-        let error_r = norm(&[error[0], error[1], error[2]]) / scale_r;
-        let error_v = norm(&[error[3], error[4], error[5]]) / scale_v;
+        let scale_r = self.tolerance * norm([y[0], y[1], y[2]]).max(norm([next[0], next[1], next[2]]));
+        let scale_v = self.tolerance * norm([y[3], y[4], y[5]]).max(norm([next[3], next[4], next[5]])) + 1e-300;
+        let error_r = norm([error[0], error[1], error[2]]) / scale_r;
+        let error_v = norm([error[3], error[4], error[5]]) / scale_v;
         Ok((next, error_r.max(error_v)))
     }
-}
-
-fn norm(v: &[f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 /// Fehlberg's RKF7(8) nodes c.
@@ -270,7 +268,7 @@ mod tests {
     fn kepler(mu: f64, state: [f64; 6], dt: f64) -> [f64; 6] {
         let r0 = [state[0], state[1], state[2]];
         let v0 = [state[3], state[4], state[5]];
-        let r0n = norm(&r0);
+        let r0n = norm(r0);
         let v0n2 = v0[0] * v0[0] + v0[1] * v0[1] + v0[2] * v0[2];
         let a = 1.0 / (2.0 / r0n - v0n2 / mu);
         let n = (mu / (a * a * a)).sqrt();
@@ -298,7 +296,7 @@ mod tests {
     }
 
     fn position_error(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-        norm(&[a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+        norm([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
     }
 
     /// An orbit of semi-major axis `a`, eccentricity `e` and inclination `inclination` (deg), at perigee

@@ -7,37 +7,37 @@ pub fn deg(x: f64) -> f64 {
     x.to_radians()
 }
 
-pub(crate) type V3 = [f64; 3];
+pub type V3 = [f64; 3];
 
-pub(crate) fn dot(a: V3, b: V3) -> f64 {
+pub fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub(crate) fn sub(a: V3, b: V3) -> V3 {
+pub fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-pub(crate) fn scale(a: V3, s: f64) -> V3 {
+pub fn scale(a: V3, s: f64) -> V3 {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
-pub(crate) fn add(a: V3, b: V3) -> V3 {
+pub fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-pub(crate) fn cross(a: V3, b: V3) -> V3 {
+pub fn cross(a: V3, b: V3) -> V3 {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
-pub(crate) fn norm(a: V3) -> f64 {
+pub fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
 }
 
-pub(crate) fn pos(state: &[f64; 6]) -> V3 {
+pub fn pos(state: &[f64; 6]) -> V3 {
     [state[0], state[1], state[2]]
 }
 
-pub(crate) fn vel(state: &[f64; 6]) -> V3 {
+pub fn vel(state: &[f64; 6]) -> V3 {
     [state[3], state[4], state[5]]
 }
 
@@ -53,7 +53,7 @@ pub fn wrap_angle(x: f64) -> f64 {
 }
 
 /// Rodrigues rotation of `v` about unit `k` by `angle`.
-pub(crate) fn rotate(v: V3, k: V3, angle: f64) -> V3 {
+pub fn rotate(v: V3, k: V3, angle: f64) -> V3 {
     let (s, c) = angle.sin_cos();
     add(add(scale(v, c), scale(cross(k, v), s)), scale(k, dot(k, v) * (1.0 - c)))
 }
