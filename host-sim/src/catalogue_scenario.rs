@@ -5,7 +5,7 @@
 //! Truth: SGP4 for every object at every scan (and at the prior, 1 s before the first scan), in the
 //! tracker's frame (TEME, docs/maths.md §6.8). The sensors take turns, one scan every
 //! `scan_interval_s / sensors` seconds from the start. Detections, noise and clutter are drawn by
-//! [`crate::ssa`]'s simulator as for the presets. A telescope scans only while its site is dark (the Sun
+//! [`crate::sim`]'s simulator as for the presets. A telescope scans only while its site is dark (the Sun
 //! below `max_sun_elevation_deg`, default −12°) and sees only sunlit objects (outside the Earth's
 //! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
 

@@ -1,4 +1,4 @@
-//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
+//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::sim`] written as
 //! version 2 scenario files ([`crate::scenario3d`]).
 //!
 //! The truth of every object at every scan comes from [`crate::sim::orbit`]'s adaptive RKF7(8) two-body + J2

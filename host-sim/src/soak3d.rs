@@ -1,7 +1,7 @@
 //! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
-//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::generate3d::to_scenario`]); the tracker is
+//! `optical-geo`) with the soak's seed ([`crate::sim`], [`crate::generate3d::to_scenario`]); the tracker is
 //! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::run3d::config3d`], f64,
 //! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
 //! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-/// `perf.json` of `host-sim perf` (every key is documented in `perf.rs`). The fields of each record are
+/// `perf.json` of `host-sim perf` (every key is documented in `experiments/perf.rs`). The fields of each record are
 /// declared in alphabetical order, the order in which the file has always been written.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
