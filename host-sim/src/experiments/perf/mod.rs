@@ -702,7 +702,7 @@ pub fn run() -> Result<PerfReport, Error> {
             optical_geo,
             radar_leo,
             gibbs: PerfGibbs {
-                matrices: "the Murty matrices; Gibbs (crate::peers::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
+                matrices: "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
                 not_reached: gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
                 ratio_median_by_shape: gibbs_by_shape,
                 cases: gibbs_cases,
