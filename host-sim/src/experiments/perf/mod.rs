@@ -41,8 +41,8 @@
 
 use crate::error::Error;
 use crate::io::report::{
-    PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsShape, PerfMachine, PerfMurty, PerfMurtyCase,
-    PerfMurtyShape, PerfReport, PerfSsa,
+    PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsCase, PerfGibbsShape, PerfMachine, PerfMurty,
+    PerfMurtyCase, PerfMurtyShape, PerfReport, PerfSsa,
 };
 use crate::peers::murty::Murty;
 use crate::setup;
@@ -614,50 +614,9 @@ pub fn run() -> Result<PerfReport, Error> {
     let mcmc = median(&chains.samples[0]);
     let floor = median(&chains.samples[3]);
     let per_scan_ms: Vec<f64> = fifty.times.iter().map(|t| median(t) * 1e3).collect();
-    let mut sorted_scans = per_scan_ms.clone();
-    sorted_scans.sort_by(f64::total_cmp);
-    let percentile = |p: f64| {
-        sorted_scans.get(((sorted_scans.len() as f64 - 1.0) * p).round() as usize).copied().unwrap_or(f64::NAN)
-    };
-    let ratios: Vec<f64> =
-        murty.cases.iter().map(|case| median(&case.murty_seconds) / median(&case.sampler_seconds)).collect();
-    let murty_cases: Vec<PerfMurtyCase> = murty
-        .cases
-        .iter()
-        .zip(&ratios)
-        .map(|(case, &ratio)| PerfMurtyCase {
-            matrix: label(case.shape),
-            seed: case.seed,
-            sampler_best_minus_map_nats: case.sampler_best_minus_map,
-            sampler_children: case.sampler_children,
-            sampler_captured_mass_of_best_32: case.sampler_mass,
-            murty_children_for_equal_mass: case.k,
-            sampler_us: median(&case.sampler_seconds) * 1e6,
-            murty_us: median(&case.murty_seconds) * 1e6,
-            ratio,
-        })
-        .collect();
-    let murty_by_shape = MurtyBench::SHAPES
-        .iter()
-        .map(|&shape| {
-            let by_shape: Vec<f64> =
-                murty.cases.iter().zip(&ratios).filter(|(c, _)| c.shape == shape).map(|(_, r)| *r).collect();
-            PerfMurtyShape { matrix: label(shape), ratio: median(&by_shape) }
-        })
-        .collect();
+    let (ratios, murty_cases, murty_by_shape) = murty_figures(&murty);
     let exhaustive_ratio = median(&exhaustive.exhaustive) / median(&exhaustive.sampled);
-    let sampler_seconds: Vec<f64> = murty.cases.iter().map(|case| median(&case.sampler_seconds)).collect();
-    let (gibbs_ratios, gibbs_cases) = gibbs.ratios(&sampler_seconds, median);
-    let gibbs_by_shape = MurtyBench::SHAPES
-        .iter()
-        .map(|&shape| {
-            let matrix = label(shape);
-            let by_shape: Vec<f64> =
-                gibbs.labels().zip(&gibbs_ratios).filter(|(l, _)| *l == matrix).map(|(_, r)| *r).collect();
-            let m = median(&by_shape);
-            PerfGibbsShape { matrix, ratio: m.is_finite().then_some(m) }
-        })
-        .collect();
+    let (gibbs_ratios, gibbs_cases, gibbs_by_shape) = gibbs_figures(&murty, &gibbs);
 
     Ok(PerfReport {
         mcmc_ns_per_step: mcmc,
@@ -684,14 +643,7 @@ pub fn run() -> Result<PerfReport, Error> {
             ekf_predict_two_body_ns: median(&ekf_bench.samples[1]),
             ekf_predict_cv_ns: median(&ekf_bench.samples[2]),
             ekf_innovation_ns: median(&ekf_bench.samples[3]),
-            fifty: PerfFifty {
-                scans: per_scan_ms.len(),
-                passes: FIFTY_PASSES,
-                rejected_scans_last_pass: fifty.rejected,
-                mean_ms: per_scan_ms.iter().sum::<f64>() / per_scan_ms.len().max(1) as f64,
-                p90_ms: percentile(0.9),
-                max_ms: percentile(1.0),
-            },
+            fifty: fifty_figures(&per_scan_ms, fifty.rejected),
             murty: PerfMurty {
                 matrices: "crossings 16 x 32 (4 per gate), 16 x 64 (8), 32 x 64 (8), seeds 1..=4; sampler = ClusteredChildren, default SamplerConfig, C = 32; Murty lazy, cold-started subproblems".to_string(),
                 ratio_median_by_shape: murty_by_shape,
@@ -718,15 +670,88 @@ pub fn run() -> Result<PerfReport, Error> {
             rounds: ROUNDS,
             seconds: started.elapsed().as_secs_f64(),
         },
-        machine: PerfMachine {
-            cpu: lscpu("Model name").unwrap_or_default(),
-            cpus: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
-            os: std::env::consts::OS.to_string(),
-            arch: std::env::consts::ARCH.to_string(),
-            rustc: rustc_version().unwrap_or_default(),
-            debug_assertions: cfg!(debug_assertions),
-        },
+        machine: machine(),
     })
+}
+
+/// The fifty-object figures from the per-scan times (ms, each the median over the passes).
+fn fifty_figures(per_scan_ms: &[f64], rejected: usize) -> PerfFifty {
+    let mut sorted_scans = per_scan_ms.to_vec();
+    sorted_scans.sort_by(f64::total_cmp);
+    let percentile = |p: f64| {
+        sorted_scans.get(((sorted_scans.len() as f64 - 1.0) * p).round() as usize).copied().unwrap_or(f64::NAN)
+    };
+    PerfFifty {
+        scans: per_scan_ms.len(),
+        passes: FIFTY_PASSES,
+        rejected_scans_last_pass: rejected,
+        mean_ms: per_scan_ms.iter().sum::<f64>() / per_scan_ms.len().max(1) as f64,
+        p90_ms: percentile(0.9),
+        max_ms: percentile(1.0),
+    }
+}
+
+/// Per Murty case the time ratio to the sampler at equal mass, the case records, and the median ratio per shape.
+fn murty_figures(murty: &MurtyBench) -> (Vec<f64>, Vec<PerfMurtyCase>, Vec<PerfMurtyShape>) {
+    let ratios: Vec<f64> =
+        murty.cases.iter().map(|case| median(&case.murty_seconds) / median(&case.sampler_seconds)).collect();
+    let murty_cases: Vec<PerfMurtyCase> = murty
+        .cases
+        .iter()
+        .zip(&ratios)
+        .map(|(case, &ratio)| PerfMurtyCase {
+            matrix: label(case.shape),
+            seed: case.seed,
+            sampler_best_minus_map_nats: case.sampler_best_minus_map,
+            sampler_children: case.sampler_children,
+            sampler_captured_mass_of_best_32: case.sampler_mass,
+            murty_children_for_equal_mass: case.k,
+            sampler_us: median(&case.sampler_seconds) * 1e6,
+            murty_us: median(&case.murty_seconds) * 1e6,
+            ratio,
+        })
+        .collect();
+    let murty_by_shape = MurtyBench::SHAPES
+        .iter()
+        .map(|&shape| {
+            let by_shape: Vec<f64> =
+                murty.cases.iter().zip(&ratios).filter(|(c, _)| c.shape == shape).map(|(_, r)| *r).collect();
+            PerfMurtyShape { matrix: label(shape), ratio: median(&by_shape) }
+        })
+        .collect();
+    (ratios, murty_cases, murty_by_shape)
+}
+
+/// Per Murty case Gibbs's time ratio to the sampler at equal mass, the case records, and the median ratio per shape.
+fn gibbs_figures(
+    murty: &MurtyBench,
+    gibbs: &crate::peers::gibbs::Bench,
+) -> (Vec<f64>, Vec<PerfGibbsCase>, Vec<PerfGibbsShape>) {
+    let sampler_seconds: Vec<f64> = murty.cases.iter().map(|case| median(&case.sampler_seconds)).collect();
+    let (gibbs_ratios, gibbs_cases) = gibbs.ratios(&sampler_seconds, median);
+    let gibbs_by_shape = MurtyBench::SHAPES
+        .iter()
+        .map(|&shape| {
+            let matrix = label(shape);
+            let by_shape: Vec<f64> =
+                gibbs.labels().zip(&gibbs_ratios).filter(|(l, _)| *l == matrix).map(|(_, r)| *r).collect();
+            let m = median(&by_shape);
+            PerfGibbsShape { matrix, ratio: m.is_finite().then_some(m) }
+        })
+        .collect();
+    (gibbs_ratios, gibbs_cases, gibbs_by_shape)
+}
+
+/// The machine the figures were measured on.
+fn machine() -> PerfMachine {
+    PerfMachine {
+        cpu: lscpu("Model name").unwrap_or_default(),
+        cpus: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
+        os: std::env::consts::OS.to_string(),
+        arch: std::env::consts::ARCH.to_string(),
+        rustc: rustc_version().unwrap_or_default(),
+        debug_assertions: cfg!(debug_assertions),
+    }
 }
 
 #[cfg(test)]
