@@ -26,7 +26,7 @@ fn fifty_tracker(scenario: &host_sim::scenario::Scenario) -> Box<SsaTracker<f64>
 }
 
 fn step(c: &mut Criterion) {
-    let scenario = host_sim::sim::fifty_birth_death(1).run();
+    let scenario = host_sim::sim::planar::fifty_birth_death(1).run();
     let scans: Vec<(f64, Vec<SVector<f64, 2>>)> =
         scenario.scans.iter().map(|scan| (scan.time, setup::measurements(scan))).collect();
     let mut group = c.benchmark_group("step");

@@ -467,7 +467,7 @@ mod tests {
     fn host_sim_perf_measures_the_same_crossing_matrices() {
         for (rows, columns, in_gate, seed) in [(32, 64, 8, 1), (16, 32, 4, 3), (5, 9, 2, 7)] {
             let ours: AssociationMatrix<f64, 64, 32> = crossing_matrix(rows, columns, in_gate, seed);
-            assert_eq!(ours, host_sim::perf::crossing_matrix(rows, columns, in_gate, seed));
+            assert_eq!(ours, host_sim::experiments::perf::crossing_matrix(rows, columns, in_gate, seed));
         }
     }
 }

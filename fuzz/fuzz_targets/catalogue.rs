@@ -9,7 +9,7 @@
 //!   state or an SGP4 error, never a panic, and a state is finite.
 #![no_main]
 
-use host_sim::catalogue::{self, CatalogueEntry, CatalogueError, Satellite};
+use host_sim::io::catalogue::{self, CatalogueEntry, CatalogueError, Satellite};
 use libfuzzer_sys::fuzz_target;
 
 fn check(result: Result<Vec<CatalogueEntry>, CatalogueError>) {

@@ -1,5 +1,5 @@
-//! Fuzz target `tdm`: arbitrary bytes into host-sim's CCSDS TDM reader (`host_sim::tdm::parse`) and the
-//! scans it gives tiny-3d's configuration (`host_sim::tdm::scans_of`).
+//! Fuzz target `tdm`: arbitrary bytes into host-sim's CCSDS TDM reader (`host_sim::io::tdm::parse`) and the
+//! scans it gives tiny-3d's configuration (`host_sim::io::tdm::scans_of`).
 //!
 //! Checked on every input:
 //! - nothing panics;
@@ -9,7 +9,7 @@
 #![no_main]
 
 use host_sim::scenario3d::Scenario3d;
-use host_sim::tdm;
+use host_sim::io::tdm;
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
 
@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 fn config() -> &'static Scenario3d {
     static CONFIG: OnceLock<Scenario3d> = OnceLock::new();
     CONFIG.get_or_init(|| {
-        let simulation = host_sim::ssa::tiny_3d(1).expect("tiny-3d");
+        let simulation = host_sim::sim::presets::tiny_3d(1).expect("tiny-3d");
         host_sim::generate3d::to_scenario(&simulation).expect("scenario").0
     })
 }

@@ -4,13 +4,14 @@
 
 use std::time::Instant;
 
-use host_sim::ssa;
+use host_sim::sim::presets;
+use host_sim::sim::ssa;
 
 fn main() {
     let seed = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(1);
-    type Preset = fn(u64) -> Result<ssa::SsaScenario, ssa::SsaError>;
+    type Preset = fn(u64) -> Result<ssa::SsaScenario, host_sim::sim::error::SsaError>;
     let presets: [(&str, Preset); 3] =
-        [("tiny-3d", ssa::tiny_3d), ("radar-leo", ssa::radar_leo), ("optical-geo", ssa::optical_geo)];
+        [("tiny-3d", presets::tiny_3d), ("radar-leo", presets::radar_leo), ("optical-geo", presets::optical_geo)];
     for (name, preset) in presets {
         let start = Instant::now();
         let scenario = match preset(seed) {

@@ -11,7 +11,7 @@
 //! at one scan at least, and whose MAP estimate is never closer than `error_bound` to a true object at
 //! any scan where the label is in the MAP hypothesis.
 
-use crate::report::BirthRecord;
+use crate::io::report::{BirthFigures, BirthRecord};
 use std::collections::BTreeMap;
 
 /// One MAP track as the tally sees it: label, position, existence of the label.
@@ -38,23 +38,6 @@ struct Birth {
 struct Label {
     confirmed: bool,
     near: bool,
-}
-
-/// The summary figures of a tally.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BirthFigures {
-    /// Births in the truth.
-    pub births_total: usize,
-    /// Births confirmed.
-    pub births_confirmed: usize,
-    /// Per birth, in id order.
-    pub records: Vec<BirthRecord>,
-    /// Mean detections to confirmation of the confirmed births (`None`: none confirmed).
-    pub mean_detections_to_confirm: Option<f64>,
-    /// Largest detections to confirmation (`None`: none confirmed).
-    pub max_detections_to_confirm: Option<usize>,
-    /// False tracks over the run.
-    pub false_tracks: usize,
 }
 
 /// Births and false tracks of a run.

@@ -1,20 +1,26 @@
 //! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario3d`]) from a TLE / OMM catalogue
-//! ([`crate::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
+//! ([`crate::io::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
 //! docs/scenario-format.md "Sensors files").
 //!
 //! Truth: SGP4 for every object at every scan (and at the prior, 1 s before the first scan), in the
 //! tracker's frame (TEME, docs/maths.md §6.8). The sensors take turns, one scan every
 //! `scan_interval_s / sensors` seconds from the start. Detections, noise and clutter are drawn by
-//! [`crate::ssa`]'s simulator as for the presets. A telescope scans only while its site is dark (the Sun
+//! [`crate::sim`]'s simulator as for the presets. A telescope scans only while its site is dark (the Sun
 //! below `max_sun_elevation_deg`, default −12°) and sees only sunlit objects (outside the Earth's
 //! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
 
 use crate::Error;
-use crate::catalogue::{self, Satellite};
 use crate::generate3d::{self, Generated, KnownTruth};
+use crate::io::catalogue::{self, Satellite};
 use crate::scenario::{ScenarioError, error, read_limited};
 use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
-use crate::ssa::{self, FieldOfView, LookShape, SensorKind, SensorSpec, Site, SsaError};
+use crate::sim::error::SsaError;
+use crate::sim::field_of_view::{FieldOfView, LookShape};
+use crate::sim::sensor::{SensorKind, SensorSpec};
+use crate::sim::site;
+use crate::sim::site::Site;
+use crate::sim::ssa;
+use crate::sim::time;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -162,7 +168,7 @@ pub fn sunlit(position: [f64; 3], sun: [f64; 3]) -> bool {
         return true;
     }
     let across = [position[0] - along * u[0], position[1] - along * u[1], position[2] - along * u[2]];
-    norm(across) > ssa::WGS84_A
+    norm(across) > site::WGS84_A
 }
 
 /// The Sun's elevation (rad) from `site` at Earth rotation angle `theta` and Sun position `sun` (km).
@@ -200,7 +206,7 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
     let start = request.start;
     let bad_start =
         || Error::input(format!("--start {start:?}: not a UTC time YYYY-MM-DDTHH:MM:SS[.f][Z] in 1901-2099"));
-    let epoch_jd = ssa::parse_iso8601(start).map_err(|_| bad_start())?;
+    let epoch_jd = time::parse_iso8601(start).map_err(|_| bad_start())?;
     let epoch = catalogue::parse_omm_epoch(start).ok_or_else(bad_start)?;
     let entries = catalogue::load(request.catalogue)?;
     let sensors_file = SensorsFile::load(request.sensors)?;
@@ -225,7 +231,7 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
         let s = (j % sensors.len() as u64) as usize;
         let optical = kind == Measurement3dSpec::Optical;
         let sun = sun_position(epoch_jd + t / 86_400.0);
-        if optical && sun_elevation(&sensors[s].site, ssa::earth_rotation_angle(epoch_jd, t), sun) >= dark {
+        if optical && sun_elevation(&sensors[s].site, time::earth_rotation_angle(epoch_jd, t), sun) >= dark {
             continue;
         }
         schedule.push((t, s));
@@ -278,7 +284,7 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
             SsaError::TooManyMeasurements { scan } => Error::input(format!(
                 "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
                  narrower field of view or less clutter",
-                ssa::MAX_MEASUREMENTS
+                crate::sim::error::MAX_MEASUREMENTS
             )),
             other => Error::input(format!("{}: {other}", request.sensors.display())),
         })?;

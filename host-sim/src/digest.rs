@@ -167,7 +167,7 @@ mod tests {
     use super::*;
 
     fn scenario(scans: usize) -> Scenario {
-        let mut simulation = crate::sim::preset("fifty-birth-death", 1).expect("preset");
+        let mut simulation = crate::sim::planar::preset("fifty-birth-death", 1).expect("preset");
         simulation.scans = scans;
         simulation.run()
     }
@@ -194,7 +194,7 @@ mod tests {
 
     #[test]
     fn constant_velocity_is_rejected() {
-        let mut simulation = crate::sim::preset("linear-small", 1).expect("preset");
+        let mut simulation = crate::sim::planar::preset("linear-small", 1).expect("preset");
         simulation.scans = 2;
         let error = run(&simulation.run(), None).expect_err("not two-body");
         assert!(error.0.contains("two-body"), "{error}");

@@ -229,7 +229,7 @@ mod tests {
     use super::*;
 
     fn tiny() -> Scenario3d {
-        let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
+        let simulation = crate::sim::presets::tiny_3d(1).expect("tiny-3d");
         crate::generate3d::to_scenario(&simulation).expect("scenario").0
     }
 

@@ -9,12 +9,12 @@
 
 use crate::births::{BirthTally, MapTrack};
 use crate::error::Error;
-use crate::metrics::{LabelSwitches, gospa, ospa};
-use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
-use crate::report::{
+use crate::eval::metrics::{LabelSwitches, gospa, ospa};
+use crate::io::report::{
     BirthsSummary, CompareReport, CompareScan, CompareSide, CompareSummary, LabelExistence, RejectedScan, RunSummary,
     ScanHypothesis, ScanLine,
 };
+use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
 use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario};
 use crate::setup;
@@ -437,7 +437,7 @@ fn write_run_plots(
                 estimates_outside_bound: outside,
                 fov: fov_lines(scenario),
                 unit: unit.to_string(),
-                central_body_radius: is_ssa(scenario).then_some(crate::sim::EARTH_RADIUS),
+                central_body_radius: is_ssa(scenario).then_some(crate::sim::planar::EARTH_RADIUS),
             }
         })
         .collect();

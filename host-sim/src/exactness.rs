@@ -8,7 +8,7 @@
 //! It needs no scenario file, so it serves the 3-D models (radar, telescope, several sensors) as well as
 //! the planar ones.
 
-use crate::reference::{ReferenceError, ReferenceTracker};
+use crate::peers::reference::{ReferenceError, ReferenceTracker};
 use crate::snapshot::match_keys;
 use nalgebra::SVector;
 use tracker_core::sensor::ScanGeometry;

@@ -1,25 +1,31 @@
-//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
+//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::sim`] written as
 //! version 2 scenario files ([`crate::scenario3d`]).
 //!
-//! The truth of every object at every scan comes from [`crate::orbit`]'s adaptive RKF7(8) two-body + J2
+//! The truth of every object at every scan comes from [`crate::sim::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
 //! for the whole run unless it is a break-up fragment (from its `birth_time` on), and is in the prior unless
-//! the simulation says otherwise ([`ssa::Unknowns`]), 1 s before the first scan: its prior mean is the true
+//! the simulation says otherwise ([`truth::Unknowns`]), 1 s before the first scan: its prior mean is the true
 //! state then plus an error drawn from the prior covariance (stream [`Stream::Prior`] of the seed). A birth
 //! is confirmed at existence ≥ 0.5 (the evaluation's `confirmation_existence`). A detection whose noisy measurement
 //! falls outside the sensor's field of view (an object at the edge) is dropped: the sensor does not report
 //! it, and the tracker rejects a scan with a measurement outside the field of view.
 
 use crate::error::Error;
-use crate::orbit::Propagator;
-use crate::rng::{Random, Stream};
 use crate::run3d::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
     NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
 };
 use crate::scenario3d::*;
-use crate::ssa::{self, OpticalGeoConfig, RadarLeoConfig, SensorKind, SsaScenario, Unknowns};
+use crate::sim::field_of_view;
+use crate::sim::orbit::Propagator;
+use crate::sim::presets;
+use crate::sim::presets::{OpticalGeoConfig, RadarLeoConfig};
+use crate::sim::rng::{Random, Stream};
+use crate::sim::sensor;
+use crate::sim::sensor::SensorKind;
+use crate::sim::ssa::SsaScenario;
+use crate::sim::truth::Unknowns;
 use nalgebra::SMatrix;
 
 /// The 3-D presets.
@@ -51,15 +57,15 @@ impl Preset3d {
     pub fn simulate_with(self, seed: u64, unknowns: &Unknowns) -> Result<SsaScenario, Error> {
         let result = match self {
             Preset3d::RadarLeo => {
-                ssa::radar_leo_with(seed, &RadarLeoConfig { unknowns: *unknowns, ..RadarLeoConfig::PRESET })
+                presets::radar_leo_with(seed, &RadarLeoConfig { unknowns: *unknowns, ..RadarLeoConfig::PRESET })
             }
             Preset3d::OpticalGeo => {
-                ssa::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
+                presets::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
             }
-            Preset3d::Tiny3d => ssa::tiny_3d_with(seed, unknowns),
+            Preset3d::Tiny3d => presets::tiny_3d_with(seed, unknowns),
         };
         result.map_err(|e| match e {
-            ssa::SsaError::BadUnknowns => Error::input(e.to_string()),
+            crate::sim::error::SsaError::BadUnknowns => Error::input(e.to_string()),
             e => Error::internal(format!("simulation: {e}")),
         })
     }
@@ -338,7 +344,7 @@ fn degrees(rad: f64) -> f64 {
 }
 
 /// The file form of a simulator's sensor.
-pub fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
+pub fn sensor_spec(sensor: &sensor::SensorSpec) -> Sensor3dSpec {
     let arcsec = |rad: f64| (rad.to_degrees() * 3600.0 * 1e9).round() / 1e9;
     let noise = match sensor.kind {
         SensorKind::Radar => NoiseSpec {
@@ -361,16 +367,18 @@ pub fn sensor_spec(sensor: &ssa::SensorSpec) -> Sensor3dSpec {
         },
     };
     let shape = match sensor.fov.shape {
-        ssa::LookShape::Cone { azimuth, elevation, half_angle } => ShapeSpec::Cone {
+        field_of_view::LookShape::Cone { azimuth, elevation, half_angle } => ShapeSpec::Cone {
             azimuth_deg: degrees(azimuth),
             elevation_deg: degrees(elevation),
             half_angle_deg: degrees(half_angle),
         },
-        ssa::LookShape::Box { azimuth_centre, azimuth_half_width, elevation_min, elevation_max } => ShapeSpec::Box {
-            azimuth_deg: degrees(azimuth_centre),
-            half_width_deg: degrees(azimuth_half_width).min(180.0),
-            elevation_deg: [degrees(elevation_min), degrees(elevation_max).min(90.0)],
-        },
+        field_of_view::LookShape::Box { azimuth_centre, azimuth_half_width, elevation_min, elevation_max } => {
+            ShapeSpec::Box {
+                azimuth_deg: degrees(azimuth_centre),
+                half_width_deg: degrees(azimuth_half_width).min(180.0),
+                elevation_deg: [degrees(elevation_min), degrees(elevation_max).min(90.0)],
+            }
+        }
     };
     Sensor3dSpec {
         name: sensor.name.clone(),

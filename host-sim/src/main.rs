@@ -7,11 +7,11 @@
 use clap::{Parser, Subcommand};
 use host_sim::Error;
 use host_sim::evaluate::{self, Options};
-use host_sim::experiment::Experiment;
+use host_sim::experiments::Experiment;
 use host_sim::generate3d::Preset3d;
 use host_sim::runner::{Profile, TrackerKind};
 use host_sim::scenario3d::{AnyScenario, load_any};
-use host_sim::sim::Preset;
+use host_sim::sim::planar::Preset;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -386,7 +386,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         }
         Command::Generate { preset: AnyPreset::Ssa(preset), seed, out, catalogue, missing_fraction, breakup } => {
             catalogue.only_for_catalogue()?;
-            let unknowns = host_sim::ssa::Unknowns { missing_fraction, breakup };
+            let unknowns = host_sim::sim::truth::Unknowns { missing_fraction, breakup };
             let simulation = preset.simulate_with(seed, &unknowns)?;
             let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
             scenario.save(&out)?;
@@ -431,7 +431,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         }
         Command::RunCatalogue { catalogue, seed, tracker, out, common } => {
             let (scenario, _) = catalogue.generate("run-catalogue", seed)?;
-            let (summary, clean) = host_sim::tdm::stage(&out, |dir| {
+            let (summary, clean) = host_sim::io::tdm::stage(&out, |dir| {
                 scenario.save(&dir.join("scenario.json"))?;
                 host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, dir)
             })?;
@@ -442,7 +442,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let AnyScenario::V2(scenario) = load_any(&file)? else {
                 return Err(Error::input(format!("{}: export-tdm needs a version 2 scenario", file.display())).into());
             };
-            for path in host_sim::tdm::export(&scenario, &out)? {
+            for path in host_sim::io::tdm::export(&scenario, &out)? {
                 eprintln!("wrote {}", path.display());
             }
             Ok(())
@@ -451,7 +451,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let AnyScenario::V2(config_scenario) = load_any(&config)? else {
                 return Err(Error::input(format!("{}: --config needs a version 2 scenario", config.display())).into());
             };
-            let scenario = host_sim::tdm::scenario_from_tdms(&tdm, &config_scenario)?;
+            let scenario = host_sim::io::tdm::scenario_from_tdms(&tdm, &config_scenario)?;
             run3d(&scenario, tracker, common, &out)
         }
         Command::Compare { file, tracker, out, common } => {
@@ -465,7 +465,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     let profile = host_sim::run3d::choose_profile(&scenario, common.profile);
                     let figures =
                         host_sim::run3d::compare3d(&scenario, tracker, Some(profile), options.reference.bytes)?;
-                    let summary = host_sim::report::Compare3dSummary {
+                    let summary = host_sim::io::report::Compare3dSummary {
                         tracker: tracker.name().to_string(),
                         profile: profile.name().to_string(),
                         sensors: scenario.sensors.len(),
@@ -488,10 +488,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             Ok(())
         }
         Command::Experiment { experiment, out, seed, runs, quiet } => {
-            Ok(host_sim::experiment::run(experiment, &out, seed, runs, quiet)?)
+            Ok(host_sim::experiments::run(experiment, &out, seed, runs, quiet)?)
         }
         Command::Perf { out } => {
-            let report = host_sim::perf::run()?;
+            let report = host_sim::experiments::perf::run()?;
             write_report(&out, &report)
         }
         Command::Soak { scans, seed, scenario, out, quiet } => {
@@ -512,9 +512,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     let tle_text = host_sim::scenario::read_limited(&tle)?;
                     let expected_text = host_sim::scenario::read_limited(&expected)?;
                     let names = (tle.display().to_string(), expected.display().to_string());
-                    host_sim::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
+                    host_sim::io::catalogue::sgp4_check::run_on((&names.0, &names.1), &tle_text, &expected_text)?
                 }
-                _ => host_sim::sgp4_check::run()?,
+                _ => host_sim::io::catalogue::sgp4_check::run()?,
             };
             write_report(&out, &report)?;
             if report.mismatched_cases > 0 {
@@ -527,26 +527,27 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             Ok(())
         }
         Command::Catalogue { file, out } => {
-            let report = host_sim::catalogue::report(&host_sim::catalogue::load(&file)?);
+            let report = host_sim::io::catalogue::report(&host_sim::io::catalogue::load(&file)?);
             evaluate::write_json(&out, &report)?;
             Ok(())
         }
         Command::SamplerCheck { cases, seed, out } => {
-            let report = host_sim::sampler_check::run(cases, seed)?;
+            let report = host_sim::peers::sampler_check::run(cases, seed)?;
             write_report(&out, &report)
         }
     }
 }
 
-/// `run` on a version 2 scenario, its outputs written only when it succeeds ([`host_sim::tdm::stage`]).
+/// `run` on a version 2 scenario, its outputs written only when it succeeds ([`host_sim::io::tdm::stage`]).
 fn run3d(
     scenario: &host_sim::scenario3d::Scenario3d,
     tracker: TrackerKind,
     common: Common,
     out: &Path,
 ) -> Result<(), CliError> {
-    let (summary, clean) =
-        host_sim::tdm::stage(out, |dir| host_sim::run3d::run(scenario, tracker, common.profile, common.quiet, dir))?;
+    let (summary, clean) = host_sim::io::tdm::stage(out, |dir| {
+        host_sim::run3d::run(scenario, tracker, common.profile, common.quiet, dir)
+    })?;
     println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
     if clean { Ok(()) } else { Err(CliError::Rejected) }
 }

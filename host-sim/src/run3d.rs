@@ -1,7 +1,7 @@
 //! `host-sim run` on version 2 (3-D) scenarios: builds the sensor network and the core tracker (f64,
 //! two-body + J2), steps every scan with its sensor and time ([`tracker_core::Tracker::step_scan`]), scores
 //! the MAP estimates against the truth in 3-D (km) and writes `summary.json`, `estimates.csv`, the MAP tracks
-//! as a CCSDS OEM (`tracks.oem`, [`crate::oem`]) and the plots (a sky plot per sensor, the expected cardinality and GOSPA over time).
+//! as a CCSDS OEM (`tracks.oem`, [`crate::io::oem`]) and the plots (a sky plot per sensor, the expected cardinality and GOSPA over time).
 //!
 //! Scoring is that of version 1 ([`crate::evaluate`]) with 3-D positions: GOSPA (α = 2) of the MAP
 //! positions against every true object, label switches along GOSPA's assignment, and an estimate *in view*
@@ -10,10 +10,10 @@
 
 use crate::births::{BirthTally, MapTrack};
 use crate::error::Error;
+use crate::eval::metrics::{LabelSwitches, gospa};
 use crate::evaluate::{mean, peak_resident_kib, progress, write_json};
-use crate::metrics::{LabelSwitches, gospa};
+use crate::io::report::{BirthsSummary, RejectedScan, RunSummary};
 use crate::plots::{self, Scale, Series, SkySeries};
-use crate::report::{BirthsSummary, RejectedScan, RunSummary};
 use crate::runner::{Profile, StepInfo, TrackerKind};
 use crate::scenario::{BirthDetectionSpec, NumericalFailureSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec};
 use crate::scenario3d::{Measurement3dSpec, Scenario3d, ShapeSpec};
@@ -654,7 +654,7 @@ pub fn run(
     let mut switches = LabelSwitches::new();
     let (mut in_view_misses, mut in_view_red_stars, mut out_of_view_red_stars) = (0usize, 0usize, 0usize);
     let mut peak_hypotheses = prior.hypotheses;
-    let mut oem = crate::oem::OemTracks::new(scenario);
+    let mut oem = crate::io::oem::OemTracks::new(scenario);
     let bar = progress(n, quiet, kind.name());
     for (k, scan) in scenario.scans.iter().enumerate() {
         let zs = measurements_in_radians(scenario.measurement, &scan.measurements);
@@ -695,7 +695,7 @@ pub fn run(
                 .collect();
             switches.record(&pairs);
             g = Some(scored.distance);
-            o = Some(crate::metrics::ospa(&points, &estimates, evaluation.gospa_cutoff, evaluation.gospa_order));
+            o = Some(crate::eval::metrics::ospa(&points, &estimates, evaluation.gospa_cutoff, evaluation.gospa_order));
             let bound = gospa(&points, &estimates, evaluation.error_bound, 1.0);
             within.iter_mut().for_each(|w| *w = Some(false));
             for e in bound.assignment.iter().flatten() {
@@ -881,7 +881,7 @@ mod tests {
     use super::*;
 
     fn tiny() -> Scenario3d {
-        let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
+        let simulation = crate::sim::presets::tiny_3d(1).expect("tiny-3d");
         crate::generate3d::to_scenario(&simulation).expect("scenario").0
     }
 

@@ -5,7 +5,7 @@
 //! `embedded` (the default SSA configuration of tracker-core, [`tracker_core::ssa_caps`]) and `host`
 //! (larger, for dense scenarios such as the debris crossing).
 
-use crate::reference::ReferenceTracker;
+use crate::peers::reference::ReferenceTracker;
 use crate::scenario::{MotionSpec, Scenario, ScenarioError};
 use crate::setup;
 use crate::snapshot::Snapshot;

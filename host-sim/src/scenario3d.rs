@@ -463,7 +463,7 @@ impl Scenario3d {
     pub fn epoch_jd(&self) -> f64 {
         match (&self.epoch.julian_date, &self.epoch.utc) {
             (Some(jd), _) => *jd,
-            (None, Some(utc)) => crate::ssa::parse_iso8601(utc).unwrap_or(f64::NAN),
+            (None, Some(utc)) => crate::sim::time::parse_iso8601(utc).unwrap_or(f64::NAN),
             (None, None) => f64::NAN,
         }
     }
@@ -531,7 +531,7 @@ impl Scenario3d {
 
     fn validate_epoch(&self) -> Result<(), ScenarioError> {
         let from_utc = match &self.epoch.utc {
-            Some(utc) => Some(crate::ssa::parse_iso8601(utc).map_err(|e| error("epoch.utc", e))?),
+            Some(utc) => Some(crate::sim::time::parse_iso8601(utc).map_err(|e| error("epoch.utc", e))?),
             None => None,
         };
         match (from_utc, self.epoch.julian_date) {

@@ -62,11 +62,11 @@
 //! ```
 
 use crate::error::Error;
-use crate::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
-use crate::rng::{Random, Stream};
+use crate::io::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
 use crate::scenario::FieldOfViewSpec;
 use crate::setup;
-use crate::sim::{self, EARTH_MU, Orbit};
+use crate::sim::planar::{self, EARTH_MU, Orbit};
+use crate::sim::rng::{Random, Stream};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use nalgebra::{SMatrix, SVector};
 use std::collections::BTreeMap;
@@ -118,7 +118,7 @@ fn position(state: &[f64; 4]) -> SVector<f64, 2> {
 
 /// A random LEO-MEO orbit whose position at the epoch is inside the field of view, 2° from its edges.
 fn orbit_in_view(random: &mut Random) -> Orbit {
-    let mut orbit = sim::random_orbit(random, 6_878.0, 26_560.0, 0.02);
+    let mut orbit = planar::random_orbit(random, 6_878.0, 26_560.0, 0.02);
     orbit.true_anomaly = random.between(2.0, 28.0).to_radians() - orbit.periapsis;
     orbit
 }
@@ -334,10 +334,10 @@ const TRACKER_DEATH_PROBABILITY: f64 = 1e-4;
 
 /// The soak's tracker (the embedded capacities) and the number of its birth cells.
 fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize), Error> {
-    let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
+    let sensor = planar::ssa_sensor(0.95, 1.0, 30_000.0);
     let two_body =
-        setup::two_body(&sim::ssa_motion()).ok_or_else(|| Error::internal("soak: the motion is two-body"))?;
-    let cells = sim::ssa_birth_cells(&sensor, 6_600.0, 30_000.0, 8, 0.3);
+        setup::two_body(&planar::ssa_motion()).ok_or_else(|| Error::internal("soak: the motion is two-body"))?;
+    let cells = planar::ssa_birth_cells(&sensor, 6_600.0, 30_000.0, 8, 0.3);
     let mut birth = BirthModel::none();
     birth.probability = TRACKER_BIRTH_PROBABILITY;
     birth.detection = BirthDetection::AllDetected;
@@ -395,16 +395,16 @@ struct World {
 impl World {
     /// The objects at t = 0, all known to the prior.
     fn new(seed: u64) -> Self {
-        let sensor = sim::ssa_sensor(0.95, 1.0, 30_000.0);
+        let sensor = planar::ssa_sensor(0.95, 1.0, 30_000.0);
         let alive: Vec<Object> = (0..INITIAL_OBJECTS as u64)
             .map(|id| {
-                let orbit = sim::random_orbit(&mut Random::stream(seed, Stream::Orbit, id), 6_878.0, 26_560.0, 0.02);
+                let orbit = planar::random_orbit(&mut Random::stream(seed, Stream::Orbit, id), 6_878.0, 26_560.0, 0.02);
                 Object::new(seed, id, orbit)
             })
             .collect();
         World {
             seed,
-            motion: sim::ssa_motion(),
+            motion: planar::ssa_motion(),
             fov: setup::region(&sensor.field_of_view),
             sensor,
             noise: SMatrix::<f64, 2, 2>::identity() * (SIGMA * SIGMA),
@@ -425,7 +425,7 @@ impl World {
         self.alive.retain(|_| events.uniform() >= DEATH_RATE);
         self.deaths += (before - self.alive.len()) as u64;
         for object in &mut self.alive {
-            object.state = sim::move_object(&self.motion, object.state, SCAN_INTERVAL, &mut object.motion);
+            object.state = planar::move_object(&self.motion, object.state, SCAN_INTERVAL, &mut object.motion);
         }
         if events.uniform() < BIRTH_RATE {
             let orbit = orbit_in_view(&mut Random::stream(seed, Stream::Orbit, self.next_id));
@@ -445,7 +445,7 @@ impl World {
         }
         let mut clutter = Random::stream(seed, Stream::Clutter, k);
         for _ in 0..clutter.poisson(self.sensor.clutter_rate) {
-            measurements.push(SVector::from(sim::uniform_in_region(&self.sensor.field_of_view, &mut clutter)));
+            measurements.push(SVector::from(planar::uniform_in_region(&self.sensor.field_of_view, &mut clutter)));
         }
         events.shuffle(&mut measurements);
         measurements

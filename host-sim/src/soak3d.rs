@@ -1,13 +1,13 @@
 //! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
-//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::generate3d::to_scenario`]); the tracker is
+//! `optical-geo`) with the soak's seed ([`crate::sim`], [`crate::generate3d::to_scenario`]); the tracker is
 //! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::run3d::config3d`], f64,
 //! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
 //! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the
 //! sensors take turns, one scan every interval): every object's truth is carried from scan to scan by
-//! [`crate::orbit`]'s RKF7(8) two-body + J2 integrator (only the states of now are kept) and every scan is
-//! drawn by [`crate::ssa::draw_scan`], so the first scans are those of the generated file. A detection whose
+//! [`crate::sim::orbit`]'s RKF7(8) two-body + J2 integrator (only the states of now are kept) and every scan is
+//! drawn by [`crate::sim::ssa::draw_scan`], so the first scans are those of the generated file. A detection whose
 //! noisy value falls outside the field of view is dropped, as `generate` does.
 //!
 //! Every object lives for the whole run, so the soak checks that they stay *tracked*: after every scan it
@@ -17,13 +17,16 @@
 use crate::error::Error;
 use crate::evaluate::peak_resident_kib;
 use crate::generate3d::to_scenario;
-use crate::orbit::Propagator;
-use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
-use crate::rng::{Random, Stream};
+use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
 use crate::runner::{Profile, TrackerKind};
+use crate::sim::orbit::Propagator;
+use crate::sim::presets;
+use crate::sim::presets::RadarLeoConfig;
+use crate::sim::rng::{Random, Stream};
+use crate::sim::ssa::{SsaScenario, draw_scan};
+use crate::sim::time::earth_rotation_angle;
 use crate::soak::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
-use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;
 use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, SensorNetwork};
@@ -236,7 +239,7 @@ where
             simulated_days: stream.time / 86_400.0,
         }),
         errors_by_kind: health.errors,
-        first_error: health.first_error.map(|(scan, message)| crate::report::SoakError { scan, message }),
+        first_error: health.first_error.map(|(scan, message)| crate::io::report::SoakError { scan, message }),
         track_store_high_water: health.max_tracks,
         track_store_capacity: K,
         hypothesis_capacity: H,
@@ -283,8 +286,8 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
         return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
     }
     let sim = match scenario {
-        Scenario::RadarLeo => ssa::radar_leo_with(seed, &RADAR_LEO),
-        Scenario::OpticalGeo => ssa::optical_geo(seed),
+        Scenario::RadarLeo => presets::radar_leo_with(seed, &RADAR_LEO),
+        Scenario::OpticalGeo => presets::optical_geo(seed),
         Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::soak::run")),
     }
     .map_err(|e| Error::internal(format!("soak: simulation: {e}")))?;
@@ -323,14 +326,14 @@ mod tests {
 
     #[test]
     fn the_radar_soak_fits_the_embedded_profile() {
-        let sim = ssa::radar_leo_with(1, &RADAR_LEO).unwrap();
+        let sim = presets::radar_leo_with(1, &RADAR_LEO).unwrap();
         assert_eq!(sim.objects.len(), 60);
         assert_eq!(choose_profile(&to_scenario(&sim).unwrap().0, None), Profile::Embedded);
     }
 
     #[test]
     fn the_stream_starts_with_the_generated_scans() {
-        let sim = crate::ssa::tiny_3d(3).unwrap();
+        let sim = crate::sim::presets::tiny_3d(3).unwrap();
         let (file, _) = to_scenario(&sim).unwrap();
         let check = FieldOfViewCheck::new(&file).unwrap();
         let expected = sim.scans.clone();

@@ -334,7 +334,7 @@ fn generate(catalogue: &str, sensors: &str, start: &str, hours: &str, seed: &str
 
 #[test]
 fn generate_catalogue_truth_is_sgp4_and_deterministic() {
-    use host_sim::catalogue::{Satellite, load, parse_omm_epoch};
+    use host_sim::io::catalogue::{Satellite, load, parse_omm_epoch};
     use host_sim::scenario3d::Scenario3d;
     let dir = TempDir::new("gen-radar");
     let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));
@@ -371,7 +371,8 @@ fn generate_catalogue_truth_is_sgp4_and_deterministic() {
 fn generate_catalogue_telescope_sees_sunlit_objects_from_a_dark_site() {
     use host_sim::catalogue_scenario::{sun_elevation, sun_position, sunlit};
     use host_sim::scenario3d::Scenario3d;
-    use host_sim::ssa::{Site, earth_rotation_angle};
+    use host_sim::sim::site::Site;
+    use host_sim::sim::time::earth_rotation_angle;
     let dir = TempDir::new("gen-tel");
     let out = dir.join("t.json");
     let output = generate(CATALOGUE, TELESCOPE, START, "24", "3", &out);

@@ -1,6 +1,6 @@
 //! `experiment catalogue` on a short, small version: every key of `catalogue.json`, sane values, the files.
 
-use host_sim::catalogue_experiment::{Settings, build_catalogue, run_with};
+use host_sim::experiments::catalogue::{Settings, build_catalogue, run_with};
 use serde_json::Value;
 
 /// Ten minutes of Tucson's night (the telescope scans), 2 planes × 3 satellites and a train of 3.
@@ -75,7 +75,7 @@ fn short_run() {
         assert!(dir.join(file).is_file(), "{file}");
     }
     // The catalogue written is the one a user can reload.
-    let entries = host_sim::catalogue::load(&dir.join("catalogue.omm.json")).expect("reload");
+    let entries = host_sim::io::catalogue::load(&dir.join("catalogue.omm.json")).expect("reload");
     assert_eq!(entries.len(), 9);
     let _ = std::fs::remove_dir_all(&dir);
 }

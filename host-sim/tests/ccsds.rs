@@ -2,7 +2,7 @@
 //! `run`, `tracks.oem` parses back to the rows of `estimates.csv`, and every bad TDM is one line naming
 //! the file, line and keyword, exit code 2, with no output folder left behind.
 
-use host_sim::ccsds::Instant;
+use host_sim::io::ccsds::Instant;
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -217,7 +217,7 @@ fn tracks_oem_parses_back_to_the_estimates() {
         let time = |r: &Vec<String>| r[1].parse::<f64>().expect("time");
         let mut expected: Vec<&Vec<String>> = vec![];
         for (i, row) in all.iter().enumerate() {
-            let spaced = expected.last().is_none_or(|kept| time(row) - time(kept) >= host_sim::oem::OEM_STEP_S);
+            let spaced = expected.last().is_none_or(|kept| time(row) - time(kept) >= host_sim::io::oem::OEM_STEP_S);
             if spaced || i + 1 == all.len() {
                 expected.push(row);
             }

@@ -1132,7 +1132,7 @@ fn keys_of(value: &Value) -> Vec<String> {
 /// typed (listed from the output of `host-sim run` at commit 18b844d), and the records read back unchanged.
 #[test]
 fn run_outputs_keep_their_keys_and_read_back_unchanged() {
-    use host_sim::report::{RunSummary, ScanLine};
+    use host_sim::io::report::{RunSummary, ScanLine};
     let dir = TempDir::new("keys");
     let out = dir.join("out");
     let output = host_sim(&["run".as_ref(), FIXTURE.as_ref(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
@@ -1210,7 +1210,7 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
 /// The same for `compare.json` (keys listed from `host-sim compare` at commit 18b844d).
 #[test]
 fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
-    use host_sim::report::CompareReport;
+    use host_sim::io::report::CompareReport;
     let dir = TempDir::new("compare-keys");
     let file = linear_small(&dir, Some(3));
     let out = dir.join("out");
@@ -1268,7 +1268,7 @@ fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
 /// with the soak's `scenario`, `max_over_median`, `peak_resident_kib_*` and `numerical_drops` of issue 17).
 #[test]
 fn sampler_check_and_soak_reports_keep_their_keys_and_read_back_unchanged() {
-    use host_sim::report::{SamplerCheckReport, SoakReport};
+    use host_sim::io::report::{SamplerCheckReport, SoakReport};
     let dir = TempDir::new("report-keys");
     let file = dir.join("sc.json");
     let output =

@@ -7,7 +7,8 @@
 
 use host_sim::digest::{gaussian, region, tracker};
 use host_sim::scenario::Scenario;
-use host_sim::{setup, sim};
+use host_sim::setup;
+use host_sim::sim::planar;
 use nalgebra::SVector;
 use tracker_core::{
     BirthModel, Config, ConstantVelocity, LinearTracker, PositionMeasurement, PriorHypothesis, PriorObject, Real,
@@ -67,7 +68,7 @@ fn ssa(scenario: &Scenario, scans: usize) -> (usize, f64, f64) {
 #[test]
 fn ssa_f32_tracks_like_f64_for_100_scans() {
     on_big_stack(|| {
-        let scenario = sim::fifty_birth_death(1).run();
+        let scenario = planar::fifty_birth_death(1).run();
         let (same, position, cardinality) = ssa(&scenario, 100);
         eprintln!(
             "SSA, 100 scans: same MAP objects on {same}, MAP positions within {position:.4} km, expected cardinality within {cardinality:.2e}"
@@ -82,7 +83,7 @@ fn ssa_f32_tracks_like_f64_for_100_scans() {
 #[ignore = "the full 785-scan run: a few seconds in release, minutes in debug"]
 fn ssa_f32_tracks_like_f64_for_the_whole_run() {
     on_big_stack(|| {
-        let scenario = sim::fifty_birth_death(1).run();
+        let scenario = planar::fifty_birth_death(1).run();
         let scans = scenario.scans.len();
         let (same, position, cardinality) = ssa(&scenario, scans);
         eprintln!(
@@ -141,7 +142,7 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
 #[test]
 fn linear_f32_tracks_like_f64() {
     on_big_stack(|| {
-        let mut simulation = sim::linear_small(1);
+        let mut simulation = planar::linear_small(1);
         simulation.scans = 30;
         let scenario = simulation.run();
         let mut single = Box::new(linear::<f32>(&scenario));

@@ -7,7 +7,7 @@
 mod common;
 
 use host_sim::exactness::{CompareFigures, Scan, compare_scans};
-use host_sim::rng::{Random, Stream};
+use host_sim::sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::model::{AdmissibleRegion, ConstantVelocity, PositionMeasurement};
 use tracker_core::pool::MeasuredBirths;
@@ -219,7 +219,7 @@ fn measured_births_on_a_small_3d_scenario_are_exact_and_confirmed() {
 fn small_3d_scenario_check() {
     use host_sim::generate3d::{Preset3d, to_scenario};
     use host_sim::runner::{Profile, TrackerKind};
-    use host_sim::ssa::Unknowns;
+    use host_sim::sim::truth::Unknowns;
     let sim =
         Preset3d::Tiny3d.simulate_with(1, &Unknowns { missing_fraction: 0.34, breakup: 0 }).expect("tiny-3d simulates");
     let (mut scenario, _) = to_scenario(&sim).expect("scenario");

@@ -6,9 +6,9 @@
 
 use core::f64::consts::PI;
 use host_sim::exactness::{CompareFigures, Scan, compare_scans, compare_trackers};
-use host_sim::orbit::Propagator;
-use host_sim::reference::{ReferenceError, ReferenceTracker};
-use host_sim::rng::{Random, Stream};
+use host_sim::peers::reference::{ReferenceError, ReferenceTracker};
+use host_sim::sim::orbit::Propagator;
+use host_sim::sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::model::{EARTH_MU, ProcessNoise, RadarRangeAzEl, SensorNetwork, TwoBodyJ2};
 use tracker_core::sampler::SamplerConfig;

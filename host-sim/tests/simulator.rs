@@ -4,7 +4,7 @@
 
 use host_sim::scenario::{FieldOfViewSpec, Scenario, SensorSpec};
 use host_sim::setup::region;
-use host_sim::sim::{self, PRESETS, SimObject, Simulation};
+use host_sim::sim::planar::{self, PRESETS, SimObject, Simulation};
 use nalgebra::SVector;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
@@ -81,7 +81,7 @@ fn check(simulation: &Simulation, scenario: &Scenario) -> Result<(), TestCaseErr
 }
 
 fn preset(index: usize, seed: u64, scans: usize) -> Simulation {
-    let mut simulation = sim::preset(PRESETS[index], seed).expect("a preset");
+    let mut simulation = planar::preset(PRESETS[index], seed).expect("a preset");
     simulation.scans = simulation.scans.min(scans);
     simulation
 }
@@ -105,7 +105,7 @@ proptest! {
     /// first quarter of the longest period, about 3.1 h).
     #[test]
     fn fifty_birth_death_with_births(seed in any::<u64>(), scans in 13usize..=16) {
-        let mut simulation = sim::fifty_birth_death(seed);
+        let mut simulation = planar::fifty_birth_death(seed);
         simulation.scan_interval = 900.0;
         simulation.scans = scans;
         let scenario = simulation.run();
@@ -135,7 +135,7 @@ proptest! {
         width in 1.0f64..=360.0,
         size in 5.0f64..80.0,
     ) {
-        let mut simulation = sim::linear_small(seed);
+        let mut simulation = planar::linear_small(seed);
         simulation.scans = scans;
         let field_of_view = match kind {
             0 => FieldOfViewSpec::Rectangle { min: origin, max: [origin[0] + size, origin[1] + size] },
@@ -184,7 +184,7 @@ fn rates(scenario: &Scenario) -> (f64, f64, f64) {
 /// frequency is p_D and the clutter count per scan is Poisson with mean Λ_C.
 #[test]
 fn detection_frequency_and_clutter_rate_match_the_sensor() {
-    let mut simulation = sim::linear_small(2024);
+    let mut simulation = planar::linear_small(2024);
     simulation.sensor = SensorSpec {
         detection_probability: 0.7,
         clutter_rate: 2.5,
@@ -214,7 +214,7 @@ fn detection_frequency_and_clutter_rate_match_the_sensor() {
 /// (g) The same on a full SSA preset: objects on orbits through the sector, p_D = 0.95, Λ_C = 1.
 #[test]
 fn fifteen_compare_detects_in_view_objects_with_p_d() {
-    let simulation = sim::fifteen_compare(7);
+    let simulation = planar::fifteen_compare(7);
     let scenario = simulation.run();
     let (frequency, mean, _) = rates(&scenario);
     assert!((frequency - 0.95).abs() < 0.03, "detection frequency {frequency}, p_D 0.95");
@@ -225,7 +225,7 @@ fn fifteen_compare_detects_in_view_objects_with_p_d() {
 /// reloaded scenario should be the simulated one, bit for bit.
 #[test]
 fn scenarios_round_trip_through_json_exactly() {
-    let mut simulation = sim::linear_small(0);
+    let mut simulation = planar::linear_small(0);
     simulation.scans = 1;
     let scenario = simulation.run();
     let text = serde_json::to_string(&scenario).expect("serialise");

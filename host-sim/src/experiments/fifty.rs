@@ -1,0 +1,17 @@
+//! `experiment fifty` (paper 003 §IV): 50 objects, 45 known to the prior, 5 births, with `run`'s outputs.
+
+use super::runs::options;
+use crate::error::Error;
+use crate::evaluate::{self};
+use crate::io::report::RunSummary;
+use crate::runner::TrackerKind;
+use crate::sim::planar;
+use std::path::Path;
+
+/// Paper 003 §IV with R-FISST on the embedded configuration.
+pub(crate) fn fifty(dir: &Path, seed: u64, quiet: bool) -> Result<RunSummary, Error> {
+    let scenario = planar::fifty_birth_death(seed).run();
+    scenario.save(&dir.join("scenario.json"))?;
+    let (summary, _) = evaluate::run(&scenario, TrackerKind::Rfisst, &options(quiet), dir)?;
+    Ok(summary)
+}

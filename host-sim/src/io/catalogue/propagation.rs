@@ -1,0 +1,88 @@
+//! SGP4 propagation of an entry (AFSPC-compatibility mode, WGS-72): TEME position and velocity at a tracker time.
+
+use super::entry::CatalogueEntry;
+use sgp4::chrono::NaiveDateTime;
+use std::fmt;
+
+/// An SGP4 propagator of one catalogue entry (WGS-72, AFSPC-compatibility mode).
+#[derive(Debug, Clone)]
+pub struct Satellite {
+    /// The elements it was built from.
+    pub entry: CatalogueEntry,
+    constants: sgp4::Constants,
+}
+
+/// Why SGP4 cannot give a state: its initialisation or its propagation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PropagationError {
+    /// The epoch elements are refused (`sgp4::ElementsError`).
+    Elements(sgp4::ElementsError),
+    /// The propagation diverged (`sgp4::Error`).
+    Propagation(sgp4::Error),
+}
+
+impl PropagationError {
+    /// A short name of the SGP4 error (those of the verification data's expected file).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            PropagationError::Elements(sgp4::ElementsError::KozaiElementsError(
+                sgp4::KozaiElementsError::NegativeKozaiMeanMotion,
+            )) => "negative-kozai-mean-motion",
+            PropagationError::Elements(sgp4::ElementsError::KozaiElementsError(
+                sgp4::KozaiElementsError::NegativeBrouwerMeanMotion,
+            )) => "negative-brouwer-mean-motion",
+            PropagationError::Elements(sgp4::ElementsError::OutOfRangeEpochEccentricity(_)) => {
+                "epoch-eccentricity-out-of-range"
+            }
+            PropagationError::Propagation(sgp4::Error::OutOfRangeEccentricity { .. }) => "diverging-eccentricity",
+            PropagationError::Propagation(sgp4::Error::OutOfRangePerturbedEccentricity { .. }) => {
+                "diverging-perturbed-eccentricity"
+            }
+            PropagationError::Propagation(sgp4::Error::NegativeSemiLatusRectum { .. }) => "negative-semi-latus-rectum",
+        }
+    }
+}
+
+impl fmt::Display for PropagationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PropagationError::Elements(e) => write!(f, "SGP4 initialisation: {e}"),
+            PropagationError::Propagation(e) => write!(f, "SGP4: {e}"),
+        }
+    }
+}
+
+/// Position and velocity (km, km/s).
+pub type State = ([f64; 3], [f64; 3]);
+
+impl Satellite {
+    /// SGP4's epoch quantities of `entry` (WGS-72, AFSPC epoch and sidereal time).
+    pub fn new(entry: CatalogueEntry) -> Result<Self, PropagationError> {
+        let constants = sgp4::Constants::from_elements_afspc_compatibility_mode(&entry.to_sgp4())
+            .map_err(PropagationError::Elements)?;
+        Ok(Satellite { entry, constants })
+    }
+
+    /// SGP4's TEME position and velocity (km, km/s) `minutes` after the element set's epoch.
+    pub fn teme(&self, minutes: f64) -> Result<State, PropagationError> {
+        let p = self
+            .constants
+            .propagate_afspc_compatibility_mode(sgp4::MinutesSinceEpoch(minutes))
+            .map_err(PropagationError::Propagation)?;
+        Ok((p.position, p.velocity))
+    }
+
+    /// Minutes from the element set's epoch to `t` seconds after `scenario_epoch` (UTC, leap seconds not
+    /// counted, as SGP4 does not).
+    pub fn minutes_since_epoch(&self, scenario_epoch: NaiveDateTime, t: f64) -> f64 {
+        let d = scenario_epoch - self.entry.epoch;
+        (d.num_seconds() as f64 + d.subsec_nanos() as f64 * 1e-9 + t) / 60.0
+    }
+
+    /// The state in the tracker's inertial frame (docs/maths.md §6.8) at tracker time `t` (s since
+    /// `scenario_epoch`): SGP4's TEME state, the frame the tracker's Earth rotation θ(t) = GMST(epoch) + ω t
+    /// is referred to.
+    pub fn tracker_state(&self, scenario_epoch: NaiveDateTime, t: f64) -> Result<State, PropagationError> {
+        self.teme(self.minutes_since_epoch(scenario_epoch, t))
+    }
+}

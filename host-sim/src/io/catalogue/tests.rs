@@ -1,0 +1,99 @@
+//! Tests of the catalogue readers and SGP4.
+
+use super::files::parse;
+use super::omm::parse_omm_epoch;
+use super::propagation::Satellite;
+use super::tle::parse_catalogue_number;
+
+const L1: &str = "1 00005U 58002B   00179.78495062  .00000023  00000-0  28098-4 0  4753";
+const L2: &str = "2 00005  34.2682 348.7242 1859667 331.7664  19.3264 10.82419157413667";
+
+#[test]
+fn alpha5_catalogue_numbers() {
+    assert_eq!(parse_catalogue_number("A0001"), Some(100_001));
+    assert_eq!(parse_catalogue_number("H9999"), Some(179_999));
+    assert_eq!(parse_catalogue_number("J0000"), Some(180_000));
+    assert_eq!(parse_catalogue_number("P0000"), Some(230_000));
+    assert_eq!(parse_catalogue_number("Z9999"), Some(339_999));
+    assert_eq!(parse_catalogue_number("00005"), Some(5));
+    assert_eq!(parse_catalogue_number("    5"), Some(5));
+    assert_eq!(parse_catalogue_number("I0001"), None);
+    assert_eq!(parse_catalogue_number("O0001"), None);
+    assert_eq!(parse_catalogue_number("a0001"), None);
+    assert_eq!(parse_catalogue_number("     "), None);
+    assert_eq!(parse_catalogue_number("0A001"), None);
+}
+
+#[test]
+fn tle_fields_are_read() {
+    let e = &parse("t", &format!("{L1}\n{L2}\n")).unwrap()[0];
+    assert_eq!(e.norad_id, 5);
+    assert_eq!(e.international_designator.as_deref(), Some("58002B"));
+    assert_eq!(e.epoch.to_string(), "2000-06-27 18:50:19.733567999");
+    assert_eq!(e.mean_motion_dot, 0.00000023);
+    assert_eq!(e.bstar, 0.28098e-4);
+    assert_eq!(e.eccentricity, 0.1859667);
+    assert_eq!(e.mean_motion, 10.82419157);
+    assert_eq!(e.revolution_number, 41366);
+    assert_eq!(e.element_set_number, 475);
+}
+
+#[test]
+fn tle_agrees_with_the_sgp4_crate_parser() {
+    let ours = parse("t", &format!("{L1}\n{L2}\n")).unwrap()[0].to_sgp4();
+    let theirs = sgp4::Elements::from_tle(None, L1.as_bytes(), L2.as_bytes()).unwrap();
+    assert_eq!(ours.norad_id, theirs.norad_id);
+    assert!((ours.datetime - theirs.datetime).num_nanoseconds().unwrap().abs() <= 1);
+    for (a, b) in [
+        (ours.drag_term, theirs.drag_term),
+        (ours.eccentricity, theirs.eccentricity),
+        (ours.mean_motion, theirs.mean_motion),
+        (ours.inclination, theirs.inclination),
+        (ours.mean_motion_ddot, theirs.mean_motion_ddot),
+    ] {
+        assert!((a - b).abs() <= 1e-15 * b.abs().max(1.0), "{a} vs {b}");
+    }
+}
+
+#[test]
+fn checksum_is_verified() {
+    let bad = format!("{}4", &L1[..68]);
+    let e = parse("f.tle", &format!("{bad}\n{L2}\n")).unwrap_err();
+    assert_eq!(e.line, 1);
+    assert!(e.keyword.contains("checksum"), "{e}");
+}
+
+#[test]
+fn omm_json_and_csv_give_the_tle_elements() {
+    let json = r#"[{"OBJECT_NAME":"X","OBJECT_ID":"1958-002B","EPOCH":"2000-06-27T18:50:19.733568",
+        "MEAN_MOTION":10.82419157,"ECCENTRICITY":0.1859667,"INCLINATION":34.2682,"RA_OF_ASC_NODE":348.7242,
+        "ARG_OF_PERICENTER":331.7664,"MEAN_ANOMALY":19.3264,"EPHEMERIS_TYPE":0,"CLASSIFICATION_TYPE":"U",
+        "NORAD_CAT_ID":5,"ELEMENT_SET_NO":475,"REV_AT_EPOCH":41366,"BSTAR":2.8098e-5,
+        "MEAN_MOTION_DOT":2.3e-7,"MEAN_MOTION_DDOT":0}]"#;
+    let csv = "OBJECT_NAME,OBJECT_ID,EPOCH,MEAN_MOTION,ECCENTRICITY,INCLINATION,RA_OF_ASC_NODE,\
+        ARG_OF_PERICENTER,MEAN_ANOMALY,EPHEMERIS_TYPE,CLASSIFICATION_TYPE,NORAD_CAT_ID,ELEMENT_SET_NO,\
+        REV_AT_EPOCH,BSTAR,MEAN_MOTION_DOT,MEAN_MOTION_DDOT\n\
+        X,1958-002B,2000-06-27T18:50:19.733568,10.82419157,.1859667,34.2682,348.7242,331.7664,19.3264,0,U,5,\
+        475,41366,.28098E-4,.23E-6,0\n";
+    let tle = Satellite::new(parse("t", &format!("{L1}\n{L2}\n")).unwrap().remove(0)).unwrap();
+    for text in [json, csv] {
+        let entries = parse("o", text).unwrap();
+        assert_eq!(entries.len(), 1);
+        assert_eq!(entries[0].name.as_deref(), Some("X"));
+        let omm = Satellite::new(entries[0].clone()).unwrap();
+        let (a, b) = (tle.teme(720.0).unwrap(), omm.teme(720.0).unwrap());
+        for i in 0..3 {
+            assert!((a.0[i] - b.0[i]).abs() < 1e-6, "{a:?} {b:?}");
+        }
+    }
+}
+
+#[test]
+fn tracker_time_is_minutes_since_the_element_epoch() {
+    let sat = Satellite::new(parse("t", &format!("{L1}\n{L2}\n")).unwrap().remove(0)).unwrap();
+    let start = parse_omm_epoch("2000-06-28T00:00:00").unwrap();
+    let minutes = sat.minutes_since_epoch(start, 600.0);
+    let expected = (86_400.0 - (18.0 * 3600.0 + 50.0 * 60.0 + 19.733568)) / 60.0 + 10.0;
+    assert!((minutes - expected).abs() < 1e-9, "{minutes} {expected}");
+    assert_eq!(sat.tracker_state(start, 600.0).unwrap(), sat.teme(minutes).unwrap());
+}

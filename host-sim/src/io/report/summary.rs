@@ -1,0 +1,159 @@
+//! `summary.json` of `run` (and of `experiment fifty`): the run's figures, its births and its rejected scans.
+
+use serde::{Deserialize, Serialize};
+
+/// `summary.json` of `host-sim run` (and `experiment fifty`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSummary {
+    /// Scenario name.
+    pub scenario: String,
+    /// Tracker (`rfisst`, `homht` or `reference`).
+    pub tracker: String,
+    /// Capacity profile, `unbounded` for the reference.
+    pub profile: String,
+    /// Number of scans.
+    pub scans: usize,
+    /// Mean GOSPA of the MAP estimates; `null` without truth.
+    pub mean_gospa: Option<f64>,
+    /// Mean OSPA of the MAP estimates; `null` without truth.
+    pub mean_ospa: Option<f64>,
+    /// GOSPA cut-off c.
+    pub gospa_cutoff: f64,
+    /// GOSPA order p.
+    pub gospa_order: f64,
+    /// Error bound.
+    pub error_bound: f64,
+    /// Expected number of objects after the last scan (of the prior when there is no scan).
+    pub final_expected_cardinality: f64,
+    /// Objects of the MAP hypothesis after the last scan (of the prior when there is no scan).
+    pub final_map_cardinality: usize,
+    /// True number of objects at the last scan.
+    pub true_final_cardinality: Option<usize>,
+    /// Births: their confirmation, detections to confirmation and false tracks.
+    #[serde(flatten)]
+    pub births: BirthsSummary,
+    /// Label switches along GOSPA's assignment.
+    pub label_switches: usize,
+    /// Confirmed objects in view without a MAP estimate within the error bound, summed over scans.
+    pub in_view_misses_after_confirmation: usize,
+    /// MAP estimates in view outside the error bound of every object, summed over scans.
+    pub in_view_red_stars: usize,
+    /// The same out of view.
+    pub out_of_view_red_stars: usize,
+    /// Mean time of an accepted scan (ms).
+    pub mean_ms_per_scan: f64,
+    /// Largest time of an accepted scan (ms).
+    pub max_ms_per_scan: f64,
+    /// Largest number of hypotheses.
+    pub peak_hypotheses: usize,
+    /// Mean captured mass of the accepted scans.
+    pub mean_captured_mass: f64,
+    /// Smallest captured mass of the accepted scans.
+    pub min_captured_mass: f64,
+    /// The scans the tracker rejected.
+    pub rejected_scans: Vec<RejectedScan>,
+    /// Scans at which the reference's memory budget forced pruning.
+    pub reference_budget_reached_scans: Vec<usize>,
+    /// The process's peak resident memory (VmHWM, KiB) when the summary was written, where the OS tells it.
+    pub peak_resident_kib: Option<u64>,
+    /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensors: Option<usize>,
+}
+
+/// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BirthFigures {
+    /// Births in the truth.
+    pub births_total: usize,
+    /// Births confirmed.
+    pub births_confirmed: usize,
+    /// Per birth, in id order.
+    pub records: Vec<BirthRecord>,
+    /// Mean detections to confirmation of the confirmed births (`None`: none confirmed).
+    pub mean_detections_to_confirm: Option<f64>,
+    /// Largest detections to confirmation (`None`: none confirmed).
+    pub max_detections_to_confirm: Option<usize>,
+    /// False tracks over the run.
+    pub false_tracks: usize,
+}
+
+/// The births of a run, flattened into its summary (docs/scenario-format.md, summary keys).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct BirthsSummary {
+    /// Born objects in the truth.
+    pub births_total: usize,
+    /// Born objects confirmed.
+    pub births_confirmed: usize,
+    /// Per born object, the scan of its confirmation.
+    pub birth_confirmation_scans: Vec<BirthConfirmation>,
+    /// Per born object, detections and scans from its first detection to its confirmation.
+    #[serde(default)]
+    pub birth_confirmations: Vec<BirthRecord>,
+    /// Mean detections to confirmation of the confirmed births; `null` when none is.
+    #[serde(default)]
+    pub mean_detections_to_confirm: Option<f64>,
+    /// Largest detections to confirmation; `null` when no birth is confirmed.
+    #[serde(default)]
+    pub max_detections_to_confirm: Option<usize>,
+    /// MAP labels confirmed at some scan and never within the error bound of an object; `null` without
+    /// truth.
+    #[serde(default)]
+    pub false_tracks: Option<usize>,
+}
+
+impl BirthsSummary {
+    /// The summary of `figures`; false tracks only with a truth to compare with.
+    pub fn new(figures: BirthFigures, has_truth: bool) -> Self {
+        BirthsSummary {
+            births_total: figures.births_total,
+            births_confirmed: figures.births_confirmed,
+            birth_confirmation_scans: figures
+                .records
+                .iter()
+                .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
+                .collect(),
+            mean_detections_to_confirm: figures.mean_detections_to_confirm,
+            max_detections_to_confirm: figures.max_detections_to_confirm,
+            false_tracks: has_truth.then_some(figures.false_tracks),
+            birth_confirmations: figures.records,
+        }
+    }
+}
+
+/// A born object and the scan at which it was confirmed (`null`: never).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthConfirmation {
+    /// Truth id.
+    pub object: u64,
+    /// Scan index.
+    pub scan: Option<usize>,
+}
+
+/// A born object's way to confirmation ([`crate::births`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthRecord {
+    /// Truth id.
+    pub object: u64,
+    /// Scan of its first measurement (`null`: never detected).
+    pub first_detection_scan: Option<usize>,
+    /// Scan of its confirmation (`null`: never).
+    pub confirmation_scan: Option<usize>,
+    /// Its measurements up to and including the confirmation scan (`null`: never confirmed).
+    pub detections_to_confirm: Option<usize>,
+    /// Scans from the first detection to the confirmation, both counted (`null`: never confirmed).
+    pub scans_to_confirm: Option<usize>,
+}
+
+/// A scan the tracker rejected.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RejectedScan {
+    /// Scan index.
+    pub scan: usize,
+    /// The tracker's message.
+    pub error: String,
+}
