@@ -21,17 +21,17 @@
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
 use crate::error::Error;
-use crate::evaluate::{self, Options, score, truth_positions, write_json};
+use crate::pipeline::planar::evaluate::{self, Options, score, truth_positions, write_json};
 use crate::plots::{self, Scale, Series};
 use crate::report::{
     AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
     DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
     RunSummary, RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
 };
-use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
-use crate::setup;
+use crate::pipeline::planar::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
+use crate::pipeline::planar::setup;
 use crate::sim;
-use crate::snapshot::Snapshot;
+use crate::pipeline::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
 use serde_json::Value;

@@ -18,39 +18,28 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assignment;
-pub mod births;
 pub mod catalogue;
 pub mod catalogue_experiment;
-pub mod catalogue_scenario;
 pub mod ccsds;
-pub mod digest;
-pub mod digest3d;
+
 pub mod error;
-pub mod evaluate;
-pub mod exactness;
+pub mod eval;
 pub mod experiment;
-pub mod generate3d;
 pub mod gibbs;
 pub mod metrics;
 pub mod murty;
 pub mod oem;
 pub mod orbit;
 pub mod perf;
+pub mod pipeline;
 pub mod plots;
 pub mod reference;
 pub mod report;
 pub mod rng;
-pub mod run3d;
-pub mod runner;
 pub mod sampler_check;
 pub mod scenario;
-pub mod scenario3d;
-pub mod setup;
 pub mod sgp4_check;
 pub mod sim;
-pub mod snapshot;
-pub mod soak;
-pub mod soak3d;
 pub mod ssa;
 pub mod tdm;
 

@@ -6,11 +6,11 @@
 
 use clap::{Parser, Subcommand};
 use host_sim::Error;
-use host_sim::evaluate::{self, Options};
+use host_sim::pipeline::planar::evaluate::{self, Options};
 use host_sim::experiment::Experiment;
-use host_sim::generate3d::Preset3d;
-use host_sim::runner::{Profile, TrackerKind};
-use host_sim::scenario3d::{AnyScenario, load_any};
+use host_sim::scenario::from_simulation::Preset3d;
+use host_sim::pipeline::planar::runner::{Profile, TrackerKind};
+use host_sim::scenario::v2::{AnyScenario, load_any};
 use host_sim::sim::Preset;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -49,7 +49,7 @@ impl Common {
     fn options(self) -> Options {
         Options {
             profile: self.profile.unwrap_or_default(),
-            reference: host_sim::runner::ReferenceBudget {
+            reference: host_sim::pipeline::planar::runner::ReferenceBudget {
                 bytes: self.reference_budget_mib.saturating_mul(1 << 20),
                 children: self.reference_max_children,
             },
@@ -82,13 +82,13 @@ impl CatalogueArgs {
         self,
         command: &str,
         seed: u64,
-    ) -> Result<(host_sim::scenario3d::Scenario3d, host_sim::generate3d::Generated), Error> {
+    ) -> Result<(host_sim::scenario::v2::Scenario3d, host_sim::scenario::from_simulation::Generated), Error> {
         let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
         let catalogue_file = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
         let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
         let start = self.start.ok_or_else(|| missing("--start"))?;
         let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
-        host_sim::catalogue_scenario::generate(host_sim::catalogue_scenario::Request {
+        host_sim::scenario::from_catalogue::generate(host_sim::scenario::from_catalogue::Request {
             catalogue: &catalogue_file,
             sensors: &sensors,
             start: &start,
@@ -237,7 +237,7 @@ enum Command {
         seed: u64,
         /// The soak's geometry: the planar SSA scenario with births and deaths, or a 3-D preset observed without end.
         #[arg(long, value_enum, default_value = "planar")]
-        scenario: host_sim::soak::Scenario,
+        scenario: host_sim::pipeline::soak::planar::Scenario,
         /// Output JSON file.
         #[arg(long)]
         out: PathBuf,
@@ -388,7 +388,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             catalogue.only_for_catalogue()?;
             let unknowns = host_sim::ssa::Unknowns { missing_fraction, breakup };
             let simulation = preset.simulate_with(seed, &unknowns)?;
-            let (scenario, figures) = host_sim::generate3d::to_scenario(&simulation)?;
+            let (scenario, figures) = host_sim::scenario::from_simulation::to_scenario(&simulation)?;
             scenario.save(&out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
@@ -407,7 +407,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo").into());
             }
             let (scenario, figures) = catalogue.generate("generate catalogue", seed)?;
-            host_sim::catalogue_scenario::save_whole(&scenario, &out)?;
+            host_sim::scenario::from_catalogue::save_whole(&scenario, &out)?;
             eprintln!(
                 "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the \
                  field of view dropped)",
@@ -433,7 +433,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let (scenario, _) = catalogue.generate("run-catalogue", seed)?;
             let (summary, clean) = host_sim::tdm::stage(&out, |dir| {
                 scenario.save(&dir.join("scenario.json"))?;
-                host_sim::run3d::run(&scenario, tracker, common.profile, common.quiet, dir)
+                host_sim::pipeline::orbital::run::run(&scenario, tracker, common.profile, common.quiet, dir)
             })?;
             println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
             if clean { Ok(()) } else { Err(CliError::Rejected) }
@@ -462,9 +462,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 AnyScenario::V1(scenario) => *scenario,
                 AnyScenario::V2(scenario) => {
                     let options = common.options();
-                    let profile = host_sim::run3d::choose_profile(&scenario, common.profile);
+                    let profile = host_sim::pipeline::orbital::run::choose_profile(&scenario, common.profile);
                     let figures =
-                        host_sim::run3d::compare3d(&scenario, tracker, Some(profile), options.reference.bytes)?;
+                        host_sim::pipeline::orbital::run::compare3d(&scenario, tracker, Some(profile), options.reference.bytes)?;
                     let summary = host_sim::report::Compare3dSummary {
                         tracker: tracker.name().to_string(),
                         profile: profile.name().to_string(),
@@ -495,13 +495,13 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             write_report(&out, &report)
         }
         Command::Soak { scans, seed, scenario, out, quiet } => {
-            let report = host_sim::soak::run_scenario(scenario, scans, seed, quiet)?;
+            let report = host_sim::pipeline::soak::planar::run_scenario(scenario, scans, seed, quiet)?;
             write_report(&out, &report)
         }
         Command::Digest { file, scans } => {
             let digest = match load_any(&file)? {
-                AnyScenario::V1(scenario) => host_sim::digest::run(&scenario, scans)?,
-                AnyScenario::V2(scenario) => host_sim::digest3d::run(&scenario, scans)?,
+                AnyScenario::V1(scenario) => host_sim::pipeline::digest::planar::run(&scenario, scans)?,
+                AnyScenario::V2(scenario) => host_sim::pipeline::digest::orbital::run(&scenario, scans)?,
             };
             println!("{digest}");
             Ok(())
@@ -540,13 +540,13 @@ fn execute(cli: Cli) -> Result<(), CliError> {
 
 /// `run` on a version 2 scenario, its outputs written only when it succeeds ([`host_sim::tdm::stage`]).
 fn run3d(
-    scenario: &host_sim::scenario3d::Scenario3d,
+    scenario: &host_sim::scenario::v2::Scenario3d,
     tracker: TrackerKind,
     common: Common,
     out: &Path,
 ) -> Result<(), CliError> {
     let (summary, clean) =
-        host_sim::tdm::stage(out, |dir| host_sim::run3d::run(scenario, tracker, common.profile, common.quiet, dir))?;
+        host_sim::tdm::stage(out, |dir| host_sim::pipeline::orbital::run::run(scenario, tracker, common.profile, common.quiet, dir))?;
     println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default());
     if clean { Ok(()) } else { Err(CliError::Rejected) }
 }

@@ -20,7 +20,7 @@
 //! exactly the best ones), and children are materialised best first until the posterior's share is
 //! used. The scan's report and [`ReferenceTracker::budget_scans`] then say so.
 
-use crate::snapshot::{HypothesisOut, Snapshot, TrackOut};
+use crate::pipeline::snapshot::{HypothesisOut, Snapshot, TrackOut};
 use nalgebra::SVector;
 use std::collections::HashMap;
 use std::hash::{DefaultHasher, Hash, Hasher};

@@ -4,7 +4,7 @@
 //! that may be unknown is an `Option` (written as `null`). Reading a file back is `serde_json::from_str`
 //! into the same type.
 
-use crate::snapshot::TrackOut;
+use crate::pipeline::snapshot::TrackOut;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -94,7 +94,7 @@ pub struct BirthsSummary {
 
 impl BirthsSummary {
     /// The summary of `figures`; false tracks only with a truth to compare with.
-    pub fn new(figures: crate::births::BirthFigures, has_truth: bool) -> Self {
+    pub fn new(figures: crate::eval::births::BirthFigures, has_truth: bool) -> Self {
         BirthsSummary {
             births_total: figures.births_total,
             births_confirmed: figures.births_confirmed,
@@ -121,7 +121,7 @@ pub struct BirthConfirmation {
     pub scan: Option<usize>,
 }
 
-/// A born object's way to confirmation ([`crate::births`]).
+/// A born object's way to confirmation ([`crate::eval::births`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BirthRecord {

@@ -15,7 +15,7 @@ use crate::error::Error;
 use crate::reference::ReferenceTracker;
 use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use crate::rng::{Random, Stream};
-use crate::snapshot::{Snapshot, match_posteriors};
+use crate::pipeline::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;

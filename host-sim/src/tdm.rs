@@ -15,7 +15,7 @@
 
 use crate::ccsds::{self, Instant};
 use crate::error::Error;
-use crate::scenario3d::{Measurement3dSpec, Scan3dSpec, Scenario3d};
+use crate::scenario::v2::{Measurement3dSpec, Scan3dSpec, Scenario3d};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -714,7 +714,7 @@ mod tests {
 
     fn tiny() -> Scenario3d {
         let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
-        crate::generate3d::to_scenario(&simulation).expect("scenario").0
+        crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
     }
 
     /// Writes every sensor's TDM, reads them back and merges by time.

@@ -5,9 +5,9 @@
 //! `evaluation`), OSPA, the error of the expected cardinality, and label switches along GOSPA's
 //! assignment. An estimate is *within the error bound* when GOSPA with cut-off `error_bound` assigns it to
 //! a true object. A born object is *confirmed* once GOSPA with cut-off `error_bound` assigns it a MAP
-//! track whose label's existence probability reaches `confirmation_existence` ([`crate::births`]).
+//! track whose label's existence probability reaches `confirmation_existence` ([`crate::eval::births`]).
 
-use crate::births::{BirthTally, MapTrack};
+use crate::eval::births::{BirthTally, MapTrack};
 use crate::error::Error;
 use crate::metrics::{LabelSwitches, gospa, ospa};
 use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
@@ -15,10 +15,10 @@ use crate::report::{
     BirthsSummary, CompareReport, CompareScan, CompareSide, CompareSummary, LabelExistence, RejectedScan, RunSummary,
     ScanHypothesis, ScanLine,
 };
-use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
+use crate::pipeline::planar::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
 use crate::scenario::{FieldOfViewSpec, Scenario};
-use crate::setup;
-use crate::snapshot::{HypothesisOut, Snapshot, TrackOut, match_posteriors};
+use crate::pipeline::planar::setup;
+use crate::pipeline::snapshot::{HypothesisOut, Snapshot, TrackOut, match_posteriors};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use std::collections::HashMap;
@@ -126,7 +126,7 @@ pub(crate) fn score(scenario: &Scenario, k: usize, snapshot: &Snapshot) -> Optio
     })
 }
 
-/// Records scan `k` of a run in the births tally ([`crate::births`]).
+/// Records scan `k` of a run in the births tally ([`crate::eval::births`]).
 fn record_births(tally: &mut BirthTally, scenario: &Scenario, k: usize, snapshot: &Snapshot, scored: &Scored) {
     let Some(truth) = &scenario.truth else { return };
     let scan = &truth.scans[k];

@@ -1,6 +1,6 @@
 //! `host-sim digest` on version 2 radar scenarios: replays an excerpt through the embedded 3-D tracker,
 //! `RadarTracker<f32>`, exactly as the QEMU firmware (`firmware/qemu-m4`, `RFISST_SCENARIO_3D`) does, and
-//! returns the same digest text as the planar digest ([`crate::digest`]).
+//! returns the same digest text as the planar digest ([`crate::pipeline::digest::planar`]).
 //!
 //! **The excerpt.** The first `scans` scans, and a prior restricted to the objects they detect: a prior
 //! object is kept when its label is the id of an object that produced a measurement of the excerpt
@@ -9,14 +9,14 @@
 //! the prior fit the embedded capacity N = 64 (radar-leo seed 1: 43 of 120 objects in its first 200
 //! scans). The file therefore needs its truth with `origins`.
 //!
-//! **Conversions.** Every value is computed in `f64` as [`crate::run3d`] computes it (degrees and
+//! **Conversions.** Every value is computed in `f64` as [`crate::pipeline::orbital::run`] computes it (degrees and
 //! arcseconds to radians, the Earth rotation angle at the epoch) and rounded once with `value as f32`;
 //! times stay `f64`. The firmware's build script does the same, so both trackers start from the same bits.
 
-use crate::digest::region;
+use crate::pipeline::digest::planar::region;
 use crate::scenario::ScenarioError;
-use crate::scenario3d::{Measurement3dSpec, Scenario3d};
-use crate::setup::sampler_config_of;
+use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
+use crate::pipeline::planar::setup::sampler_config_of;
 use nalgebra::{SMatrix, SVector};
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -172,10 +172,10 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
             ))
         })?;
     }
-    let crate::scenario3d::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
+    let crate::scenario::v2::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
     let noise = match process_noise {
-        crate::scenario3d::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
-        crate::scenario3d::ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
+        crate::scenario::v2::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
+        crate::scenario::v2::ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
             ProcessNoise::Ric { radial: of(radial), in_track: of(in_track), cross_track: of(cross_track) }
         }
     };
@@ -229,7 +229,7 @@ mod tests {
 
     fn tiny() -> Scenario3d {
         let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
-        crate::generate3d::to_scenario(&simulation).expect("scenario").0
+        crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
-//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::generate3d::to_scenario`]); the tracker is
-//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::run3d::config3d`], f64,
+//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::scenario::from_simulation::to_scenario`]); the tracker is
+//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::pipeline::orbital::run::config3d`], f64,
 //! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
 //! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the
 //! sensors take turns, one scan every interval): every object's truth is carried from scan to scan by
@@ -12,17 +12,17 @@
 //!
 //! Every object lives for the whole run, so the soak checks that they stay *tracked*: after every scan it
 //! counts the objects whose label the MAP hypothesis holds within the scenario's error bound of the truth
-//! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::soak`]).
+//! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
 use crate::error::Error;
-use crate::evaluate::peak_resident_kib;
-use crate::generate3d::to_scenario;
+use crate::pipeline::planar::evaluate::peak_resident_kib;
+use crate::scenario::from_simulation::to_scenario;
 use crate::orbit::Propagator;
 use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::rng::{Random, Stream};
-use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
-use crate::runner::{Profile, TrackerKind};
-use crate::soak::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
+use crate::pipeline::orbital::run::{C, FieldOfViewCheck, choose_profile, config3d};
+use crate::pipeline::planar::runner::{Profile, TrackerKind};
+use crate::pipeline::soak::planar::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;
@@ -284,7 +284,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
     let sim = match scenario {
         Scenario::RadarLeo => ssa::radar_leo_with(seed, &RADAR_LEO),
         Scenario::OpticalGeo => ssa::optical_geo(seed),
-        Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::soak::run")),
+        Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::pipeline::soak::planar::run")),
     }
     .map_err(|e| Error::internal(format!("soak: simulation: {e}")))?;
     let profile = choose_profile(&to_scenario(&sim)?.0, None);

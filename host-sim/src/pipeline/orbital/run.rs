@@ -3,20 +3,20 @@
 //! the MAP estimates against the truth in 3-D (km) and writes `summary.json`, `estimates.csv`, the MAP tracks
 //! as a CCSDS OEM (`tracks.oem`, [`crate::oem`]) and the plots (a sky plot per sensor, the expected cardinality and GOSPA over time).
 //!
-//! Scoring is that of version 1 ([`crate::evaluate`]) with 3-D positions: GOSPA (α = 2) of the MAP
+//! Scoring is that of version 1 ([`crate::pipeline::planar::evaluate`]) with 3-D positions: GOSPA (α = 2) of the MAP
 //! positions against every true object, label switches along GOSPA's assignment, and an estimate *in view*
 //! when its position lies in the field of view of the scan's sensor (look angles, range and range-rate of
 //! [`SiteGeometry::look`]).
 
-use crate::births::{BirthTally, MapTrack};
+use crate::eval::births::{BirthTally, MapTrack};
 use crate::error::Error;
-use crate::evaluate::{mean, peak_resident_kib, progress, write_json};
+use crate::pipeline::planar::evaluate::{mean, peak_resident_kib, progress, write_json};
 use crate::metrics::{LabelSwitches, gospa};
 use crate::plots::{self, Scale, Series, SkySeries};
 use crate::report::{BirthsSummary, RejectedScan, RunSummary};
-use crate::runner::{Profile, StepInfo, TrackerKind};
+use crate::pipeline::planar::runner::{Profile, StepInfo, TrackerKind};
 use crate::scenario::{BirthDetectionSpec, NumericalFailureSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec};
-use crate::scenario3d::{Measurement3dSpec, Scenario3d, ShapeSpec};
+use crate::scenario::v2::{Measurement3dSpec, Scenario3d, ShapeSpec};
 use nalgebra::{SMatrix, SVector};
 use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
@@ -164,7 +164,7 @@ fn gaussian6(mean: &[f64; 6], covariance: &[[f64; 6]; 6]) -> Gaussian<f64, 6> {
 /// The child generation of tracker settings.
 fn children(kind: TrackerKind, tracker: &TrackerSpec) -> ChildGeneration {
     match kind {
-        TrackerKind::Rfisst => ChildGeneration::Sampled(crate::setup::sampler_config_of(tracker)),
+        TrackerKind::Rfisst => ChildGeneration::Sampled(crate::pipeline::planar::setup::sampler_config_of(tracker)),
         _ => ChildGeneration::Exhaustive { max_children_per_scan: tracker.max_children_per_scan },
     }
 }
@@ -257,7 +257,7 @@ where
 }
 
 /// The scans of `scenario` as the trackers take them (angles in radians).
-fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<crate::exactness::Scan<D>> {
+fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<crate::eval::exactness::Scan<D>> {
     scenario
         .scans
         .iter()
@@ -275,12 +275,12 @@ fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usiz
     scenario: &Scenario3d,
     kind: TrackerKind,
     budget_bytes: usize,
-) -> Result<crate::exactness::CompareFigures, Error>
+) -> Result<crate::eval::exactness::CompareFigures, Error>
 where
     X: Placeable<f64, D>,
 {
     let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
-    crate::exactness::compare_scans::<_, _, 6, D, H, N, Z, K, B>(
+    crate::eval::exactness::compare_scans::<_, _, 6, D, H, N, Z, K, B>(
         &config,
         &prior,
         scenario.prior.time,
@@ -309,7 +309,7 @@ macro_rules! compare_for_profile {
 
 /// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
 /// reference (memory budget `budget_bytes`) on the same scans, placed per sensor by the core's
-/// `place_scan` in both ([`crate::exactness::compare_scans`]).
+/// `place_scan` in both ([`crate::eval::exactness::compare_scans`]).
 ///
 /// # Errors
 /// Bad input: the configuration, or the reference tracker as bounded tracker.
@@ -318,7 +318,7 @@ pub fn compare3d(
     kind: TrackerKind,
     profile: Option<Profile>,
     budget_bytes: usize,
-) -> Result<crate::exactness::CompareFigures, Error> {
+) -> Result<crate::eval::exactness::CompareFigures, Error> {
     if kind == TrackerKind::Reference {
         return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst"));
     }
@@ -884,7 +884,7 @@ mod tests {
 
     fn tiny() -> Scenario3d {
         let simulation = crate::ssa::tiny_3d(1).expect("tiny-3d");
-        crate::generate3d::to_scenario(&simulation).expect("scenario").0
+        crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
     }
 
     fn temp(tag: &str) -> std::path::PathBuf {
@@ -929,9 +929,9 @@ mod tests {
 
     impl Motion3dSpecFor {
         /// Gaps of at most 5 s: the 10 s between tiny-3d's scans are too long.
-        fn short() -> crate::scenario3d::Motion3dSpec {
-            crate::scenario3d::Motion3dSpec::TwoBodyJ2 {
-                process_noise: crate::scenario3d::ProcessNoiseSpec::Isotropic { q: 1e-12 },
+        fn short() -> crate::scenario::v2::Motion3dSpec {
+            crate::scenario::v2::Motion3dSpec::TwoBodyJ2 {
+                process_noise: crate::scenario::v2::ProcessNoiseSpec::Isotropic { q: 1e-12 },
                 max_step: 5.0,
                 max_substeps: 1,
             }

@@ -7,8 +7,8 @@
 
 use crate::reference::ReferenceTracker;
 use crate::scenario::{MotionSpec, Scenario, ScenarioError};
-use crate::setup;
-use crate::snapshot::Snapshot;
+use crate::pipeline::planar::setup;
+use crate::pipeline::snapshot::Snapshot;
 use nalgebra::SVector;
 use tracker_core::{ChildGeneration, Config, MotionModel, PositionMeasurement, PriorHypothesis, Tracker, ssa_caps};
 

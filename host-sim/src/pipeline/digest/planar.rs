@@ -18,7 +18,7 @@
 //! unchanged); the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 
 use crate::scenario::{Scenario, ScenarioError};
-use crate::setup;
+use crate::pipeline::planar::setup;
 use nalgebra::SVector;
 use std::fmt::Write as _;
 use tracker_core::digest::Fnv1a;

@@ -1,4 +1,4 @@
-//! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario3d`]) from a TLE / OMM catalogue
+//! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario::v2`]) from a TLE / OMM catalogue
 //! ([`crate::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
 //! docs/scenario-format.md "Sensors files").
 //!
@@ -11,9 +11,9 @@
 
 use crate::Error;
 use crate::catalogue::{self, Satellite};
-use crate::generate3d::{self, Generated, KnownTruth};
+use crate::scenario::from_simulation::{self as generate3d, Generated, KnownTruth};
 use crate::scenario::{ScenarioError, error, read_limited};
-use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
+use crate::scenario::v2::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
 use crate::ssa::{self, FieldOfView, LookShape, SensorKind, SensorSpec, Site, SsaError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -5,6 +5,10 @@
 //! [`ScenarioError`] whose one-line message names the field (`scans[12].time: ...`). Unknown fields are
 //! rejected so that a typo cannot silently fall back to a default.
 
+pub mod from_catalogue;
+pub mod from_simulation;
+pub mod v2;
+
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -98,7 +102,7 @@ fn is_format(c: char) -> bool {
 pub struct Scenario {
     /// Must be [`FORMAT`].
     pub format: String,
-    /// The format version: absent or 1 (version 2 files are [`crate::scenario3d`]'s).
+    /// The format version: absent or 1 (version 2 files are [`crate::scenario::v2`]'s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub version: Option<u32>,
     /// Short name.

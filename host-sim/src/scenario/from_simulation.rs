@@ -1,5 +1,5 @@
 //! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
-//! version 2 scenario files ([`crate::scenario3d`]).
+//! version 2 scenario files ([`crate::scenario::v2`]).
 //!
 //! The truth of every object at every scan comes from [`crate::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
@@ -13,12 +13,12 @@
 use crate::error::Error;
 use crate::orbit::Propagator;
 use crate::rng::{Random, Stream};
-use crate::run3d::{FieldOfViewCheck, measurements_in_radians};
+use crate::pipeline::orbital::run::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
     NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
 };
-use crate::scenario3d::*;
+use crate::scenario::v2::*;
 use crate::ssa::{self, OpticalGeoConfig, RadarLeoConfig, SensorKind, SsaScenario, Unknowns};
 use nalgebra::SMatrix;
 
