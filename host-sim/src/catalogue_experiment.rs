@@ -18,7 +18,7 @@
 //! telescope right ascension/declination, D = 2; a const generic), so the radars and the telescope cannot be
 //! fused in one tracker today: the experiment runs two R-FISST trackers (host profile) on the same truth, one
 //! on the two-radar scenario (`radars/`), one on the telescope scenario (`telescope/`), each written by
-//! [`crate::pipeline::orbital::run::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
+//! [`crate::pipeline::orbital::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
 //! objects missing from the prior that some sensor detected, `births_confirmed` those that at least one
 //! tracker confirmed (each object once; per tracker in `details`);
 //! `mean_gospa` is the mean over every scan of both; `mean_ms_per_scan` and `max_ms_per_scan` cover every
@@ -30,18 +30,18 @@
 //! scan).
 
 use crate::catalogue::{self, CatalogueEntry, Satellite};
-use crate::scenario::from_catalogue::{self as catalogue_scenario, Request, SENSORS_FORMAT, SensorsFile};
 use crate::error::Error;
-use crate::pipeline::planar::evaluate::write_json;
 use crate::metrics::gospa;
+use crate::pipeline::output::write_json;
+use crate::pipeline::{Profile, TrackerKind};
 use crate::plots::{self, Scale, Series, SkySeries};
 use crate::report::{CatalogueReport, CatalogueTracker, RunSummary};
 use crate::rng::{Random, Stream};
-use crate::pipeline::planar::runner::{Profile, TrackerKind};
-use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
+use crate::scenario::from_catalogue::{self as catalogue_scenario, Request, SENSORS_FORMAT, SensorsFile};
 use crate::scenario::v2::{
     Birth3dSpec, FieldOfView3dSpec, Measurement3dSpec, NoiseSpec, Scenario3d, Sensor3dSpec, ShapeSpec, SiteSpec,
 };
+use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
 use crate::ssa;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -444,7 +444,7 @@ fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared
         eprintln!("catalogue: {name}: {} scans, {} measurements; tracking", generated.scans, generated.measurements);
     }
     let out = dir.join(name);
-    let (summary, _) = crate::pipeline::orbital::run::run(&scenario, TrackerKind::Rfisst, Some(Profile::Host), quiet, &out)?;
+    let (summary, _) = crate::pipeline::orbital::run(&scenario, TrackerKind::Rfisst, Some(Profile::Host), quiet, &out)?;
     let map = read_estimates(&out.join("estimates.csv"), scenario.scans.len())?;
     let truth = scenario.truth.as_ref().ok_or_else(|| Error::internal("catalogue scenario without truth"))?;
     let e = scenario.evaluation;

@@ -21,17 +21,19 @@
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 
 use crate::error::Error;
-use crate::pipeline::planar::evaluate::{self, Options, score, truth_positions, write_json};
+use crate::pipeline::output::write_json;
+use crate::pipeline::planar::runner::{Runner, build};
+use crate::pipeline::planar::setup;
+use crate::pipeline::planar::{self as evaluate, Options, score, truth_positions};
+use crate::pipeline::snapshot::Snapshot;
+use crate::pipeline::{Profile, ReferenceBudget, TrackerKind};
 use crate::plots::{self, Scale, Series};
 use crate::report::{
     AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
     DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
     RunSummary, RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
 };
-use crate::pipeline::planar::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
-use crate::pipeline::planar::setup;
 use crate::sim;
-use crate::pipeline::snapshot::Snapshot;
 use nalgebra::SVector;
 use rayon::prelude::*;
 use serde_json::Value;
@@ -224,7 +226,7 @@ fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigures, Error> 
     );
     let mut reference_scans = 0usize;
     let mut reference_budget_reached = false;
-    let bar = evaluate::progress(scenario.scans.len(), quiet, "fifteen");
+    let bar = crate::pipeline::output::progress(scenario.scans.len(), quiet, "fifteen");
     let (mut agree_homht, mut agree_reference) = (0usize, 0usize);
     let mut max_difference: f64 = 0.0;
     let mut per_scan = vec![];
@@ -729,7 +731,7 @@ fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures, Error> {
     let profile = Profile::Host;
 
     // R-FISST first, with the truth-association check on its MAP parent before each scan.
-    let bar = evaluate::progress(scenario.scans.len() * 2, quiet, "debris");
+    let bar = crate::pipeline::output::progress(scenario.scans.len() * 2, quiet, "debris");
     let DebrisRun { checks, ms: rfisst_ms, series: rfisst_series } = debris_rfisst(&scenario, seed, &bar)?;
     // HOMHT with the same time budget: as many children per scan as exhaustive enumeration produces in
     // R-FISST's mean time per scan (its measured rate on the scaling family, here measured on the first scan).

@@ -22,6 +22,7 @@ pub mod catalogue;
 pub mod catalogue_experiment;
 pub mod ccsds;
 
+pub mod commands;
 pub mod error;
 pub mod eval;
 pub mod experiment;

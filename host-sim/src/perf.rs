@@ -41,11 +41,11 @@
 
 use crate::error::Error;
 use crate::murty::Murty;
+use crate::pipeline::planar::setup;
 use crate::report::{
     PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsShape, PerfMachine, PerfMurty, PerfMurtyCase,
     PerfMurtyShape, PerfReport, PerfSsa,
 };
-use crate::pipeline::planar::setup;
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::{SplitMix64, Xoshiro256PlusPlus};
@@ -445,7 +445,7 @@ pub const RADAR_LEO_SCANS: usize = 600;
 /// A 3-D preset: per-scan times of the R-FISST tracker that `run` builds for it.
 struct SsaBench {
     scenario: crate::scenario::v2::Scenario3d,
-    profile: crate::pipeline::planar::runner::Profile,
+    profile: crate::pipeline::Profile,
     scans: Vec<(usize, f64, Vec<Vec<f64>>)>,
     times: Vec<Vec<f64>>,
     rejected: usize,
@@ -454,8 +454,8 @@ struct SsaBench {
 impl SsaBench {
     fn new(preset: crate::scenario::from_simulation::Preset3d, scans: usize) -> Result<Self, Error> {
         let simulated = preset.simulate(1).map_err(|e| Error::internal(format!("perf: {e}")))?;
-        let (scenario, _) =
-            crate::scenario::from_simulation::to_scenario(&simulated).map_err(|e| Error::internal(format!("perf: {e}")))?;
+        let (scenario, _) = crate::scenario::from_simulation::to_scenario(&simulated)
+            .map_err(|e| Error::internal(format!("perf: {e}")))?;
         let scans: Vec<(usize, f64, Vec<Vec<f64>>)> = scenario
             .scans
             .iter()
@@ -464,17 +464,18 @@ impl SsaBench {
                 (
                     scan.sensor,
                     scan.time,
-                    crate::pipeline::orbital::run::measurements_in_radians(scenario.measurement, &scan.measurements),
+                    crate::pipeline::orbital::measurements_in_radians(scenario.measurement, &scan.measurements),
                 )
             })
             .collect();
-        let profile = crate::pipeline::orbital::run::choose_profile(&scenario, None);
+        let profile = crate::pipeline::orbital::choose_profile(&scenario, None);
         let times = vec![Vec::new(); scans.len()];
         Ok(Self { scenario, profile, scans, times, rejected: 0 })
     }
 
     fn pass(&mut self) -> Result<(), Error> {
-        let mut runner = crate::pipeline::orbital::run::build3d(crate::pipeline::planar::runner::TrackerKind::Rfisst, self.profile, &self.scenario)?;
+        let mut runner =
+            crate::pipeline::orbital::build3d(crate::pipeline::TrackerKind::Rfisst, self.profile, &self.scenario)?;
         self.rejected = 0;
         for (index, (sensor, scan_time, measurements)) in self.scans.iter().enumerate() {
             let (seconds, result) = time(|| runner.step(*sensor, *scan_time, measurements));

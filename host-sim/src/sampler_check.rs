@@ -12,10 +12,10 @@
 //! - top-1 found: the sampler kept the exact MAP hypothesis (or one tied with it).
 
 use crate::error::Error;
+use crate::pipeline::snapshot::{Snapshot, match_posteriors};
 use crate::reference::ReferenceTracker;
 use crate::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use crate::rng::{Random, Stream};
-use crate::pipeline::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;

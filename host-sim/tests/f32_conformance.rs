@@ -6,8 +6,8 @@
 //! `cargo test --release -p host-sim --test f32_conformance -- --ignored --nocapture`.
 
 use host_sim::pipeline::digest::planar::{gaussian, region, tracker};
-use host_sim::scenario::Scenario;
 use host_sim::pipeline::planar::setup;
+use host_sim::scenario::Scenario;
 use host_sim::sim;
 use nalgebra::SVector;
 use tracker_core::{

@@ -1,15 +1,15 @@
 //! Exactness of the bounded core tracker on any model: the core [`Tracker`] and the unbounded
 //! [`ReferenceTracker`] run on the same scans, each scan naming its sensor and geometry, and their
 //! posteriors are compared after every scan as `host-sim compare` compares them
-//! ([`crate::pipeline::planar::evaluate::compare`]): hypotheses matched by the exact bits of their tracks' states
+//! ([`crate::pipeline::planar::compare`]): hypotheses matched by the exact bits of their tracks' states
 //! ([`match_keys`]), captured mass = the reference's mass on the core's hypotheses, MAP agreement = the
 //! core's MAP hypothesis has the reference's largest weight (to 1e-9 relative).
 //!
 //! It needs no scenario file, so it serves the 3-D models (radar, telescope, several sensors) as well as
 //! the planar ones.
 
-use crate::reference::{ReferenceError, ReferenceTracker};
 use crate::pipeline::snapshot::match_keys;
+use crate::reference::{ReferenceError, ReferenceTracker};
 use nalgebra::SVector;
 use tracker_core::model::ScanGeometry;
 use tracker_core::{

@@ -3,3 +3,4 @@
 
 pub mod births;
 pub mod exactness;
+pub mod score;

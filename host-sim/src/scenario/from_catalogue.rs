@@ -12,8 +12,8 @@
 use crate::Error;
 use crate::catalogue::{self, Satellite};
 use crate::scenario::from_simulation::{self as generate3d, Generated, KnownTruth};
-use crate::scenario::{ScenarioError, error, read_limited};
 use crate::scenario::v2::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
+use crate::scenario::{ScenarioError, error, read_limited};
 use crate::ssa::{self, FieldOfView, LookShape, SensorKind, SensorSpec, Site, SsaError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -12,13 +12,13 @@
 
 use crate::error::Error;
 use crate::orbit::Propagator;
+use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
 use crate::rng::{Random, Stream};
-use crate::pipeline::orbital::run::{FieldOfViewCheck, measurements_in_radians};
+use crate::scenario::v2::*;
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
     NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
 };
-use crate::scenario::v2::*;
 use crate::ssa::{self, OpticalGeoConfig, RadarLeoConfig, SensorKind, SsaScenario, Unknowns};
 use nalgebra::SMatrix;
 

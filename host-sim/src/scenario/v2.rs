@@ -8,8 +8,8 @@
 //! problem as a one-line [`ScenarioError`] naming the field; [`load_any`] reads either version.
 
 use crate::scenario::{
-    BirthDetectionSpec, EvaluationSpec, MAX_PRIOR_LABEL, Scenario, ScenarioError, TrackerSpec, TruthObjectSpec,
-    check_covariance, error, finite, finite_all, positive, read_limited,
+    BirthDetectionSpec, EvaluationSpec, MAX_PRIOR_LABEL, ScenarioError, TrackerSpec, TruthObjectSpec, check_covariance,
+    error, finite, finite_all, positive,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -26,38 +26,6 @@ pub const MAX_SITE_HEIGHT: f64 = 100.0;
 
 /// The largest number of sensors (tracker-core's `ssa_caps::SENSORS`).
 pub const MAX_SENSORS: usize = tracker_core::ssa_caps::SENSORS;
-
-/// A scenario file of either version.
-#[derive(Debug, Clone, PartialEq)]
-pub enum AnyScenario {
-    /// Version 1: the planar world of paper 003.
-    V1(Box<Scenario>),
-    /// Version 2: 3-D SSA geometry.
-    V2(Box<Scenario3d>),
-}
-
-/// Reads a scenario file of either version: a top-level `"version": 2` selects version 2; without a
-/// `version` (or with 1) the file is read exactly as version 1 always was.
-///
-/// # Errors
-/// A one-line [`ScenarioError`] naming the problem.
-pub fn load_any(path: &Path) -> Result<AnyScenario, ScenarioError> {
-    let text = read_limited(path)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    #[derive(Deserialize)]
-    struct Probe {
-        #[serde(default)]
-        version: Option<serde_json::Value>,
-    }
-    // Invalid JSON, or JSON that is not an object, is reported by the version 1 reader as always.
-    let version = serde_json::from_str::<Probe>(text).ok().and_then(|p| p.version);
-    match version {
-        Some(v) if v.as_u64() == Some(2) => Ok(AnyScenario::V2(Box::new(Scenario3d::from_json(text)?))),
-        Some(v) if v.as_u64() == Some(1) => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-        Some(v) => Err(error("version", format!("{v} is not a known format version (1 or 2)"))),
-        None => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-    }
-}
 
 /// A version 2 scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -427,9 +395,9 @@ impl Scenario3d {
     /// # Errors
     /// A one-line [`ScenarioError`] naming the file's problem.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        match load_any(path)? {
-            AnyScenario::V2(s) => Ok(*s),
-            AnyScenario::V1(_) => Err(error("version", "this is a version 1 file; version 2 expected")),
+        match super::load_any(path)? {
+            super::AnyScenario::V2(s) => Ok(*s),
+            super::AnyScenario::V1(_) => Err(error("version", "this is a version 1 file; version 2 expected")),
         }
     }
 

@@ -14,17 +14,17 @@
 //! times stay `f64`. The firmware's build script does the same, so both trackers start from the same bits.
 
 use crate::pipeline::digest::planar::region;
+use crate::pipeline::settings;
 use crate::scenario::ScenarioError;
 use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
-use crate::pipeline::planar::setup::sampler_config_of;
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 use std::collections::HashSet;
 use std::fmt::Write as _;
 use tracker_core::digest::Fnv1a;
 use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SensorNetwork, SiteSensor};
 use tracker_core::{
-    BirthModel, ChildGeneration, Config, Gaussian, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real,
-    Sensor, TrackLabel, TwoBodyJ2, ssa_caps,
+    BirthModel, ChildGeneration, Config, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real, Sensor,
+    TwoBodyJ2,
 };
 
 /// Replays the first `scans` scans of the radar scenario `scenario` (all when `None`) through
@@ -105,20 +105,10 @@ pub fn tracker(scenario: &Scenario3d, count: usize) -> Result<Box<RadarTracker<f
     }
     let detected = detected(scenario, count)?;
     let config = config(scenario)?;
-    let prior: Vec<(f32, Vec<PriorObject<f32, 6>>)> = scenario
-        .prior
-        .hypotheses
-        .iter()
-        .map(|h| {
-            let objects = h
-                .objects
-                .iter()
-                .filter(|o| detected.contains(&u64::from(o.label)))
-                .map(|o| PriorObject { label: TrackLabel(o.label), state: gaussian6(&o.mean, &o.covariance) })
-                .collect();
-            (f32::of_f64(h.weight), objects)
-        })
-        .collect();
+    let prior: Vec<(f32, Vec<PriorObject<f32, 6>>)> = settings::prior(scenario.prior.hypotheses.iter().map(|h| {
+        let objects = h.objects.iter().filter(|o| detected.contains(&u64::from(o.label)));
+        (h.weight, objects.map(|o| (o.label, &o.mean, &o.covariance)))
+    }));
     let hypotheses: Vec<PriorHypothesis<'_, f32, 6>> =
         prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     // Built in place on the heap: the tracker is too large for a default thread stack.
@@ -162,16 +152,9 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         .collect();
     let rotation = EarthRotation::<f32>::new(of(scenario.earth_rotation_at_epoch()));
     let network = SensorNetwork::new(rotation, &sensors).map_err(|e| ScenarioError(format!("sensors: {e}")))?;
-    let mut cells = heapless::Vec::new();
-    for cell in &scenario.birth.cells {
-        cells.push(gaussian6(&cell.mean, &cell.covariance)).map_err(|_| {
-            ScenarioError(format!(
-                "birth.cells: {} cells exceed the embedded capacity of {}",
-                scenario.birth.cells.len(),
-                ssa_caps::BIRTH_CELLS
-            ))
-        })?;
-    }
+    let cells =
+        settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "the embedded capacity")
+            .map_err(ScenarioError)?;
     let crate::scenario::v2::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
     let noise = match process_noise {
         crate::scenario::v2::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
@@ -180,6 +163,7 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         }
     };
     let spec = &scenario.tracker;
+    let (selection, store_overflow, numerical_failure) = settings::policies(spec);
     // As `run3d`: the configuration's own sensor is the first sensor's (each scan uses its sensor's).
     let sensor = *sensors.first().map(|s| &s.detection).ok_or_else(|| ScenarioError("sensors: none".into()))?;
     Ok(Config {
@@ -191,36 +175,16 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
             measured: None,
             probability: of(scenario.birth.probability),
             cells,
-            detection: match scenario.birth.detection {
-                crate::scenario::BirthDetectionSpec::AllDetected => tracker_core::BirthDetection::AllDetected,
-                crate::scenario::BirthDetectionSpec::AllowUndetected => tracker_core::BirthDetection::AllowUndetected,
-            },
+            detection: settings::birth_detection(scenario.birth.detection),
         },
         death_probability: of(scenario.death_probability),
         gate: spec.gate.map(of),
-        children: ChildGeneration::Sampled(sampler_config_of(spec)),
-        selection: match spec.selection {
-            crate::scenario::SelectionSpec::TopWeight => tracker_core::config::Selection::TopWeight,
-            crate::scenario::SelectionSpec::SampledByWeight => tracker_core::config::Selection::SampledByWeight,
-        },
-        store_overflow: match spec.store_overflow {
-            crate::scenario::StoreOverflowSpec::PruneChildren => tracker_core::StoreOverflow::PruneChildren,
-            crate::scenario::StoreOverflowSpec::Error => tracker_core::StoreOverflow::Error,
-        },
-        numerical_failure: match spec.numerical_failure {
-            crate::scenario::NumericalFailureSpec::DropTrack => tracker_core::NumericalFailure::DropTrack,
-            crate::scenario::NumericalFailureSpec::Error => tracker_core::NumericalFailure::Error,
-        },
+        children: ChildGeneration::Sampled(settings::sampler_config(spec)),
+        selection,
+        store_overflow,
+        numerical_failure,
         seed: spec.seed,
     })
-}
-
-/// An `f64` Gaussian over the 6-state, each value rounded to `f32`; the covariance given by rows.
-fn gaussian6(mean: &[f64; 6], covariance: &[[f64; 6]; 6]) -> Gaussian<f32, 6> {
-    Gaussian {
-        mean: SVector::from(*mean).map(f32::of_f64),
-        covariance: SMatrix::<f64, 6, 6>::from_fn(|i, j| covariance[i][j]).map(f32::of_f64),
-    }
 }
 
 #[cfg(test)]

@@ -17,8 +17,8 @@
 //! `digest` is [`tracker_core::Tracker::digest`] after the scan (after a rejected scan the tracker is
 //! unchanged); the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 
-use crate::scenario::{Scenario, ScenarioError};
 use crate::pipeline::planar::setup;
+use crate::scenario::{Scenario, ScenarioError};
 use nalgebra::SVector;
 use std::fmt::Write as _;
 use tracker_core::digest::Fnv1a;

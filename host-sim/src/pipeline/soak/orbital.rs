@@ -2,7 +2,7 @@
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
 //! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::scenario::from_simulation::to_scenario`]); the tracker is
-//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::pipeline::orbital::run::config3d`], f64,
+//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::pipeline::orbital::config3d`], f64,
 //! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
 //! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the
 //! sensors take turns, one scan every interval): every object's truth is carried from scan to scan by
@@ -15,14 +15,14 @@
 //! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
 use crate::error::Error;
-use crate::pipeline::planar::evaluate::peak_resident_kib;
-use crate::scenario::from_simulation::to_scenario;
 use crate::orbit::Propagator;
+use crate::pipeline::orbital::{C, FieldOfViewCheck, choose_profile, config3d};
+use crate::pipeline::output::peak_resident_kib;
+use crate::pipeline::soak::planar::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
+use crate::pipeline::{Profile, TrackerKind};
 use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::rng::{Random, Stream};
-use crate::pipeline::orbital::run::{C, FieldOfViewCheck, choose_profile, config3d};
-use crate::pipeline::planar::runner::{Profile, TrackerKind};
-use crate::pipeline::soak::planar::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
+use crate::scenario::from_simulation::to_scenario;
 use crate::ssa::{self, RadarLeoConfig, SsaScenario, draw_scan, earth_rotation_angle};
 use nalgebra::SVector;
 use std::time::Instant;

@@ -62,10 +62,10 @@
 //! ```
 
 use crate::error::Error;
+use crate::pipeline::planar::setup;
 use crate::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
 use crate::rng::{Random, Stream};
 use crate::scenario::FieldOfViewSpec;
-use crate::pipeline::planar::setup;
 use crate::sim::{self, EARTH_MU, Orbit};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use nalgebra::{SMatrix, SVector};
@@ -478,7 +478,7 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
         times.record(k, step_started.elapsed().as_secs_f64() * 1e3);
         health.record(k, result, non_finite_values(&*tracker));
         if k == 0 {
-            resident_start = crate::pipeline::planar::evaluate::peak_resident_kib();
+            resident_start = crate::pipeline::output::peak_resident_kib();
         }
         let difference = (tracker.expected_cardinality() - world.alive.len() as f64).abs();
         cardinality_error += difference;
@@ -504,7 +504,7 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
         mean_ms_per_scan_first_tenth: times.tenths().0,
         mean_ms_per_scan_last_tenth: times.tenths().1,
         peak_resident_kib_start: resident_start,
-        peak_resident_kib_end: crate::pipeline::planar::evaluate::peak_resident_kib(),
+        peak_resident_kib_end: crate::pipeline::output::peak_resident_kib(),
         numerical_drops: health.numerical_drops,
         tracking: None,
         errors_by_kind: health.errors,
