@@ -92,25 +92,6 @@ pub struct BirthsSummary {
     pub false_tracks: Option<usize>,
 }
 
-impl BirthsSummary {
-    /// The summary of `figures`; false tracks only with a truth to compare with.
-    pub fn new(figures: crate::eval::births::BirthFigures, has_truth: bool) -> Self {
-        BirthsSummary {
-            births_total: figures.births_total,
-            births_confirmed: figures.births_confirmed,
-            birth_confirmation_scans: figures
-                .records
-                .iter()
-                .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
-                .collect(),
-            mean_detections_to_confirm: figures.mean_detections_to_confirm,
-            max_detections_to_confirm: figures.max_detections_to_confirm,
-            false_tracks: has_truth.then_some(figures.false_tracks),
-            birth_confirmations: figures.records,
-        }
-    }
-}
-
 /// A born object and the scan at which it was confirmed (`null`: never).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,4 +1,4 @@
-//! `host-sim soak`: a long run with objects entering and leaving ([`crate::pipeline::soak::planar::run_scenario`]).
+//! `host-sim soak`: a long run with objects entering and leaving ([`crate::pipeline::soak::run_scenario`]).
 
 use super::{CliError, terminal};
 use std::path::PathBuf;
@@ -14,7 +14,7 @@ pub struct Args {
     seed: u64,
     /// The soak's geometry: the planar SSA scenario with births and deaths, or a 3-D preset observed without end.
     #[arg(long, value_enum, default_value = "planar")]
-    scenario: crate::pipeline::soak::planar::Scenario,
+    scenario: crate::pipeline::soak::Scenario,
     /// Output JSON file.
     #[arg(long)]
     out: PathBuf,
@@ -25,7 +25,7 @@ pub struct Args {
 
 /// Runs `soak`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
-    let report = crate::pipeline::soak::planar::run_scenario(args.scenario, args.scans, args.seed, args.quiet)?;
+    let report = crate::pipeline::soak::run_scenario(args.scenario, args.scans, args.seed, args.quiet)?;
     crate::pipeline::output::write_json(&args.out, &report)?;
     terminal::print(json, &report, || terminal::soak(&report, &args.out));
     Ok(())

@@ -13,7 +13,7 @@ use crate::eval::score::{Scored, score};
 use crate::metrics::LabelSwitches;
 use crate::pipeline::output::{mean, peak_resident_kib, progress, write_json};
 use crate::pipeline::world::{Posterior, ScanRecord, StepFailure, TruthObject, World, csv_line};
-use crate::report::{BirthsSummary, RejectedScan, RunSummary};
+use crate::report::{RejectedScan, RunSummary};
 use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
@@ -188,7 +188,7 @@ fn summarise(
         final_expected_cardinality: last.map_or(prior.expected_cardinality, |r| r.expected_cardinality),
         final_map_cardinality: last.map_or(prior.map.len(), |r| r.map_cardinality),
         true_final_cardinality: last.and_then(|r| r.true_cardinality),
-        births: BirthsSummary::new(tally.births.figures(), heading.has_truth),
+        births: tally.births.figures().summary(heading.has_truth),
         label_switches: tally.switches.total(),
         in_view_misses_after_confirmation: tally.in_view_misses,
         in_view_red_stars: tally.in_view_red_stars,

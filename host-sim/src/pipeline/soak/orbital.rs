@@ -14,11 +14,11 @@
 //! counts the objects whose label the MAP hypothesis holds within the scenario's error bound of the truth
 //! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
+use super::common::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use crate::error::Error;
 use crate::orbit::Propagator;
 use crate::pipeline::orbital::{C, FieldOfViewCheck, choose_profile, config3d};
 use crate::pipeline::output::peak_resident_kib;
-use crate::pipeline::soak::planar::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use crate::pipeline::{Profile, TrackerKind};
 use crate::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::rng::{Random, Stream};
