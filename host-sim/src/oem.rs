@@ -12,7 +12,7 @@
 
 use crate::ccsds::{self, Instant};
 use crate::error::Error;
-use crate::pipeline::orbital::Track6;
+use crate::pipeline::snapshot::Track6;
 use crate::scenario::v2::Scenario3d;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

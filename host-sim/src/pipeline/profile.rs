@@ -105,7 +105,7 @@ pub const ORBITAL: ProfileTable = ProfileTable {
 macro_rules! with_capacities {
     ($profile:expr, $table:path, $f:ident, [$($generics:tt)*], ($($arg:expr),* $(,)?)) => {
         match $profile {
-            $crate::pipeline::Profile::Embedded => $f::<
+            $crate::pipeline::profile::Profile::Embedded => $f::<
                 $($generics)*,
                 { $table.embedded.hypotheses },
                 { $table.embedded.objects },
@@ -113,7 +113,7 @@ macro_rules! with_capacities {
                 { $table.embedded.tracks },
                 { $table.embedded.birth_cells },
             >($($arg),*),
-            $crate::pipeline::Profile::Host => $f::<
+            $crate::pipeline::profile::Profile::Host => $f::<
                 $($generics)*,
                 { $table.host.hypotheses },
                 { $table.host.objects },

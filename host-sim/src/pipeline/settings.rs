@@ -2,7 +2,7 @@
 //! birth cells, the child generation and the tracker's policies. Each conversion is written once; the
 //! worlds add their models and sensors.
 
-use crate::pipeline::TrackerKind;
+use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::{
     BirthDetectionSpec, NumericalFailureSpec, ProposalSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec,
 };

@@ -7,7 +7,7 @@
 //! columns, scans.jsonl, an OEM, its plots).
 
 use crate::error::Error;
-use crate::pipeline::StepInfo;
+use crate::pipeline::tracker::StepInfo;
 use crate::scenario::EvaluationSpec;
 use std::io::Write;
 

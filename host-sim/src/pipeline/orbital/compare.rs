@@ -5,7 +5,8 @@ use super::tracker::{choose_profile, config3d, measurements_in_radians};
 use crate::error::Error;
 use crate::eval::exactness::{CompareFigures, Scan, compare_scans};
 use crate::pipeline::profile::ORBITAL;
-use crate::pipeline::{Profile, TrackerKind};
+use crate::pipeline::profile::Profile;
+use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::v2::Scenario3d;
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
@@ -82,7 +83,7 @@ pub fn summary(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Option<Profile>,
-    reference: crate::pipeline::ReferenceBudget,
+    reference: crate::pipeline::tracker::ReferenceBudget,
 ) -> Result<crate::report::Compare3dSummary, Error> {
     let profile = choose_profile(scenario, profile);
     let figures = compare3d(scenario, kind, Some(profile), reference.bytes)?;

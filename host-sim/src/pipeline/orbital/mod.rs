@@ -19,14 +19,15 @@ pub mod tracker;
 pub use compare::compare3d;
 pub use geometry::{FieldOfViewCheck, SiteGeometry};
 pub use tracker::{
-    C, Posterior6, Runner3d, Track6, birth_components_per_measurement, build3d, choose_profile, config3d,
+    C, Posterior6, Runner3d, birth_components_per_measurement, build3d, choose_profile, config3d,
     measurements_in_radians, network,
 };
 
 use crate::error::Error;
 use crate::pipeline::profile::ORBITAL;
+use crate::pipeline::profile::Profile;
+use crate::pipeline::tracker::{StepInfo, TrackerKind};
 use crate::pipeline::world::{Estimate, Heading, Posterior, ScanRecord, StepFailure, TruthObject, World};
-use crate::pipeline::{Profile, StepInfo, TrackerKind};
 use crate::report::RunSummary;
 use crate::scenario::v2::Scenario3d;
 use plots::SkyTruth;

@@ -4,7 +4,10 @@
 
 use crate::error::Error;
 use crate::pipeline::profile::ORBITAL;
-use crate::pipeline::{Profile, StepInfo, TrackerKind, settings};
+use crate::pipeline::profile::Profile;
+use crate::pipeline::settings;
+use crate::pipeline::snapshot::Track6;
+use crate::pipeline::tracker::{StepInfo, TrackerKind};
 use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
@@ -14,19 +17,6 @@ use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, Sensor, Ste
 
 /// Sensors a network holds (tracker-core's `ssa_caps::SENSORS`).
 pub const C: usize = ssa_caps::SENSORS;
-
-/// One MAP track of a 3-D posterior.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Track6 {
-    /// Label.
-    pub label: u32,
-    /// Mean (km, km/s).
-    pub mean: [f64; 6],
-    /// Existence probability of the label.
-    pub existence: f64,
-    /// Covariance (row-major; km², km²/s, km²/s²).
-    pub covariance: [[f64; 6]; 6],
-}
 
 /// What the run needs of a posterior.
 #[derive(Debug, Clone, PartialEq, Default)]

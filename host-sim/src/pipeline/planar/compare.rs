@@ -4,9 +4,9 @@
 use super::runner::{Runner, build};
 use super::{Options, score, setup};
 use crate::error::Error;
-use crate::pipeline::TrackerKind;
 use crate::pipeline::output::{mean, progress, write_json};
 use crate::pipeline::snapshot::match_posteriors;
+use crate::pipeline::tracker::TrackerKind;
 use crate::report::{CompareReport, CompareScan, CompareSide, CompareSummary};
 use crate::scenario::Scenario;
 use std::path::Path;

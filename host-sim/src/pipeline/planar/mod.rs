@@ -12,9 +12,10 @@ pub mod setup;
 
 use crate::error::Error;
 use crate::eval::score::Scored;
+use crate::pipeline::profile::Profile;
 use crate::pipeline::snapshot::Snapshot;
+use crate::pipeline::tracker::{ReferenceBudget, StepInfo, TrackerKind};
 use crate::pipeline::world::{Estimate, Heading, Posterior, ScanRecord, StepFailure, TruthObject, World};
-use crate::pipeline::{Profile, ReferenceBudget, StepInfo, TrackerKind};
 use crate::report::{LabelExistence, RunSummary, ScanHypothesis, ScanLine};
 use crate::scenario::Scenario;
 use runner::{Runner, build};

@@ -3,8 +3,9 @@
 
 use super::setup;
 use crate::pipeline::profile::PLANAR;
+use crate::pipeline::profile::Profile;
 use crate::pipeline::snapshot::Snapshot;
-use crate::pipeline::{Profile, ReferenceBudget, StepInfo, StepRejected, TrackerKind};
+use crate::pipeline::tracker::{ReferenceBudget, StepInfo, StepRejected, TrackerKind};
 use crate::reference::ReferenceTracker;
 use crate::scenario::{MotionSpec, Scenario, ScenarioError};
 use crate::with_capacities;

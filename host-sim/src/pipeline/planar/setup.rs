@@ -1,7 +1,8 @@
 //! From a planar scenario to tracker-core values: models, sensor, birth model, configuration and prior
 //! (the conversions every world shares are [`crate::pipeline::settings`]).
 
-use crate::pipeline::{TrackerKind, settings};
+use crate::pipeline::settings;
+use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::*;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::{
