@@ -1,6 +1,7 @@
 //! The checks every scenario format shares: the one-line error naming a field, the bounded file read, and
 //! the tests of finite values, positive values and covariances.
 
+use super::{EvaluationSpec, GOSPA_POWER_RANGE, MAX_GOSPA_ORDER};
 use std::fmt;
 use std::path::Path;
 
@@ -116,4 +117,36 @@ pub(crate) fn check_covariance<const D: usize>(
         return Err(error(field, "is not positive definite"));
     }
     Ok(())
+}
+
+impl EvaluationSpec {
+    /// Bounds, GOSPA order and cut-off: every figure of the metrics stays finite and non-zero (see
+    /// [`MAX_GOSPA_ORDER`] and [`GOSPA_POWER_RANGE`]).
+    pub(crate) fn validate(&self) -> Result<(), ScenarioError> {
+        positive("evaluation.error_bound", self.error_bound)?;
+        positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
+        let p = self.gospa_order;
+        if !(p.is_finite() && (1.0..=MAX_GOSPA_ORDER).contains(&p)) {
+            return Err(error("evaluation.gospa_order", format!("{p} is not in [1, {MAX_GOSPA_ORDER}]")));
+        }
+        let (low, high) = GOSPA_POWER_RANGE;
+        let power = self.gospa_cutoff.powf(p);
+        if !(low..=high).contains(&power) {
+            return Err(error(
+                "evaluation.gospa_cutoff",
+                format!("{:?}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", self.gospa_cutoff),
+            ));
+        }
+        // The error bound is a GOSPA cut-off of order 1.
+        if !(low..=high).contains(&self.error_bound) {
+            return Err(error(
+                "evaluation.error_bound",
+                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
+            ));
+        }
+        if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {
+            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
+        }
+        Ok(())
+    }
 }

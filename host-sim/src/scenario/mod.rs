@@ -5,6 +5,7 @@
 //! [`ScenarioError`] whose one-line message names the field (`scans[12].time: ...`). Unknown fields are
 //! rejected so that a typo cannot silently fall back to a default.
 
+pub mod any;
 pub mod checks;
 pub mod from_catalogue;
 pub mod from_simulation;
@@ -13,6 +14,7 @@ pub mod v2;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+pub use any::{AnyScenario, load_any};
 pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
 pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
 
@@ -770,38 +772,6 @@ impl TruthScanSpec {
     }
 }
 
-impl EvaluationSpec {
-    /// Bounds, GOSPA order and cut-off: every figure of the metrics stays finite and non-zero (see
-    /// [`MAX_GOSPA_ORDER`] and [`GOSPA_POWER_RANGE`]).
-    pub(crate) fn validate(&self) -> Result<(), ScenarioError> {
-        positive("evaluation.error_bound", self.error_bound)?;
-        positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
-        let p = self.gospa_order;
-        if !(p.is_finite() && (1.0..=MAX_GOSPA_ORDER).contains(&p)) {
-            return Err(error("evaluation.gospa_order", format!("{p} is not in [1, {MAX_GOSPA_ORDER}]")));
-        }
-        let (low, high) = GOSPA_POWER_RANGE;
-        let power = self.gospa_cutoff.powf(p);
-        if !(low..=high).contains(&power) {
-            return Err(error(
-                "evaluation.gospa_cutoff",
-                format!("{:?}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", self.gospa_cutoff),
-            ));
-        }
-        // The error bound is a GOSPA cut-off of order 1.
-        if !(low..=high).contains(&self.error_bound) {
-            return Err(error(
-                "evaluation.error_bound",
-                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
-            ));
-        }
-        if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {
-            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
-        }
-        Ok(())
-    }
-}
-
 fn covariance2(field: &str, m: &[[f64; 2]; 2]) -> Result<(), ScenarioError> {
     let matrix = nalgebra::SMatrix::<f64, 2, 2>::from_fn(|i, j| m[i][j]);
     check_covariance(field, matrix)
@@ -810,37 +780,4 @@ fn covariance2(field: &str, m: &[[f64; 2]; 2]) -> Result<(), ScenarioError> {
 fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
     let matrix = nalgebra::SMatrix::<f64, 4, 4>::from_fn(|i, j| m[i][j]);
     check_covariance(field, matrix)
-}
-
-/// A scenario file of either version, in memory: the one type the commands take ([`crate::pipeline`]
-/// picks the world from it).
-#[derive(Debug, Clone, PartialEq)]
-pub enum AnyScenario {
-    /// Version 1: the planar world of paper 003.
-    V1(Box<Scenario>),
-    /// Version 2: 3-D SSA geometry.
-    V2(Box<v2::Scenario3d>),
-}
-
-/// Reads a scenario file of either version: a top-level `"version": 2` selects version 2; without a
-/// `version` (or with 1) the file is read exactly as version 1 always was.
-///
-/// # Errors
-/// A one-line [`ScenarioError`] naming the problem.
-pub fn load_any(path: &Path) -> Result<AnyScenario, ScenarioError> {
-    let text = read_limited(path)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    #[derive(Deserialize)]
-    struct Probe {
-        #[serde(default)]
-        version: Option<serde_json::Value>,
-    }
-    // Invalid JSON, or JSON that is not an object, is reported by the version 1 reader as always.
-    let version = serde_json::from_str::<Probe>(text).ok().and_then(|p| p.version);
-    match version {
-        Some(v) if v.as_u64() == Some(2) => Ok(AnyScenario::V2(Box::new(v2::Scenario3d::from_json(text)?))),
-        Some(v) if v.as_u64() == Some(1) => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-        Some(v) => Err(error("version", format!("{v} is not a known format version (1 or 2)"))),
-        None => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-    }
 }
