@@ -19,8 +19,6 @@ use crate::scenario::ScenarioError;
 use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use nalgebra::SVector;
 use std::collections::HashSet;
-use std::fmt::Write as _;
-use tracker_core::digest::Fnv1a;
 use tracker_core::model::{EarthRotation, GroundSite, Platform, ProcessNoise, ScanGeometry, SensorNetwork, SiteSensor};
 use tracker_core::{
     BirthModel, ChildGeneration, Config, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real, Sensor,
@@ -36,32 +34,16 @@ use tracker_core::{
 /// (range, azimuth, elevation) scenario, it has no truth origins for the excerpt, it exceeds the embedded
 /// capacities, or the tracker rejects its configuration.
 pub fn run(scenario: &Scenario3d, scans: Option<usize>) -> Result<String, ScenarioError> {
-    let count = scans.unwrap_or(scenario.scans.len());
-    if count > scenario.scans.len() {
-        return Err(ScenarioError(format!("--scans {count}: the scenario has only {} scans", scenario.scans.len())));
-    }
+    let count = super::excerpt(scans, scenario.scans.len())?;
     let mut tracker = tracker(scenario, count)?;
-    let mut text = String::new();
-    let mut running = Fnv1a::new();
-    for (index, scan) in scenario.scans[..count].iter().enumerate() {
+    Ok(super::text(count, |index| {
+        let scan = &scenario.scans[index];
         let measurements: Vec<SVector<f32, 3>> =
             scan.measurements.iter().map(|z| measurement(scenario.measurement, z)).collect();
         let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
         let outcome = tracker.step_scan(&geometry, &measurements);
-        let digest = tracker.digest();
-        running.write(&digest.to_le_bytes());
-        // `write!` to a String cannot fail.
-        let _ = match outcome {
-            Ok(report) => writeln!(
-                text,
-                "scan {index} hypotheses {} tracks {} digest {digest:016x}",
-                report.hypotheses, report.tracks
-            ),
-            Err(error) => writeln!(text, "scan {index} error {error} digest {digest:016x}"),
-        };
-    }
-    let _ = write!(text, "final scans {count} digest {:016x}", running.finish());
-    Ok(text)
+        (outcome, tracker.digest())
+    }))
 }
 
 /// One measurement in the tracker's units and scalar: angles from degrees to radians in `f64`, then each
