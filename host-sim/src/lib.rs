@@ -1,15 +1,17 @@
 //! host-sim: the SSA scenario simulator, scenario files, the unbounded reference tracker, metrics, the
 //! `host-sim` command line and its plots.
 //!
-//! - [`sim`] simulates scenarios (presets of paper 003's experiments) into [`scenario`] files.
-//! - [`ssa`] simulates 3-D SSA scans (ground radars, a telescope; two-body + J2 truth) with its own
-//!   geometry, independent of tracker-core's (not yet wired into the scenario files).
-//! - [`setup`] turns a scenario into tracker-core values; [`runner`] runs a core tracker or the
-//!   [`reference`] tracker on it, producing tracker-independent [`snapshot`]s.
-//! - [`evaluate`] scores runs against the truth with the [`metrics`], and writes the outputs and plots.
+//! - [`commands`] is the command line, one module per subcommand (`main` only parses and dispatches).
+//! - [`scenario`] reads and checks scenario files of both versions into one in-memory type
+//!   ([`scenario::AnyScenario`]) and makes them from simulations ([`scenario::from_simulation`]) and
+//!   catalogues seen by a sensors file ([`scenario::from_catalogue`]).
+//! - [`pipeline`] replays a scenario through a tracker of any world (planar, orbital) with one replay over a
+//!   world adapter, compares with the unbounded [`reference`], soaks, and replays the firmware's digest.
+//! - [`eval`] scores runs against the truth (GOSPA and OSPA through [`metrics`], births, exactness).
+//! - [`sim`] simulates paper 003's planar presets; [`ssa`] simulates 3-D SSA scans (ground radars, a
+//!   telescope; two-body + J2 truth) with its own geometry, independent of tracker-core's.
 //! - [`catalogue`] reads TLE and OMM element sets and propagates them with SGP4; [`sgp4_check`] verifies
-//!   that against the published SGP4 verification cases; [`catalogue_scenario`] makes version 2 scenarios
-//!   of a catalogue seen by a sensors file (`generate catalogue`); [`catalogue_experiment`] is `experiment
+//!   that against the published SGP4 verification cases; [`catalogue_experiment`] is `experiment
 //!   catalogue` (a catalogue, two radars and a telescope, 24 hours).
 //! - [`report`] holds the typed records of every JSON file the commands write; [`error`] the one error
 //!   type of the commands and its exit codes.

@@ -91,8 +91,11 @@ impl SiteGeometry {
 /// test `step_scan` applies: a measurement it fails is
 /// [`StepError::MeasurementOutsideFieldOfView`](tracker_core::StepError::MeasurementOutsideFieldOfView).
 pub struct FieldOfViewCheck {
-    sees: Box<dyn Fn(usize, f64, &[f64]) -> bool + Send + Sync>,
+    sees: Box<Sees>,
 }
+
+/// Whether a measurement (tracker units) of sensor `sensor` at `time` is in its field of view.
+type Sees = dyn Fn(usize, f64, &[f64]) -> bool + Send + Sync;
 
 fn sees_in<X: Placeable<f64, D>, const D: usize>(
     network: &SensorNetwork<f64, X, D, C>,

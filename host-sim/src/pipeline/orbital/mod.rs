@@ -92,7 +92,7 @@ impl<'a> OrbitalWorld<'a> {
         })
     }
 
-    fn state<'s>(state: &'s [f64]) -> &'s [f64; 6] {
+    fn state(state: &[f64]) -> &[f64; 6] {
         state.try_into().expect("orbital states have 6 entries")
     }
 }
