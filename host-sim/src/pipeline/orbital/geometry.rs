@@ -59,8 +59,8 @@ impl SiteGeometry {
         Look {
             azimuth: e.atan2(n),
             elevation: u.atan2(e.hypot(n)),
-            range: (self.kind != Measurement3dSpec::Optical).then_some(range),
-            range_rate: (self.kind == Measurement3dSpec::RadarRangeRate).then(|| dot(&d, &w) / range),
+            range: self.kind.has_range().then_some(range),
+            range_rate: self.kind.has_range_rate().then(|| dot(&d, &w) / range),
         }
     }
 
@@ -78,7 +78,7 @@ impl SiteGeometry {
     /// The sky-plot point of `state`: (azimuth, elevation) for radar, (right ascension, declination) for
     /// a telescope.
     pub fn sky_point(&self, sensor: usize, time: f64, state: &[f64; 6]) -> (f64, f64) {
-        if self.kind == Measurement3dSpec::Optical {
+        if self.kind.sky_in_ra_dec() {
             self.ra_dec(sensor, time, state)
         } else {
             let look = self.look(sensor, time, state);

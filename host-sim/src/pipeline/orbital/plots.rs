@@ -4,7 +4,7 @@
 use crate::error::Error;
 use crate::pipeline::world::ScanRecord;
 use crate::plots::{self, Scale, Series, SkySeries};
-use crate::scenario::v2::{Measurement3dSpec, Scenario3d, ShapeSpec};
+use crate::scenario::v2::{Scenario3d, ShapeSpec};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -71,7 +71,7 @@ pub(super) fn write_plots(
             .collect();
         let estimates = [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
         let stem = out.join(format!("sky_{s}_{}", stem_of(&sensor.name)));
-        if scenario.measurement == Measurement3dSpec::Optical {
+        if scenario.measurement.sky_in_ra_dec() {
             let title = format!("{}: right ascension / declination, truth in view and MAP estimates", sensor.name);
             plots::sky_plot_ra_dec(&stem, &title, &truth, &estimates, None)?;
         } else {

@@ -210,17 +210,12 @@ pub fn choose_profile(scenario: &Scenario3d, asked: Option<Profile>) -> Profile 
     }
 }
 
-/// The most birth components one measurement of `scenario` can give (0 without measured births): radar
-/// headings × speeds × climbs; for the other models the region's bound
-/// ([`AdmissibleRegion::max_components`](tracker_core::model::AdmissibleRegion::max_components)). A
-/// measurement whose components do not fit the pool gives no birth.
+/// The most birth components one measurement of `scenario` can give (0 without measured births,
+/// [`Measurement3dSpec::birth_components`]). A measurement whose components do not fit the pool gives no
+/// birth.
 pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
     let Some(measured) = &scenario.birth.measured else { return 0 };
-    let region = measured.core().region;
-    match scenario.measurement {
-        Measurement3dSpec::Radar => region.headings.saturating_mul(region.speeds).saturating_mul(region.climbs),
-        Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Optical => region.max_components(),
-    }
+    scenario.measurement.birth_components(&measured.core().region)
 }
 
 /// Builds the 3-D tracker `kind` for `scenario`.

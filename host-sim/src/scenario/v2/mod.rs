@@ -14,6 +14,7 @@ use crate::scenario::{
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use tracker_core::MotionModel;
+use tracker_core::model::AdmissibleRegion;
 
 mod checks;
 use checks::{check_measurement, covariance6};
@@ -152,6 +153,32 @@ impl Measurement3dSpec {
         match self {
             Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => component == 1 || component == 2,
             Measurement3dSpec::Optical => true,
+        }
+    }
+
+    /// Whether a measurement holds the range.
+    pub fn has_range(self) -> bool {
+        self != Measurement3dSpec::Optical
+    }
+
+    /// Whether a measurement holds the range-rate.
+    pub fn has_range_rate(self) -> bool {
+        self == Measurement3dSpec::RadarRangeRate
+    }
+
+    /// Whether the sky is drawn in right ascension and declination (a telescope's frame) rather than
+    /// azimuth and elevation.
+    pub fn sky_in_ra_dec(self) -> bool {
+        self == Measurement3dSpec::Optical
+    }
+
+    /// The most birth components one measurement can give in the admissible region `region`: radar
+    /// headings × speeds × climbs (the range fixes the rest); for the other models the region's bound
+    /// ([`AdmissibleRegion::max_components`]).
+    pub fn birth_components(self, region: &AdmissibleRegion<f64>) -> usize {
+        match self {
+            Measurement3dSpec::Radar => region.headings.saturating_mul(region.speeds).saturating_mul(region.climbs),
+            Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Optical => region.max_components(),
         }
     }
 }
