@@ -220,6 +220,22 @@ fn sensors_text(sim: &SsaScenario) -> String {
     sensors.join("; ")
 }
 
+/// The tracker `host-sim run --tracker rfisst` builds for `file`, on the heap.
+#[allow(clippy::type_complexity)]
+fn soak_tracker<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    file: &crate::scenario::v2::Scenario3d,
+) -> Result<Box<Tracker3d<X, D, H, N, Z, K, B>>, Error>
+where
+    X: Placeable<f64, D>,
+{
+    let (config, objects) = config3d::<X, D, B>(file, TrackerKind::Rfisst)?;
+    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
+        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
+        .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
+    Ok(Box::new(tracker))
+}
+
 fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: Scenario,
     profile: Profile,
@@ -234,13 +250,7 @@ where
     let seed = sim.seed;
     let (file, _) = to_scenario(&sim)?;
     let check = FieldOfViewCheck::new(&file)?;
-    let (config, objects) = config3d::<X, D, B>(&file, TrackerKind::Rfisst)?;
-    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
-        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
-    let mut tracker = Box::new(
-        Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
-            .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?,
-    );
+    let mut tracker = soak_tracker::<X, D, H, N, Z, K, B>(&file)?;
     let mut stream = Stream3d::new(sim)?;
     let objects = stream.states.len();
     let bound = file.evaluation.error_bound;
