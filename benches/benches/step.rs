@@ -9,7 +9,7 @@
 //! `cargo bench -p benches --bench step`
 use benches::worst_case;
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
-use host_sim::setup;
+use host_sim::pipeline::planar::setup;
 use nalgebra::SVector;
 use std::hint::black_box;
 use tracker_core::ssa_caps::{BIRTH_CELLS as B, HYPOTHESES as H, MEASUREMENTS as Z, OBJECTS as N, TRACKS as K};

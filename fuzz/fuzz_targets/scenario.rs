@@ -11,7 +11,7 @@
 
 use host_sim::runner::{self, Profile, TrackerKind};
 use host_sim::scenario::{MotionSpec, Scenario};
-use host_sim::setup;
+use host_sim::pipeline::planar::setup;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -8,7 +8,7 @@
 //!   for bit.
 #![no_main]
 
-use host_sim::scenario3d::Scenario3d;
+use host_sim::scenario::v2::Scenario3d;
 use host_sim::io::tdm;
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
@@ -18,7 +18,7 @@ fn config() -> &'static Scenario3d {
     static CONFIG: OnceLock<Scenario3d> = OnceLock::new();
     CONFIG.get_or_init(|| {
         let simulation = host_sim::sim::presets::tiny_3d(1).expect("tiny-3d");
-        host_sim::generate3d::to_scenario(&simulation).expect("scenario").0
+        host_sim::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
     })
 }
 
@@ -51,7 +51,7 @@ fuzz_target!(|data: &[u8]| {
     let again = tdm::parse(&written).expect("a written TDM parses");
     let back: Vec<_> =
         tdm::scans_of(&again, config).expect("a written TDM gives scans").into_iter().map(|(s, _)| s).collect();
-    let bits = |scans: &[host_sim::scenario3d::Scan3dSpec]| -> Vec<(u64, usize, Vec<Vec<u64>>)> {
+    let bits = |scans: &[host_sim::scenario::v2::Scan3dSpec]| -> Vec<(u64, usize, Vec<Vec<u64>>)> {
         let mut v: Vec<_> = scans
             .iter()
             .map(|s| {

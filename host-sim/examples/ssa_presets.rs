@@ -5,11 +5,10 @@
 use std::time::Instant;
 
 use host_sim::sim::presets;
-use host_sim::sim::ssa;
 
 fn main() {
     let seed = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(1);
-    type Preset = fn(u64) -> Result<ssa::SsaScenario, host_sim::sim::error::SsaError>;
+    type Preset = fn(u64) -> Result<host_sim::sim::ssa::SsaScenario, host_sim::sim::error::SsaError>;
     let presets: [(&str, Preset); 3] =
         [("tiny-3d", presets::tiny_3d), ("radar-leo", presets::radar_leo), ("optical-geo", presets::optical_geo)];
     for (name, preset) in presets {

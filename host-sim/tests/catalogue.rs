@@ -335,7 +335,7 @@ fn generate(catalogue: &str, sensors: &str, start: &str, hours: &str, seed: &str
 #[test]
 fn generate_catalogue_truth_is_sgp4_and_deterministic() {
     use host_sim::io::catalogue::{Satellite, load, parse_omm_epoch};
-    use host_sim::scenario3d::Scenario3d;
+    use host_sim::scenario::v2::Scenario3d;
     let dir = TempDir::new("gen-radar");
     let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));
     for (out, seed) in [(&a, "1"), (&b, "1"), (&c, "2")] {
@@ -369,8 +369,8 @@ fn generate_catalogue_truth_is_sgp4_and_deterministic() {
 
 #[test]
 fn generate_catalogue_telescope_sees_sunlit_objects_from_a_dark_site() {
-    use host_sim::catalogue_scenario::{sun_elevation, sun_position, sunlit};
-    use host_sim::scenario3d::Scenario3d;
+    use host_sim::scenario::from_catalogue::{sun_elevation, sun_position, sunlit};
+    use host_sim::scenario::v2::Scenario3d;
     use host_sim::sim::site::Site;
     use host_sim::sim::time::earth_rotation_angle;
     let dir = TempDir::new("gen-tel");

@@ -248,6 +248,7 @@ fn run_homht_on_linear_small_writes_every_output() {
         file.as_os_str(),
         "--tracker".as_ref(),
         "homht".as_ref(),
+        "--json".as_ref(),
         "--out".as_ref(),
         out.as_os_str(),
     ]);
@@ -256,9 +257,23 @@ fn run_homht_on_linear_small_writes_every_output() {
     // linear-small: one birth, one death, 3 objects at the end.
     assert_eq!(summary["births_total"], json!(1));
     assert_eq!(summary["true_final_cardinality"], json!(3));
-    // stdout is the summary.
+    // With --json, stdout is the summary.
     let printed: Value = serde_json::from_str(&stdout(&output)).expect("stdout is JSON");
     assert_eq!(printed, summary);
+}
+
+/// Without --json, `run` prints a short summary a person reads: the headline figures and where the files
+/// are, a few lines and no JSON.
+#[test]
+fn run_prints_a_short_human_summary() {
+    let dir = TempDir::new("run-human");
+    let file = linear_small(&dir, Some(4));
+    let out = dir.join("out");
+    let output = host_sim(&["run".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    assert_success(&output);
+    let text = stdout(&output);
+    assert!(text.contains("mean GOSPA") && text.contains(&out.display().to_string()), "{text}");
+    assert!(!text.contains('{') && text.lines().count() <= 8, "{text}");
 }
 
 #[test]
@@ -1214,8 +1229,14 @@ fn compare_json_keeps_its_keys_and_reads_back_unchanged() {
     let dir = TempDir::new("compare-keys");
     let file = linear_small(&dir, Some(3));
     let out = dir.join("out");
-    let output =
-        host_sim(&["compare".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), out.as_os_str()]);
+    let output = host_sim(&[
+        "compare".as_ref(),
+        file.as_os_str(),
+        "--quiet".as_ref(),
+        "--json".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
     assert_success(&output);
     let text = std::fs::read_to_string(out.join("compare.json")).expect("compare");
     let value: Value = serde_json::from_str(&text).expect("json");

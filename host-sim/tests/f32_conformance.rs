@@ -5,9 +5,9 @@
 //! scenarios and are stated in docs/embedded.md; the full 785-scan SSA run is an ignored test:
 //! `cargo test --release -p host-sim --test f32_conformance -- --ignored --nocapture`.
 
-use host_sim::digest::{gaussian, region, tracker};
+use host_sim::pipeline::digest::planar::{gaussian, region, tracker};
+use host_sim::pipeline::planar::setup;
 use host_sim::scenario::Scenario;
-use host_sim::setup;
 use host_sim::sim::planar;
 use nalgebra::SVector;
 use tracker_core::{

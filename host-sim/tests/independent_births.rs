@@ -6,7 +6,7 @@
 
 mod common;
 
-use host_sim::exactness::{CompareFigures, Scan, compare_scans};
+use host_sim::eval::exactness::{CompareFigures, Scan, compare_scans};
 use host_sim::sim::rng::{Random, Stream};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::model::{AdmissibleRegion, ConstantVelocity, PositionMeasurement};
@@ -217,8 +217,8 @@ fn measured_births_on_a_small_3d_scenario_are_exact_and_confirmed() {
 }
 
 fn small_3d_scenario_check() {
-    use host_sim::generate3d::{Preset3d, to_scenario};
-    use host_sim::runner::{Profile, TrackerKind};
+    use host_sim::pipeline::{Profile, TrackerKind};
+    use host_sim::scenario::from_simulation::{Preset3d, to_scenario};
     use host_sim::sim::truth::Unknowns;
     let sim =
         Preset3d::Tiny3d.simulate_with(1, &Unknowns { missing_fraction: 0.34, breakup: 0 }).expect("tiny-3d simulates");
@@ -231,14 +231,16 @@ fn small_3d_scenario_check() {
     scenario.scans.truncate(4);
     scenario.truth.as_mut().expect("truth").scans.truncate(4);
     let figures =
-        host_sim::run3d::compare3d(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), 1 << 30).expect("compare");
+        host_sim::pipeline::orbital::compare3d(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), 1 << 30)
+            .expect("compare");
     assert_eq!(figures.map_agreement, 1.0);
     assert!(figures.min_captured_mass >= 0.999, "captured {}", figures.min_captured_mass);
     assert!(figures.max_map_weight_difference < 1e-9, "MAP weights differ by {}", figures.max_map_weight_difference);
 
     let dir = common::TempDir::new("tiny3d-births");
     let (summary, clean) =
-        host_sim::run3d::run(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), true, &dir.0).expect("run");
+        host_sim::pipeline::orbital::run(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), true, &dir.0)
+            .expect("run");
     assert!(clean);
     assert_eq!((summary.births.births_total, summary.births.births_confirmed), (1, 1));
     assert_eq!(summary.births.false_tracks, Some(0));

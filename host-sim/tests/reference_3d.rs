@@ -5,7 +5,7 @@
 //! that measured and predicted azimuths straddle the wrap.
 
 use core::f64::consts::PI;
-use host_sim::exactness::{CompareFigures, Scan, compare_scans, compare_trackers};
+use host_sim::eval::exactness::{CompareFigures, Scan, compare_scans, compare_trackers};
 use host_sim::peers::reference::{ReferenceError, ReferenceTracker};
 use host_sim::sim::orbit::Propagator;
 use host_sim::sim::rng::{Random, Stream};

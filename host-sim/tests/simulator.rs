@@ -2,8 +2,8 @@
 //! field of view, truth bookkeeping, determinism per seed, scan times, validity of the written scenario,
 //! and (as fixed-seed statistical tests) the detection frequency and the clutter rate.
 
+use host_sim::pipeline::planar::setup::region;
 use host_sim::scenario::{FieldOfViewSpec, Scenario, SensorSpec};
-use host_sim::setup::region;
 use host_sim::sim::planar::{self, PRESETS, SimObject, Simulation};
 use nalgebra::SVector;
 use proptest::prelude::*;

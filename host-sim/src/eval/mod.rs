@@ -1,3 +1,8 @@
-//! Scoring runs against the truth: the [`metrics`] (OSPA, GOSPA, label switches, ...).
+//! Scoring runs against the truth: the [`metrics`] (OSPA, GOSPA, label switches, ...), the scoring of a
+//! run's MAP estimates ([`score`]), births and their confirmation ([`births`]), and the exactness of a
+//! bounded tracker against the unbounded reference ([`exactness`]).
 
+pub mod births;
+pub mod exactness;
 pub mod metrics;
+pub mod score;

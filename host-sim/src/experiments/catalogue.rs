@@ -18,7 +18,7 @@
 //! telescope right ascension/declination, D = 2; a const generic), so the radars and the telescope cannot be
 //! fused in one tracker today: the experiment runs two R-FISST trackers (host profile) on the same truth, one
 //! on the two-radar scenario (`radars/`), one on the telescope scenario (`telescope/`), each written by
-//! [`crate::run3d::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
+//! [`crate::pipeline::orbital::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
 //! objects missing from the prior that some sensor detected, `births_confirmed` those that at least one
 //! tracker confirmed (each object once; per tracker in `details`);
 //! `mean_gospa` is the mean over every scan of both; `mean_ms_per_scan` and `max_ms_per_scan` cover every
@@ -29,18 +29,18 @@
 //! part of `experiment all`. The radars' run folder is about 660 MB (`tracks.oem`: every MAP track at every
 //! scan).
 
-use crate::catalogue_scenario::{self, Request, SENSORS_FORMAT, SensorsFile};
 use crate::error::Error;
 use crate::eval::metrics::gospa;
-use crate::evaluate::write_json;
 use crate::io::catalogue::{self, CatalogueEntry, Satellite};
 use crate::io::report::{CatalogueReport, CatalogueTracker, RunSummary};
+use crate::pipeline::output::write_json;
+use crate::pipeline::{Profile, TrackerKind};
 use crate::plots::{self, Scale, Series, SkySeries};
-use crate::runner::{Profile, TrackerKind};
-use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
-use crate::scenario3d::{
+use crate::scenario::from_catalogue::{self as catalogue_scenario, Request, SENSORS_FORMAT, SensorsFile};
+use crate::scenario::v2::{
     Birth3dSpec, FieldOfView3dSpec, Measurement3dSpec, NoiseSpec, Scenario3d, Sensor3dSpec, ShapeSpec, SiteSpec,
 };
+use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
 use crate::sim::rng::{Random, Stream};
 use crate::sim::time;
 use std::collections::{BTreeMap, BTreeSet};
@@ -333,7 +333,7 @@ pub fn telescope(scan_interval_s: f64) -> SensorsFile {
 }
 
 /// The measured birth pool of each network. Radars: the `radar-leo` preset's
-/// ([`crate::generate3d::RADAR_LEO_BIRTHS`]: the LEO region, 12 headings, λ_B 1e-2, α ≤ 1e-3, cells living
+/// ([`crate::scenario::from_simulation::RADAR_LEO_BIRTHS`]: the LEO region, 12 headings, λ_B 1e-2, α ≤ 1e-3, cells living
 /// 60 s). Telescope: the LEO region too, since the objects it can start tracks for are LEO (the train and
 /// the shell; the deep-space verification objects are few), 3 ranges × 4 headings, λ_B 1e-6, α ≤ 1e-5
 /// (larger values confirmed hundreds of false tracks from single frames), cells living 120 s (a LEO pass
@@ -352,7 +352,7 @@ fn births(kind: Measurement3dSpec) -> MeasuredBirthsSpec {
             min_unexplained: 0.5,
             lifetime: 120.0,
         },
-        _ => crate::generate3d::RADAR_LEO_BIRTHS,
+        _ => crate::scenario::from_simulation::RADAR_LEO_BIRTHS,
     }
 }
 
@@ -444,7 +444,7 @@ fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared
         eprintln!("catalogue: {name}: {} scans, {} measurements; tracking", generated.scans, generated.measurements);
     }
     let out = dir.join(name);
-    let (summary, _) = crate::run3d::run(&scenario, TrackerKind::Rfisst, Some(Profile::Host), quiet, &out)?;
+    let (summary, _) = crate::pipeline::orbital::run(&scenario, TrackerKind::Rfisst, Some(Profile::Host), quiet, &out)?;
     let map = read_estimates(&out.join("estimates.csv"), scenario.scans.len())?;
     let truth = scenario.truth.as_ref().ok_or_else(|| Error::internal("catalogue scenario without truth"))?;
     let e = scenario.evaluation;

@@ -3,24 +3,26 @@
 use super::runs::{err, mean};
 use super::scaling::{Watch, scaling_matrix};
 use crate::error::Error;
-use crate::evaluate::{self, score, truth_positions, write_json};
 use crate::io::report::{
     AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht, DebrisReport, DebrisRfisst, DebrisScan,
 };
+use crate::pipeline::output::write_json;
+use crate::pipeline::planar::runner::build;
+use crate::pipeline::planar::setup;
+use crate::pipeline::planar::{score, truth_positions};
+use crate::pipeline::snapshot::Snapshot;
+use crate::pipeline::{Profile, ReferenceBudget, TrackerKind};
 use crate::plots::{self, Scale, Series};
-use crate::runner::{Profile, ReferenceBudget, TrackerKind, build};
-use crate::setup;
 use crate::sim::planar;
-use crate::snapshot::Snapshot;
 use nalgebra::SVector;
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
+use tracker_core::Gaussian;
 use tracker_core::TwoBody;
 use tracker_core::association::{AssociationMatrix, CLUTTER, association_count};
 use tracker_core::children::{ChildGenerator, ChildSink, ExhaustiveChildren};
 use tracker_core::cluster::ClusteredChildren;
-use tracker_core::Gaussian;
 use tracker_core::ekf;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::selection::TopChildren;
@@ -90,7 +92,7 @@ pub(crate) fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures
     let profile = Profile::Host;
 
     // R-FISST first, with the truth-association check on its MAP parent before each scan.
-    let bar = evaluate::progress(scenario.scans.len() * 2, quiet, "debris");
+    let bar = crate::pipeline::output::progress(scenario.scans.len() * 2, quiet, "debris");
     let DebrisRun { checks, ms: rfisst_ms, series: rfisst_series } = debris_rfisst(&scenario, seed, &bar)?;
     // HOMHT with the same time budget: as many children per scan as exhaustive enumeration produces in
     // R-FISST's mean time per scan (its measured rate on the scaling family, here measured on the first scan).

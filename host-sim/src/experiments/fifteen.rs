@@ -2,13 +2,15 @@
 
 use super::runs::err;
 use crate::error::Error;
-use crate::evaluate::{self, score, write_json};
 use crate::io::report::{FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker, Timing};
+use crate::pipeline::output::write_json;
+use crate::pipeline::planar::runner::{Runner, build};
+use crate::pipeline::planar::score;
+use crate::pipeline::planar::setup;
+use crate::pipeline::snapshot::Snapshot;
+use crate::pipeline::{Profile, ReferenceBudget, TrackerKind};
 use crate::plots::{self, Scale, Series};
-use crate::runner::{Profile, ReferenceBudget, Runner, TrackerKind, build};
-use crate::setup;
 use crate::sim::planar;
-use crate::snapshot::Snapshot;
 use std::path::Path;
 use std::time::Instant;
 
@@ -49,7 +51,7 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
     );
     let mut reference_scans = 0usize;
     let mut reference_budget_reached = false;
-    let bar = evaluate::progress(scenario.scans.len(), quiet, "fifteen");
+    let bar = crate::pipeline::output::progress(scenario.scans.len(), quiet, "fifteen");
     let (mut agree_homht, mut agree_reference) = (0usize, 0usize);
     let mut max_difference: f64 = 0.0;
     let mut per_scan = vec![];

@@ -2,9 +2,9 @@
 
 use super::runs::options;
 use crate::error::Error;
-use crate::evaluate::{self};
 use crate::io::report::RunSummary;
-use crate::runner::TrackerKind;
+use crate::pipeline::TrackerKind;
+use crate::pipeline::planar as evaluate;
 use crate::sim::planar;
 use std::path::Path;
 

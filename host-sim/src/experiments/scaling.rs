@@ -2,8 +2,8 @@
 
 use super::runs::err;
 use crate::error::Error;
-use crate::evaluate::write_json;
 use crate::io::report::{ScalingFigures, ScalingReport, ScalingSampler, ScalingSize};
+use crate::pipeline::output::write_json;
 use crate::plots::{self, Scale, Series};
 use std::path::Path;
 use std::time::Instant;

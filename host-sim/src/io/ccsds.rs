@@ -8,7 +8,7 @@
 //! real sum s + f is t itself, which is representable, so the rounded sum is t. UTC is taken as uniform
 //! (no leap seconds: a second of 60 is refused); dates from year 1000 to 9999.
 
-use crate::scenario3d::Scenario3d;
+use crate::scenario::v2::Scenario3d;
 use std::cmp::Ordering;
 use std::fmt;
 

@@ -12,8 +12,8 @@
 
 use crate::error::Error;
 use crate::io::ccsds::{self, Instant};
-use crate::run3d::Track6;
-use crate::scenario3d::Scenario3d;
+use crate::pipeline::snapshot::Track6;
+use crate::scenario::v2::Scenario3d;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;

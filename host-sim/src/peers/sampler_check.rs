@@ -14,8 +14,8 @@
 use crate::error::Error;
 use crate::io::report::{SamplerCheckReport, SamplerScores, SamplerSettings};
 use crate::peers::reference::ReferenceTracker;
+use crate::pipeline::snapshot::{Snapshot, match_posteriors};
 use crate::sim::rng::{Random, Stream};
-use crate::snapshot::{Snapshot, match_posteriors};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::association::association_count;
 use tracker_core::sampler::SamplerConfig;

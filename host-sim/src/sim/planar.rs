@@ -109,7 +109,7 @@ pub struct Simulation {
 }
 
 fn region(sensor: &SensorSpec) -> Region<f64> {
-    crate::setup::region(&sensor.field_of_view)
+    crate::pipeline::planar::setup::region(&sensor.field_of_view)
 }
 
 pub fn uniform_in_region(fov: &FieldOfViewSpec, random: &mut Random) -> [f64; 2] {

@@ -309,7 +309,7 @@ fn missing_objects_and_a_breakup_are_unknown_to_the_prior() {
     );
     // The scenario file: the truth says who is unknown, the prior leaves them out, fragments appear
     // in the truth from their birth.
-    let (file, _) = crate::generate3d::to_scenario(&a).unwrap();
+    let (file, _) = crate::scenario::from_simulation::to_scenario(&a).unwrap();
     let truth = file.truth.as_ref().unwrap();
     assert_eq!(truth.objects.iter().filter(|o| !o.in_prior).count(), 15);
     assert_eq!(file.prior.hypotheses[0].objects.len(), n - 5);

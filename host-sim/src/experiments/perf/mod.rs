@@ -45,7 +45,7 @@ use crate::io::report::{
     PerfMurtyCase, PerfMurtyShape, PerfReport, PerfSsa,
 };
 use crate::peers::murty::Murty;
-use crate::setup;
+use crate::pipeline::planar::setup;
 use nalgebra::{SMatrix, SVector};
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::{SplitMix64, Xoshiro256PlusPlus};
@@ -444,18 +444,18 @@ pub const RADAR_LEO_SCANS: usize = 600;
 
 /// A 3-D preset: per-scan times of the R-FISST tracker that `run` builds for it.
 struct SsaBench {
-    scenario: crate::scenario3d::Scenario3d,
-    profile: crate::runner::Profile,
+    scenario: crate::scenario::v2::Scenario3d,
+    profile: crate::pipeline::Profile,
     scans: Vec<(usize, f64, Vec<Vec<f64>>)>,
     times: Vec<Vec<f64>>,
     rejected: usize,
 }
 
 impl SsaBench {
-    fn new(preset: crate::generate3d::Preset3d, scans: usize) -> Result<Self, Error> {
+    fn new(preset: crate::scenario::from_simulation::Preset3d, scans: usize) -> Result<Self, Error> {
         let simulated = preset.simulate(1).map_err(|e| Error::internal(format!("perf: {e}")))?;
-        let (scenario, _) =
-            crate::generate3d::to_scenario(&simulated).map_err(|e| Error::internal(format!("perf: {e}")))?;
+        let (scenario, _) = crate::scenario::from_simulation::to_scenario(&simulated)
+            .map_err(|e| Error::internal(format!("perf: {e}")))?;
         let scans: Vec<(usize, f64, Vec<Vec<f64>>)> = scenario
             .scans
             .iter()
@@ -464,17 +464,18 @@ impl SsaBench {
                 (
                     scan.sensor,
                     scan.time,
-                    crate::run3d::measurements_in_radians(scenario.measurement, &scan.measurements),
+                    crate::pipeline::orbital::measurements_in_radians(scenario.measurement, &scan.measurements),
                 )
             })
             .collect();
-        let profile = crate::run3d::choose_profile(&scenario, None);
+        let profile = crate::pipeline::orbital::choose_profile(&scenario, None);
         let times = vec![Vec::new(); scans.len()];
         Ok(Self { scenario, profile, scans, times, rejected: 0 })
     }
 
     fn pass(&mut self) -> Result<(), Error> {
-        let mut runner = crate::run3d::build3d(crate::runner::TrackerKind::Rfisst, self.profile, &self.scenario)?;
+        let mut runner =
+            crate::pipeline::orbital::build3d(crate::pipeline::TrackerKind::Rfisst, self.profile, &self.scenario)?;
         self.rejected = 0;
         for (index, (sensor, scan_time, measurements)) in self.scans.iter().enumerate() {
             let (seconds, result) = time(|| runner.step(*sensor, *scan_time, measurements));
@@ -585,8 +586,8 @@ pub fn run() -> Result<PerfReport, Error> {
         murty.cases.iter().map(|c| (label(c.shape), c.seed, &*c.matrix, c.map, c.sampler_mass * c.exact_mass)),
     );
     let mut fifty = FiftyBench::new();
-    let mut radar_leo = SsaBench::new(crate::generate3d::Preset3d::RadarLeo, RADAR_LEO_SCANS)?;
-    let mut optical_geo = SsaBench::new(crate::generate3d::Preset3d::OpticalGeo, usize::MAX)?;
+    let mut radar_leo = SsaBench::new(crate::scenario::from_simulation::Preset3d::RadarLeo, RADAR_LEO_SCANS)?;
+    let mut optical_geo = SsaBench::new(crate::scenario::from_simulation::Preset3d::OpticalGeo, usize::MAX)?;
     // Warm-up (caches, frequency), not recorded.
     chains.sample();
     ekf_bench.sample();
@@ -654,7 +655,7 @@ pub fn run() -> Result<PerfReport, Error> {
             optical_geo,
             radar_leo,
             gibbs: PerfGibbs {
-                matrices: "the Murty matrices; Gibbs (crate::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
+                matrices: "the Murty matrices; Gibbs (crate::peers::gibbs) from all-clutter, seed 5, run until its distinct samples' mass reaches the sampler's, at most 10^6 sweeps (a matrix not reached has ratio null and counts as +inf in the median)".to_string(),
                 not_reached: gibbs_ratios.iter().filter(|r| r.is_infinite()).count(),
                 ratio_median_by_shape: gibbs_by_shape,
                 cases: gibbs_cases,

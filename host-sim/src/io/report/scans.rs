@@ -1,6 +1,6 @@
 //! The lines of `scans.jsonl`: per scan, the MAP tracks, the hypotheses and the labels' existence.
 
-use crate::snapshot::TrackOut;
+use crate::pipeline::snapshot::TrackOut;
 use serde::{Deserialize, Serialize};
 
 /// One line of `scans.jsonl`.

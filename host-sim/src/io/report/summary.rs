@@ -132,7 +132,7 @@ pub struct BirthConfirmation {
     pub scan: Option<usize>,
 }
 
-/// A born object's way to confirmation ([`crate::births`]).
+/// A born object's way to confirmation ([`crate::eval::births`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BirthRecord {

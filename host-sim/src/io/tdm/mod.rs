@@ -15,7 +15,7 @@
 
 use crate::error::Error;
 use crate::io::ccsds::{self, Instant};
-use crate::scenario3d::{Measurement3dSpec, Scan3dSpec, Scenario3d};
+use crate::scenario::v2::{Measurement3dSpec, Scan3dSpec, Scenario3d};
 use std::fmt;
 use std::path::{Path, PathBuf};
 

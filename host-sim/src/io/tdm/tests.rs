@@ -4,7 +4,7 @@ use super::*;
 
 fn tiny() -> Scenario3d {
     let simulation = crate::sim::presets::tiny_3d(1).expect("tiny-3d");
-    crate::generate3d::to_scenario(&simulation).expect("scenario").0
+    crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
 }
 
 /// Writes every sensor's TDM, reads them back and merges by time.

@@ -28,16 +28,16 @@ mod children;
 mod posterior;
 mod scan;
 
-use crate::snapshot::{HypothesisOut, Snapshot, TrackOut};
+use crate::pipeline::snapshot::{HypothesisOut, Snapshot, TrackOut};
 use nalgebra::SVector;
 use std::collections::HashMap;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::mem::size_of;
 use tracker_core::Gaussian;
 use tracker_core::ekf::{self, Innovation};
-use tracker_core::sensor::ScanGeometry;
 use tracker_core::pool::{BirthPool, ScanUse};
 use tracker_core::real::{LogSumExp, log_add};
+use tracker_core::sensor::ScanGeometry;
 use tracker_core::tracker::{PlacedScan, place_scan};
 use tracker_core::weight::{Event, WeightModel};
 use tracker_core::{Config, MeasurementModel, MotionModel, PositionMeasurement, PriorObject, StepError, TrackLabel};

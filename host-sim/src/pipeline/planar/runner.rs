@@ -1,95 +1,16 @@
-//! Trackers behind one interface, so that `run` and `compare` treat the bounded core trackers and the
-//! unbounded reference alike.
-//!
-//! The core's capacities are compile-time constants, so the host offers two capacity profiles:
-//! `embedded` (the default SSA configuration of tracker-core, [`tracker_core::ssa_caps`]) and `host`
-//! (larger, for dense scenarios such as the debris crossing).
+//! The planar world's trackers behind one interface, so that `run` and `compare` treat the bounded core
+//! trackers (capacities of the [`Profile`]'s [`PLANAR`] table) and the unbounded reference alike.
 
+use super::setup;
 use crate::peers::reference::ReferenceTracker;
+use crate::pipeline::profile::PLANAR;
+use crate::pipeline::profile::Profile;
+use crate::pipeline::snapshot::Snapshot;
+use crate::pipeline::tracker::{ReferenceBudget, StepInfo, StepRejected, TrackerKind};
 use crate::scenario::{MotionSpec, Scenario, ScenarioError};
-use crate::setup;
-use crate::snapshot::Snapshot;
+use crate::with_capacities;
 use nalgebra::SVector;
-use tracker_core::{ChildGeneration, Config, MotionModel, PositionMeasurement, PriorHypothesis, Tracker, ssa_caps};
-
-/// Which tracker to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum TrackerKind {
-    /// The unbounded exhaustive reference (every child of every parent).
-    Reference,
-    /// tracker-core with exhaustive children, capped at H∞ hypotheses.
-    Homht,
-    /// tracker-core with R-FISST's sampled children (Metropolis, by clusters), capped at H∞.
-    Rfisst,
-}
-
-impl TrackerKind {
-    /// The name written to outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            TrackerKind::Reference => "reference",
-            TrackerKind::Homht => "homht",
-            TrackerKind::Rfisst => "rfisst",
-        }
-    }
-}
-
-/// Capacity profile of the core tracker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
-pub enum Profile {
-    /// H = 32, N = 64, Z = 32, K = 256, B = 8: the embedded default (tracker-core's `ssa_caps`).
-    #[default]
-    Embedded,
-    /// H = 256, N = 128, Z = 64, K = 4096, B = 64 (room for birth cells made from measurements).
-    Host,
-}
-
-impl Profile {
-    /// The name written to outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            Profile::Embedded => "embedded",
-            Profile::Host => "host",
-        }
-    }
-
-    /// (H, N, Z, K, B).
-    pub fn caps(self) -> (usize, usize, usize, usize, usize) {
-        match self {
-            Profile::Embedded => (
-                ssa_caps::HYPOTHESES,
-                ssa_caps::OBJECTS,
-                ssa_caps::MEASUREMENTS,
-                ssa_caps::TRACKS,
-                ssa_caps::BIRTH_CELLS,
-            ),
-            Profile::Host => (256, 128, 64, 4096, 64),
-        }
-    }
-}
-
-/// What one scan did, in tracker-independent terms.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepInfo {
-    /// Children with non-zero weight generated.
-    pub children: u64,
-    /// Hypotheses kept.
-    pub hypotheses: usize,
-    /// Fraction of the children's weight kept.
-    pub captured_mass: f64,
-    /// Whether the reference's memory budget forced pruning.
-    pub budget_reached: bool,
-}
-
-/// A scan the tracker rejected, with the tracker's one-line message; the tracker is unchanged.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct StepRejected(pub String);
-
-impl std::fmt::Display for StepRejected {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
+use tracker_core::{ChildGeneration, Config, MotionModel, PositionMeasurement, PriorHypothesis, Tracker};
 
 /// A tracker that processes scans.
 pub trait Runner: Send {
@@ -164,22 +85,6 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
     }
 }
 
-/// The unbounded reference's budgets: memory (beyond it the lowest-weight children are dropped) and
-/// children enumerated per scan (beyond it the scan fails: the reference is broken there).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ReferenceBudget {
-    /// Bytes of everything that grows with the hypotheses, children and measurements.
-    pub bytes: usize,
-    /// Children enumerated per scan.
-    pub children: u64,
-}
-
-impl Default for ReferenceBudget {
-    fn default() -> Self {
-        Self { bytes: 4 << 30, children: 1_000_000_000 }
-    }
-}
-
 /// The reference for `scenario`. It has no object capacity N: its event model is checked with the objects
 /// of the prior's largest hypothesis when it is built, and with each parent's objects at every scan.
 fn reference_runner<M>(
@@ -197,22 +102,6 @@ where
         .map_err(ScenarioError)?;
     tracker.set_max_children(budget.children);
     Ok(Box::new(ReferenceRunner { tracker }))
-}
-
-macro_rules! core_for_profile {
-    ($profile:expr, $scenario:expr, $motion:expr, $children:expr) => {
-        match $profile {
-            Profile::Embedded => core_runner::<
-                _,
-                { ssa_caps::HYPOTHESES },
-                { ssa_caps::OBJECTS },
-                { ssa_caps::MEASUREMENTS },
-                { ssa_caps::TRACKS },
-                { ssa_caps::BIRTH_CELLS },
-            >($scenario, $motion, $children),
-            Profile::Host => core_runner::<_, 256, 128, 64, 4096, 64>($scenario, $motion, $children),
-        }
-    };
 }
 
 /// Builds the tracker `kind` for `scenario`.
@@ -237,14 +126,21 @@ pub fn build(
             reference,
         ),
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::TwoBody { .. }) => {
-            core_for_profile!(profile, scenario, setup::two_body(&scenario.motion).expect("two-body"), children)
+            with_capacities!(
+                profile,
+                PLANAR,
+                core_runner,
+                [_],
+                (scenario, setup::two_body(&scenario.motion).expect("two-body"), children)
+            )
         }
         (TrackerKind::Homht | TrackerKind::Rfisst, MotionSpec::ConstantVelocity { .. }) => {
-            core_for_profile!(
+            with_capacities!(
                 profile,
-                scenario,
-                setup::constant_velocity(&scenario.motion).expect("constant velocity"),
-                children
+                PLANAR,
+                core_runner,
+                [_],
+                (scenario, setup::constant_velocity(&scenario.motion).expect("constant velocity"), children)
             )
         }
     }

@@ -1,4 +1,4 @@
-//! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario3d`]) from a TLE / OMM catalogue
+//! `host-sim generate catalogue`: a version 2 scenario ([`crate::scenario::v2`]) from a TLE / OMM catalogue
 //! ([`crate::io::catalogue`]) and a sensors file ([`SensorsFile`], format `rfisst-sensors/1`,
 //! docs/scenario-format.md "Sensors files").
 //!
@@ -10,17 +10,17 @@
 //! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
 
 use crate::Error;
-use crate::generate3d::{self, Generated, KnownTruth};
 use crate::io::catalogue::{self, Satellite};
+use crate::scenario::from_simulation::{self as generate3d, Generated, KnownTruth};
+use crate::scenario::v2::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
 use crate::scenario::{ScenarioError, error, read_limited};
-use crate::scenario3d::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
 use crate::sim::error::SsaError;
-use crate::sim::field_of_view::{FieldOfView, LookShape};
-use crate::sim::sensor::{SensorKind, SensorSpec};
-use crate::sim::site;
+use crate::sim::field_of_view::FieldOfView;
+use crate::sim::field_of_view::LookShape;
+use crate::sim::sensor::SensorKind;
+use crate::sim::sensor::SensorSpec;
 use crate::sim::site::Site;
-use crate::sim::ssa;
-use crate::sim::time;
+use crate::sim::{site, time};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -279,15 +279,16 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
     }
     let name =
         format!("catalogue {}", request.catalogue.file_name().map_or(file.clone(), |n| n.to_string_lossy().into()));
-    let simulation = ssa::simulate_tracks(&name, request.seed, start, duration, sensors, schedule, tracks, visible)
-        .map_err(|e| match e {
-            SsaError::TooManyMeasurements { scan } => Error::input(format!(
-                "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
+    let simulation =
+        crate::sim::ssa::simulate_tracks(&name, request.seed, start, duration, sensors, schedule, tracks, visible)
+            .map_err(|e| match e {
+                SsaError::TooManyMeasurements { scan } => Error::input(format!(
+                    "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
                  narrower field of view or less clutter",
-                crate::sim::error::MAX_MEASUREMENTS
-            )),
-            other => Error::input(format!("{}: {other}", request.sensors.display())),
-        })?;
+                    crate::sim::error::MAX_MEASUREMENTS
+                )),
+                other => Error::input(format!("{}: {other}", request.sensors.display())),
+            })?;
     generate3d::to_scenario_with(&simulation, Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }))
 }
 

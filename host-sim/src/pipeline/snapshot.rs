@@ -1,6 +1,6 @@
 //! A tracker-independent picture of the posterior after a scan: hypotheses (weights and track indices)
 //! and the distinct tracks they hold. Both the core tracker and the reference produce one, so outputs and
-//! comparisons are written once.
+//! comparisons are written once; and the MAP track of an orbital posterior ([`Track6`]).
 
 use serde::{Deserialize, Serialize};
 use std::collections::{HashMap, HashSet};
@@ -17,6 +17,19 @@ pub struct TrackOut {
     pub covariance: [[f64; 4]; 4],
     /// Total weight of the hypotheses that hold this track.
     pub existence: f64,
+}
+
+/// One MAP track of a 3-D (orbital) posterior: what the OEM and the orbital run read of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Track6 {
+    /// Label.
+    pub label: u32,
+    /// Mean (km, km/s).
+    pub mean: [f64; 6],
+    /// Existence probability of the label.
+    pub existence: f64,
+    /// Covariance (row-major; km², km²/s, km²/s²).
+    pub covariance: [[f64; 6]; 6],
 }
 
 /// One hypothesis.

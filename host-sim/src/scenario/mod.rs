@@ -5,22 +5,24 @@
 //! [`ScenarioError`] whose one-line message names the field (`scans[12].time: ...`). Unknown fields are
 //! rejected so that a typo cannot silently fall back to a default.
 
+pub mod any;
+pub mod checks;
+pub mod from_catalogue;
+pub mod from_simulation;
+pub mod v2;
+
 use serde::{Deserialize, Serialize};
-use std::fmt;
 use std::path::Path;
+
+pub use any::{AnyScenario, load_any};
+pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
+pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
 
 /// The format tag every scenario file carries.
 pub const FORMAT: &str = "rfisst-scenario/1";
 
-/// The largest scenario file read, in bytes (256 MiB): a longer file is rejected before it is parsed.
-pub const MAX_FILE_BYTES: u64 = 256 << 20;
-
 /// The largest label of a prior object: the labels above it are kept for the births that follow.
 pub const MAX_PRIOR_LABEL: u32 = i32::MAX as u32;
-
-/// The largest magnitude of a covariance entry (of R, a birth cell or a prior object): sums and products
-/// of two entries, such as the symmetrisation (A + Aᵀ)/2 and H P Hᵀ + R, stay finite.
-pub const MAX_COVARIANCE_ENTRY: f64 = 1e150;
 
 /// The largest GOSPA order p.
 pub const MAX_GOSPA_ORDER: f64 = 100.0;
@@ -29,76 +31,13 @@ pub const MAX_GOSPA_ORDER: f64 = 100.0;
 /// that size, so inside it a distance can neither overflow nor vanish.
 pub const GOSPA_POWER_RANGE: (f64, f64) = (1e-200, 1e200);
 
-/// A problem with a scenario file: a one-line message that names the field.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ScenarioError(pub String);
-
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ScenarioError {}
-
-pub(crate) fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
-    ScenarioError(one_line(&format!("{field}: {message}")))
-}
-
-/// The message with every control character escaped (`\n`, `\r`, `\u{b}`, ...), and every invisible
-/// format character, line or paragraph separator and bidirectional control as `\u{202e}`: a file's keys
-/// and values may hold any of them, and an error is always one line that reads as it is stored.
-pub fn one_line(message: &str) -> String {
-    message
-        .chars()
-        .map(|c| {
-            if c.is_control() {
-                c.escape_debug().to_string()
-            } else if is_format(c) {
-                c.escape_unicode().to_string()
-            } else {
-                c.to_string()
-            }
-        })
-        .collect()
-}
-
-/// Unicode's line and paragraph separators (Zl, Zp) and format characters (Cf): invisible, or they move
-/// or reverse the text after them.
-fn is_format(c: char) -> bool {
-    matches!(
-        c,
-        '\u{ad}'
-            | '\u{600}'..='\u{605}'
-            | '\u{61c}'
-            | '\u{6dd}'
-            | '\u{70f}'
-            | '\u{890}'..='\u{891}'
-            | '\u{8e2}'
-            | '\u{180e}'
-            | '\u{200b}'..='\u{200f}'
-            | '\u{2028}'..='\u{202e}'
-            | '\u{2060}'..='\u{2064}'
-            | '\u{2066}'..='\u{206f}'
-            | '\u{feff}'
-            | '\u{fff9}'..='\u{fffb}'
-            | '\u{110bd}'
-            | '\u{110cd}'
-            | '\u{13430}'..='\u{1343f}'
-            | '\u{1bca0}'..='\u{1bca3}'
-            | '\u{1d173}'..='\u{1d17a}'
-            | '\u{e0001}'
-            | '\u{e0020}'..='\u{e007f}'
-    )
-}
-
 /// A complete scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scenario {
     /// Must be [`FORMAT`].
     pub format: String,
-    /// The format version: absent or 1 (version 2 files are [`crate::scenario3d`]'s).
+    /// The format version: absent or 1 (version 2 files are [`crate::scenario::v2`]'s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub version: Option<u32>,
     /// Short name.
@@ -736,19 +675,6 @@ impl Scenario {
     }
 }
 
-/// The text of the file at `path`, read only up to [`MAX_FILE_BYTES`] (`/dev/zero` is rejected, not read to
-/// the end).
-pub fn read_limited(path: &Path) -> Result<String, ScenarioError> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| error(path.display(), e))?;
-    let mut bytes = vec![];
-    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| error(path.display(), e))?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(error(path.display(), format!("longer than the limit of {} MiB", MAX_FILE_BYTES >> 20)));
-    }
-    String::from_utf8(bytes).map_err(|e| error(path.display(), format!("not UTF-8: {e}")))
-}
-
 impl PriorSpec {
     /// Time, weights (finite, ≥ 0, with a finite positive sum), objects and labels.
     fn validate(&self) -> Result<(), ScenarioError> {
@@ -846,50 +772,6 @@ impl TruthScanSpec {
     }
 }
 
-impl EvaluationSpec {
-    /// Bounds, GOSPA order and cut-off: every figure of the metrics stays finite and non-zero (see
-    /// [`MAX_GOSPA_ORDER`] and [`GOSPA_POWER_RANGE`]).
-    pub(crate) fn validate(&self) -> Result<(), ScenarioError> {
-        positive("evaluation.error_bound", self.error_bound)?;
-        positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
-        let p = self.gospa_order;
-        if !(p.is_finite() && (1.0..=MAX_GOSPA_ORDER).contains(&p)) {
-            return Err(error("evaluation.gospa_order", format!("{p} is not in [1, {MAX_GOSPA_ORDER}]")));
-        }
-        let (low, high) = GOSPA_POWER_RANGE;
-        let power = self.gospa_cutoff.powf(p);
-        if !(low..=high).contains(&power) {
-            return Err(error(
-                "evaluation.gospa_cutoff",
-                format!("{:?}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", self.gospa_cutoff),
-            ));
-        }
-        // The error bound is a GOSPA cut-off of order 1.
-        if !(low..=high).contains(&self.error_bound) {
-            return Err(error(
-                "evaluation.error_bound",
-                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
-            ));
-        }
-        if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {
-            return Err(error("evaluation.confirmation_existence", "must be in (0, 1]"));
-        }
-        Ok(())
-    }
-}
-
-pub(crate) fn finite(field: &str, value: f64) -> Result<(), ScenarioError> {
-    if value.is_finite() { Ok(()) } else { Err(error(field, format!("{value} is not finite"))) }
-}
-
-pub(crate) fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioError> {
-    values.iter().try_for_each(|&v| finite(field, v))
-}
-
-pub(crate) fn positive(field: &str, value: f64) -> Result<(), ScenarioError> {
-    if value.is_finite() && value > 0.0 { Ok(()) } else { Err(error(field, format!("{value} is not finite and > 0"))) }
-}
-
 fn covariance2(field: &str, m: &[[f64; 2]; 2]) -> Result<(), ScenarioError> {
     let matrix = nalgebra::SMatrix::<f64, 2, 2>::from_fn(|i, j| m[i][j]);
     check_covariance(field, matrix)
@@ -898,23 +780,4 @@ fn covariance2(field: &str, m: &[[f64; 2]; 2]) -> Result<(), ScenarioError> {
 fn covariance4(field: &str, m: &[[f64; 4]; 4]) -> Result<(), ScenarioError> {
     let matrix = nalgebra::SMatrix::<f64, 4, 4>::from_fn(|i, j| m[i][j]);
     check_covariance(field, matrix)
-}
-
-pub(crate) fn check_covariance<const D: usize>(
-    field: &str,
-    m: nalgebra::SMatrix<f64, D, D>,
-) -> Result<(), ScenarioError> {
-    if !m.iter().all(|v| v.is_finite()) {
-        return Err(error(field, "has a non-finite entry"));
-    }
-    if let Some(v) = m.iter().find(|v| v.abs() > MAX_COVARIANCE_ENTRY) {
-        return Err(error(field, format!("entry {v:?} is beyond ±{MAX_COVARIANCE_ENTRY:e}")));
-    }
-    if m != m.transpose() {
-        return Err(error(field, "is not symmetric"));
-    }
-    if m.cholesky().is_none() {
-        return Err(error(field, "is not positive definite"));
-    }
-    Ok(())
 }

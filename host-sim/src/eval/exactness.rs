@@ -1,7 +1,7 @@
 //! Exactness of the bounded core tracker on any model: the core [`Tracker`] and the unbounded
 //! [`ReferenceTracker`] run on the same scans, each scan naming its sensor and geometry, and their
 //! posteriors are compared after every scan as `host-sim compare` compares them
-//! ([`crate::evaluate::compare`]): hypotheses matched by the exact bits of their tracks' states
+//! ([`crate::pipeline::planar::compare`]): hypotheses matched by the exact bits of their tracks' states
 //! ([`match_keys`]), captured mass = the reference's mass on the core's hypotheses, MAP agreement = the
 //! core's MAP hypothesis has the reference's largest weight (to 1e-9 relative).
 //!
@@ -9,7 +9,7 @@
 //! the planar ones.
 
 use crate::peers::reference::{ReferenceError, ReferenceTracker};
-use crate::snapshot::match_keys;
+use crate::pipeline::snapshot::match_keys;
 use nalgebra::SVector;
 use tracker_core::sensor::ScanGeometry;
 use tracker_core::{

@@ -1,6 +1,6 @@
 //! `host-sim digest` on version 2 radar scenarios: replays an excerpt through the embedded 3-D tracker,
 //! `RadarTracker<f32>`, exactly as the QEMU firmware (`firmware/qemu-m4`, `RFISST_SCENARIO_3D`) does, and
-//! returns the same digest text as the planar digest ([`crate::digest`]).
+//! returns the same digest text as the planar digest ([`crate::pipeline::digest::planar`]).
 //!
 //! **The excerpt.** The first `scans` scans, and a prior restricted to the objects they detect: a prior
 //! object is kept when its label is the id of an object that produced a measurement of the excerpt
@@ -9,23 +9,21 @@
 //! the prior fit the embedded capacity N = 64 (radar-leo seed 1: 43 of 120 objects in its first 200
 //! scans). The file therefore needs its truth with `origins`.
 //!
-//! **Conversions.** Every value is computed in `f64` as [`crate::run3d`] computes it (degrees and
+//! **Conversions.** Every value is computed in `f64` as [`crate::pipeline::orbital::run`] computes it (degrees and
 //! arcseconds to radians, the Earth rotation angle at the epoch) and rounded once with `value as f32`;
 //! times stay `f64`. The firmware's build script does the same, so both trackers start from the same bits.
 
-use crate::digest::region;
+use crate::pipeline::digest::planar::region;
+use crate::pipeline::settings;
 use crate::scenario::ScenarioError;
-use crate::scenario3d::{Measurement3dSpec, Scenario3d};
-use crate::setup::sampler_config_of;
-use nalgebra::{SMatrix, SVector};
+use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
+use nalgebra::SVector;
 use std::collections::HashSet;
-use std::fmt::Write as _;
-use tracker_core::digest::Fnv1a;
 use tracker_core::model::{ProcessNoise, SensorNetwork};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
-    BirthModel, ChildGeneration, Config, Gaussian, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real,
-    Sensor, TrackLabel, TwoBodyJ2, ssa_caps,
+    BirthModel, ChildGeneration, Config, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real, Sensor,
+    TwoBodyJ2,
 };
 
 /// Replays the first `scans` scans of the radar scenario `scenario` (all when `None`) through
@@ -37,32 +35,16 @@ use tracker_core::{
 /// (range, azimuth, elevation) scenario, it has no truth origins for the excerpt, it exceeds the embedded
 /// capacities, or the tracker rejects its configuration.
 pub fn run(scenario: &Scenario3d, scans: Option<usize>) -> Result<String, ScenarioError> {
-    let count = scans.unwrap_or(scenario.scans.len());
-    if count > scenario.scans.len() {
-        return Err(ScenarioError(format!("--scans {count}: the scenario has only {} scans", scenario.scans.len())));
-    }
+    let count = super::excerpt(scans, scenario.scans.len())?;
     let mut tracker = tracker(scenario, count)?;
-    let mut text = String::new();
-    let mut running = Fnv1a::new();
-    for (index, scan) in scenario.scans[..count].iter().enumerate() {
+    Ok(super::text(count, |index| {
+        let scan = &scenario.scans[index];
         let measurements: Vec<SVector<f32, 3>> =
             scan.measurements.iter().map(|z| measurement(scenario.measurement, z)).collect();
         let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
         let outcome = tracker.step_scan(&geometry, &measurements);
-        let digest = tracker.digest();
-        running.write(&digest.to_le_bytes());
-        // `write!` to a String cannot fail.
-        let _ = match outcome {
-            Ok(report) => writeln!(
-                text,
-                "scan {index} hypotheses {} tracks {} digest {digest:016x}",
-                report.hypotheses, report.tracks
-            ),
-            Err(error) => writeln!(text, "scan {index} error {error} digest {digest:016x}"),
-        };
-    }
-    let _ = write!(text, "final scans {count} digest {:016x}", running.finish());
-    Ok(text)
+        (outcome, tracker.digest())
+    }))
 }
 
 /// One measurement in the tracker's units and scalar: angles from degrees to radians in `f64`, then each
@@ -106,20 +88,10 @@ pub fn tracker(scenario: &Scenario3d, count: usize) -> Result<Box<RadarTracker<f
     }
     let detected = detected(scenario, count)?;
     let config = config(scenario)?;
-    let prior: Vec<(f32, Vec<PriorObject<f32, 6>>)> = scenario
-        .prior
-        .hypotheses
-        .iter()
-        .map(|h| {
-            let objects = h
-                .objects
-                .iter()
-                .filter(|o| detected.contains(&u64::from(o.label)))
-                .map(|o| PriorObject { label: TrackLabel(o.label), state: gaussian6(&o.mean, &o.covariance) })
-                .collect();
-            (f32::of_f64(h.weight), objects)
-        })
-        .collect();
+    let prior: Vec<(f32, Vec<PriorObject<f32, 6>>)> = settings::prior(scenario.prior.hypotheses.iter().map(|h| {
+        let objects = h.objects.iter().filter(|o| detected.contains(&u64::from(o.label)));
+        (h.weight, objects.map(|o| (o.label, &o.mean, &o.covariance)))
+    }));
     let hypotheses: Vec<PriorHypothesis<'_, f32, 6>> =
         prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     // Built in place on the heap: the tracker is too large for a default thread stack.
@@ -163,24 +135,18 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         .collect();
     let rotation = EarthRotation::<f32>::new(of(scenario.earth_rotation_at_epoch()));
     let network = SensorNetwork::new(rotation, &sensors).map_err(|e| ScenarioError(format!("sensors: {e}")))?;
-    let mut cells = heapless::Vec::new();
-    for cell in &scenario.birth.cells {
-        cells.push(gaussian6(&cell.mean, &cell.covariance)).map_err(|_| {
-            ScenarioError(format!(
-                "birth.cells: {} cells exceed the embedded capacity of {}",
-                scenario.birth.cells.len(),
-                ssa_caps::BIRTH_CELLS
-            ))
-        })?;
-    }
-    let crate::scenario3d::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
+    let cells =
+        settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "the embedded capacity")
+            .map_err(ScenarioError)?;
+    let crate::scenario::v2::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
     let noise = match process_noise {
-        crate::scenario3d::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
-        crate::scenario3d::ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
+        crate::scenario::v2::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
+        crate::scenario::v2::ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
             ProcessNoise::Ric { radial: of(radial), in_track: of(in_track), cross_track: of(cross_track) }
         }
     };
     let spec = &scenario.tracker;
+    let (selection, store_overflow, numerical_failure) = settings::policies(spec);
     // As `run3d`: the configuration's own sensor is the first sensor's (each scan uses its sensor's).
     let sensor = *sensors.first().map(|s| &s.detection).ok_or_else(|| ScenarioError("sensors: none".into()))?;
     Ok(Config {
@@ -192,36 +158,16 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
             measured: None,
             probability: of(scenario.birth.probability),
             cells,
-            detection: match scenario.birth.detection {
-                crate::scenario::BirthDetectionSpec::AllDetected => tracker_core::BirthDetection::AllDetected,
-                crate::scenario::BirthDetectionSpec::AllowUndetected => tracker_core::BirthDetection::AllowUndetected,
-            },
+            detection: settings::birth_detection(scenario.birth.detection),
         },
         death_probability: of(scenario.death_probability),
         gate: spec.gate.map(of),
-        children: ChildGeneration::Sampled(sampler_config_of(spec)),
-        selection: match spec.selection {
-            crate::scenario::SelectionSpec::TopWeight => tracker_core::config::Selection::TopWeight,
-            crate::scenario::SelectionSpec::SampledByWeight => tracker_core::config::Selection::SampledByWeight,
-        },
-        store_overflow: match spec.store_overflow {
-            crate::scenario::StoreOverflowSpec::PruneChildren => tracker_core::StoreOverflow::PruneChildren,
-            crate::scenario::StoreOverflowSpec::Error => tracker_core::StoreOverflow::Error,
-        },
-        numerical_failure: match spec.numerical_failure {
-            crate::scenario::NumericalFailureSpec::DropTrack => tracker_core::NumericalFailure::DropTrack,
-            crate::scenario::NumericalFailureSpec::Error => tracker_core::NumericalFailure::Error,
-        },
+        children: ChildGeneration::Sampled(settings::sampler_config(spec)),
+        selection,
+        store_overflow,
+        numerical_failure,
         seed: spec.seed,
     })
-}
-
-/// An `f64` Gaussian over the 6-state, each value rounded to `f32`; the covariance given by rows.
-fn gaussian6(mean: &[f64; 6], covariance: &[[f64; 6]; 6]) -> Gaussian<f32, 6> {
-    Gaussian {
-        mean: SVector::from(*mean).map(f32::of_f64),
-        covariance: SMatrix::<f64, 6, 6>::from_fn(|i, j| covariance[i][j]).map(f32::of_f64),
-    }
 }
 
 #[cfg(test)]
@@ -230,7 +176,7 @@ mod tests {
 
     fn tiny() -> Scenario3d {
         let simulation = crate::sim::presets::tiny_3d(1).expect("tiny-3d");
-        crate::generate3d::to_scenario(&simulation).expect("scenario").0
+        crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0
     }
 
     #[test]

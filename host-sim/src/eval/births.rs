@@ -11,7 +11,7 @@
 //! at one scan at least, and whose MAP estimate is never closer than `error_bound` to a true object at
 //! any scan where the label is in the MAP hypothesis.
 
-use crate::io::report::{BirthFigures, BirthRecord};
+use crate::io::report::{BirthConfirmation, BirthFigures, BirthRecord, BirthsSummary};
 use std::collections::BTreeMap;
 
 /// One MAP track as the tally sees it: label, position, existence of the label.
@@ -133,6 +133,25 @@ impl BirthTally {
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+}
+
+impl BirthFigures {
+    /// The summary `summary.json` writes; false tracks only with a truth to compare with.
+    pub fn summary(self, has_truth: bool) -> BirthsSummary {
+        BirthsSummary {
+            births_total: self.births_total,
+            births_confirmed: self.births_confirmed,
+            birth_confirmation_scans: self
+                .records
+                .iter()
+                .map(|r| BirthConfirmation { object: r.object, scan: r.confirmation_scan })
+                .collect(),
+            mean_detections_to_confirm: self.mean_detections_to_confirm,
+            max_detections_to_confirm: self.max_detections_to_confirm,
+            false_tracks: has_truth.then_some(self.false_tracks),
+            birth_confirmations: self.records,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -1,10 +1,13 @@
-//! From a scenario file to tracker-core values: models, sensor, birth model, configuration and prior.
+//! From a planar scenario to tracker-core values: models, sensor, birth model, configuration and prior
+//! (the conversions every world shares are [`crate::pipeline::settings`]).
 
+use crate::pipeline::settings;
+use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::*;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::{
-    BirthDetection, BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, PositionMeasurement, PriorObject,
-    Region, Sensor, StoreOverflow, TrackLabel, TwoBody,
+    BirthModel, ChildGeneration, Config, ConstantVelocity, Gaussian, PositionMeasurement, PriorObject, Region, Sensor,
+    TwoBody,
 };
 
 /// The core's region for a field-of-view spec.
@@ -32,7 +35,7 @@ pub fn sensor(spec: &SensorSpec) -> Sensor<f64> {
 
 /// A Gaussian from mean and covariance arrays.
 pub fn gaussian(mean: &[f64; 4], covariance: &[[f64; 4]; 4]) -> Gaussian<f64, 4> {
-    Gaussian { mean: SVector::from(*mean), covariance: SMatrix::<f64, 4, 4>::from_fn(|i, j| covariance[i][j]) }
+    settings::gaussian(mean, covariance)
 }
 
 /// The measurement model.
@@ -68,15 +71,10 @@ pub fn config<M, const B: usize>(
     motion: M,
     children: ChildGeneration,
 ) -> Result<Config<f64, M, PositionMeasurement<f64>, 4, B>, ScenarioError> {
-    let mut cells = heapless::Vec::new();
-    for cell in &scenario.birth.cells {
-        cells.push(gaussian(&cell.mean, &cell.covariance)).map_err(|_| {
-            ScenarioError(format!(
-                "birth.cells: {} cells exceed this tracker's capacity of {B}",
-                scenario.birth.cells.len()
-            ))
-        })?;
-    }
+    let cells =
+        settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "this tracker's capacity")
+            .map_err(ScenarioError)?;
+    let (selection, store_overflow, numerical_failure) = settings::policies(&scenario.tracker);
     Ok(Config {
         motion,
         measurement: measurement(&scenario.measurement),
@@ -86,77 +84,42 @@ pub fn config<M, const B: usize>(
             measured: scenario.birth.measured.as_ref().map(|m| m.core()),
             probability: scenario.birth.probability,
             cells,
-            detection: match scenario.birth.detection {
-                BirthDetectionSpec::AllDetected => BirthDetection::AllDetected,
-                BirthDetectionSpec::AllowUndetected => BirthDetection::AllowUndetected,
-            },
+            detection: settings::birth_detection(scenario.birth.detection),
         },
         death_probability: scenario.death_probability,
         gate: scenario.tracker.gate,
         children,
-        selection: match scenario.tracker.selection {
-            SelectionSpec::TopWeight => tracker_core::config::Selection::TopWeight,
-            SelectionSpec::SampledByWeight => tracker_core::config::Selection::SampledByWeight,
-        },
-        store_overflow: match scenario.tracker.store_overflow {
-            StoreOverflowSpec::PruneChildren => StoreOverflow::PruneChildren,
-            StoreOverflowSpec::Error => StoreOverflow::Error,
-        },
-        numerical_failure: match scenario.tracker.numerical_failure {
-            NumericalFailureSpec::DropTrack => tracker_core::NumericalFailure::DropTrack,
-            NumericalFailureSpec::Error => tracker_core::NumericalFailure::Error,
-        },
+        selection,
+        store_overflow,
+        numerical_failure,
         seed: scenario.tracker.seed,
     })
 }
 
 /// The exhaustive child generation a scenario asks for.
 pub fn exhaustive(scenario: &Scenario) -> ChildGeneration {
-    ChildGeneration::Exhaustive { max_children_per_scan: scenario.tracker.max_children_per_scan }
+    settings::children(TrackerKind::Homht, &scenario.tracker)
 }
 
 /// The R-FISST child generation a scenario asks for.
 pub fn sampled(scenario: &Scenario) -> ChildGeneration {
-    ChildGeneration::Sampled(sampler_config(scenario))
+    settings::children(TrackerKind::Rfisst, &scenario.tracker)
 }
 
 /// The sampler settings a scenario asks for (`tracker.sampler`).
 pub fn sampler_config(scenario: &Scenario) -> tracker_core::sampler::SamplerConfig {
-    sampler_config_of(&scenario.tracker)
-}
-
-/// The sampler settings of tracker settings `tracker` (`tracker.sampler`), of either scenario version.
-pub fn sampler_config_of(tracker: &TrackerSpec) -> tracker_core::sampler::SamplerConfig {
-    let spec = tracker.sampler;
-    tracker_core::sampler::SamplerConfig {
-        burn_in: spec.burn_in,
-        steps: spec.steps,
-        proposal: match spec.proposal {
-            ProposalSpec::Paper => tracker_core::sampler::Proposal::Paper,
-            ProposalSpec::MoveOrSwap => tracker_core::sampler::Proposal::MoveOrSwap,
-            ProposalSpec::Informed => tracker_core::sampler::Proposal::Informed,
-        },
-        clusters: spec.clusters,
-        exhaustive_limit: spec.exhaustive_limit,
-        exact_start: spec.exact_start,
-    }
+    settings::sampler_config(&scenario.tracker)
 }
 
 /// The prior hypotheses as (weight, objects).
 pub fn prior(scenario: &Scenario) -> Vec<(f64, Vec<PriorObject<f64, 4>>)> {
-    scenario
-        .prior
-        .hypotheses
-        .iter()
-        .map(|h| {
-            let objects = h
-                .objects
-                .iter()
-                .map(|o| PriorObject { label: TrackLabel(o.label), state: gaussian(&o.mean, &o.covariance) })
-                .collect();
-            (h.weight, objects)
-        })
-        .collect()
+    settings::prior(
+        scenario
+            .prior
+            .hypotheses
+            .iter()
+            .map(|h| (h.weight, h.objects.iter().map(|o| (o.label, &o.mean, &o.covariance)))),
+    )
 }
 
 /// The scan's measurements as vectors.

@@ -1,5 +1,5 @@
-//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::sim`] written as
-//! version 2 scenario files ([`crate::scenario3d`]).
+//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
+//! version 2 scenario files ([`crate::scenario::v2`]).
 //!
 //! The truth of every object at every scan comes from [`crate::sim::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
@@ -11,21 +11,20 @@
 //! it, and the tracker rejects a scan with a measurement outside the field of view.
 
 use crate::error::Error;
-use crate::run3d::{FieldOfViewCheck, measurements_in_radians};
+use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
+use crate::scenario::v2::*;
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
     NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
 };
-use crate::scenario3d::*;
-use crate::sim::field_of_view;
 use crate::sim::orbit::Propagator;
-use crate::sim::presets;
-use crate::sim::presets::{OpticalGeoConfig, RadarLeoConfig};
+use crate::sim::presets::OpticalGeoConfig;
+use crate::sim::presets::RadarLeoConfig;
 use crate::sim::rng::{Random, Stream};
-use crate::sim::sensor;
 use crate::sim::sensor::SensorKind;
 use crate::sim::ssa::SsaScenario;
 use crate::sim::truth::Unknowns;
+use crate::sim::{field_of_view, presets, sensor};
 use nalgebra::SMatrix;
 
 /// The 3-D presets.
@@ -195,53 +194,11 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
     let unknown = sim.objects.iter().any(|o| !o.in_prior);
     let sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
 
-    // Truth: every object at every scan, RKF7(8) step by step from the epoch.
     let times: Vec<f64> = sim.scans.iter().map(|s| s.time).collect();
-    let mut truth_scans: Vec<TruthScan3dSpec> =
-        times.iter().map(|_| TruthScan3dSpec { objects: vec![], origins: None }).collect();
-    for (i, object) in sim.objects.iter().enumerate() {
-        let mut state = object.initial_state;
-        let mut t = 0.0;
-        for (k, &time) in times.iter().enumerate() {
-            state = match &known {
-                Some(known) => (known.state)(i, time)?,
-                None => Propagator::EARTH
-                    .propagate(state, time - t)
-                    .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?,
-            };
-            t = time;
-            if object.exists_at(time) {
-                truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
-            }
-        }
-    }
-
-    let prior_covariance = SMatrix::<f64, 6, 6>::from_diagonal(&nalgebra::SVector::from([
-        settings.position_sigma.powi(2),
-        settings.position_sigma.powi(2),
-        settings.position_sigma.powi(2),
-        settings.velocity_sigma.powi(2),
-        settings.velocity_sigma.powi(2),
-        settings.velocity_sigma.powi(2),
-    ]));
-    let covariance: [[f64; 6]; 6] = core::array::from_fn(|i| core::array::from_fn(|j| prior_covariance[(i, j)]));
+    let mut truth_scans = truth_at(sim, &times, known.as_ref())?;
     // The prior holds 1 s before the first scan (a scan must come after it).
     let prior_time = times.first().map_or(0.0, |&t| t.min(0.0)) - 1.0;
-    let mut objects = Vec::with_capacity(sim.objects.len());
-    for (i, o) in sim.objects.iter().enumerate().filter(|(_, o)| o.in_prior) {
-        let state = match &known {
-            Some(known) => (known.state)(i, prior_time)?,
-            None => Propagator::EARTH
-                .propagate(o.initial_state, prior_time)
-                .map_err(|e| Error::internal(format!("prior propagation of object {i}: {e}")))?,
-        };
-        let error = Random::stream(sim.seed, Stream::Prior, i as u64).gaussian(&prior_covariance);
-        objects.push(PriorObject3dSpec {
-            label: i as u32,
-            mean: core::array::from_fn(|j| state[j] + error[j]),
-            covariance,
-        });
-    }
+    let objects = prior_objects(sim, &settings, prior_time, known.as_ref())?;
 
     let mut scenario = Scenario3d {
         format: FORMAT_V2.into(),
@@ -289,8 +246,101 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         evaluation: settings.evaluation,
     };
 
+    let (scans, dropped_outside) = scans_in_view(sim, &scenario, &mut truth_scans)?;
+    scenario.scans = scans;
+    scenario.truth = Some(Truth3dSpec {
+        objects: (0..sim.objects.len())
+            .map(|i| TruthObjectSpec {
+                id: i as u64,
+                in_prior: sim.objects[i].in_prior,
+                birth_time: sim.objects[i].birth_time,
+                death_time: None,
+            })
+            .collect(),
+        scans: truth_scans,
+    });
+    let figures = Generated {
+        objects: sim.objects.len(),
+        scans: scenario.scans.len(),
+        measurements: scenario.scans.iter().map(|s| s.measurements.len()).sum(),
+        max_measurements: scenario.max_measurements(),
+        dropped_outside,
+    };
+    // The file must load: check it as `run` will.
+    scenario.validate().map_err(|e| Error::internal(format!("generated scenario: {e}")))?;
+    Ok((scenario, figures))
+}
+
+/// Every object at every scan time `times`: from `known`, or RKF7(8) step by step from the epoch.
+fn truth_at(sim: &SsaScenario, times: &[f64], known: Option<&KnownTruth<'_>>) -> Result<Vec<TruthScan3dSpec>, Error> {
+    let mut truth_scans: Vec<TruthScan3dSpec> =
+        times.iter().map(|_| TruthScan3dSpec { objects: vec![], origins: None }).collect();
+    for (i, object) in sim.objects.iter().enumerate() {
+        let mut state = object.initial_state;
+        let mut t = 0.0;
+        for (k, &time) in times.iter().enumerate() {
+            state = match known {
+                Some(known) => (known.state)(i, time)?,
+                None => Propagator::EARTH
+                    .propagate(state, time - t)
+                    .map_err(|e| Error::internal(format!("truth propagation of object {i}: {e}")))?,
+            };
+            t = time;
+            if object.exists_at(time) {
+                truth_scans[k].objects.push(TruthState3dSpec { id: i as u64, state });
+            }
+        }
+    }
+
+    Ok(truth_scans)
+}
+
+/// The prior objects at `prior_time`: the true state (from `known`, or propagated) plus a draw of the
+/// prior's error.
+fn prior_objects(
+    sim: &SsaScenario,
+    settings: &Settings,
+    prior_time: f64,
+    known: Option<&KnownTruth<'_>>,
+) -> Result<Vec<PriorObject3dSpec>, Error> {
+    let prior_covariance = SMatrix::<f64, 6, 6>::from_diagonal(&nalgebra::SVector::from([
+        settings.position_sigma.powi(2),
+        settings.position_sigma.powi(2),
+        settings.position_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+        settings.velocity_sigma.powi(2),
+    ]));
+    let covariance: [[f64; 6]; 6] = core::array::from_fn(|i| core::array::from_fn(|j| prior_covariance[(i, j)]));
+    let mut objects = Vec::with_capacity(sim.objects.len());
+    for (i, o) in sim.objects.iter().enumerate().filter(|(_, o)| o.in_prior) {
+        let state = match known {
+            Some(known) => (known.state)(i, prior_time)?,
+            None => Propagator::EARTH
+                .propagate(o.initial_state, prior_time)
+                .map_err(|e| Error::internal(format!("prior propagation of object {i}: {e}")))?,
+        };
+        let error = Random::stream(sim.seed, Stream::Prior, i as u64).gaussian(&prior_covariance);
+        objects.push(PriorObject3dSpec {
+            label: i as u32,
+            mean: core::array::from_fn(|j| state[j] + error[j]),
+            covariance,
+        });
+    }
+
+    Ok(objects)
+}
+
+/// The scans of the file: measurements in degrees, detections outside the field of view dropped (their
+/// count returned); each scan's truth origins recorded in `truth_scans`.
+fn scans_in_view(
+    sim: &SsaScenario,
+    scenario: &Scenario3d,
+    truth_scans: &mut [TruthScan3dSpec],
+) -> Result<(Vec<Scan3dSpec>, usize), Error> {
+    let measurement = scenario.measurement;
     // Scans: measurements in degrees, detections outside the field of view dropped.
-    let check = FieldOfViewCheck::new(&scenario)?;
+    let check = FieldOfViewCheck::new(scenario)?;
     let mut dropped_outside = 0;
     let mut scans = Vec::with_capacity(sim.scans.len());
     for (k, scan) in sim.scans.iter().enumerate() {
@@ -314,28 +364,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         truth_scans[k].origins = Some(origins);
         scans.push(Scan3dSpec { time: scan.time, sensor: scan.sensor, measurements });
     }
-    scenario.scans = scans;
-    scenario.truth = Some(Truth3dSpec {
-        objects: (0..sim.objects.len())
-            .map(|i| TruthObjectSpec {
-                id: i as u64,
-                in_prior: sim.objects[i].in_prior,
-                birth_time: sim.objects[i].birth_time,
-                death_time: None,
-            })
-            .collect(),
-        scans: truth_scans,
-    });
-    let figures = Generated {
-        objects: sim.objects.len(),
-        scans: scenario.scans.len(),
-        measurements: scenario.scans.iter().map(|s| s.measurements.len()).sum(),
-        max_measurements: scenario.max_measurements(),
-        dropped_outside,
-    };
-    // The file must load: check it as `run` will.
-    scenario.validate().map_err(|e| Error::internal(format!("generated scenario: {e}")))?;
-    Ok((scenario, figures))
+    Ok((scans, dropped_outside))
 }
 
 /// Degrees of a configuration angle, rounded to 1e-9° (≈ 2e-11 rad) so that 15° reads 15, not 14.999999999999998.

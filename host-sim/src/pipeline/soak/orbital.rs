@@ -1,8 +1,8 @@
 //! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
-//! `optical-geo`) with the soak's seed ([`crate::sim`], [`crate::generate3d::to_scenario`]); the tracker is
-//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::run3d::config3d`], f64,
+//! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::scenario::from_simulation::to_scenario`]); the tracker is
+//! the core tracker `host-sim run --tracker rfisst` builds for that file ([`crate::pipeline::orbital::config3d`], f64,
 //! two-body + J2), with the capacities `run` picks for it (radar-leo's 120 objects need the `host` profile,
 //! optical-geo's 32 fit `embedded`). The scans go on past the preset's end with the preset's schedule (the
 //! sensors take turns, one scan every interval): every object's truth is carried from scan to scan by
@@ -12,26 +12,28 @@
 //!
 //! Every object lives for the whole run, so the soak checks that they stay *tracked*: after every scan it
 //! counts the objects whose label the MAP hypothesis holds within the scenario's error bound of the truth
-//! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::soak`]).
+//! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
+use super::common::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use crate::error::Error;
-use crate::evaluate::peak_resident_kib;
-use crate::generate3d::to_scenario;
 use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
-use crate::run3d::{C, FieldOfViewCheck, choose_profile, config3d};
-use crate::runner::{Profile, TrackerKind};
+use crate::pipeline::orbital::{C, FieldOfViewCheck, choose_profile, config3d};
+use crate::pipeline::output::peak_resident_kib;
+use crate::pipeline::profile::ORBITAL;
+use crate::pipeline::profile::Profile;
+use crate::pipeline::tracker::TrackerKind;
+use crate::scenario::from_simulation::to_scenario;
 use crate::sim::orbit::Propagator;
-use crate::sim::presets;
 use crate::sim::presets::RadarLeoConfig;
 use crate::sim::rng::{Random, Stream};
-use crate::sim::ssa::{SsaScenario, draw_scan};
+use crate::sim::ssa::SsaScenario;
+use crate::sim::ssa::draw_scan;
 use crate::sim::time::earth_rotation_angle;
-use crate::soak::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
 use nalgebra::SVector;
 use std::time::Instant;
 use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, SensorNetwork};
 use tracker_core::sensor::ScanGeometry;
-use tracker_core::{PriorHypothesis, Tracker, TwoBodyJ2, ssa_caps};
+use tracker_core::{PriorHypothesis, Tracker, TwoBodyJ2};
 
 type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
     Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
@@ -118,6 +120,126 @@ where
     errors
 }
 
+/// Tracking figures over a soak's scans.
+struct Tally {
+    cardinality_error: f64,
+    max_cardinality_error: f64,
+    measurements: u64,
+    dropped: u64,
+    resident_start: Option<u64>,
+    tracked_sum: u64,
+    tracked_last_tenth: u64,
+    /// (fewest objects tracked, its scan + 1).
+    min_tracked: (usize, u64),
+    /// (objects in view, of which tracked) over all scans and over the last tenth.
+    in_view: (u64, u64),
+    in_view_last_tenth: (u64, u64),
+    scans: u64,
+    last_tenth: u64,
+}
+
+impl Tally {
+    fn new(scans: u64) -> Self {
+        Self {
+            cardinality_error: 0.0,
+            max_cardinality_error: 0.0,
+            measurements: 0,
+            dropped: 0,
+            resident_start: None,
+            tracked_sum: 0,
+            tracked_last_tenth: 0,
+            min_tracked: (usize::MAX, 0),
+            in_view: (0, 0),
+            in_view_last_tenth: (0, 0),
+            scans,
+            last_tenth: scans - scans / 10,
+        }
+    }
+
+    /// Scan `k`: the cardinality error, every object's position error, the objects in view.
+    fn record(&mut self, k: u64, cardinality_error: f64, errors: &[f64], seen: &[usize], bound: f64) {
+        self.cardinality_error += cardinality_error;
+        self.max_cardinality_error = self.max_cardinality_error.max(cardinality_error);
+        let within = errors.iter().filter(|&&e| e < bound).count();
+        let seen_within = seen.iter().filter(|&&i| errors[i] < bound).count() as u64;
+        self.tracked_sum += within as u64;
+        self.in_view = (self.in_view.0 + seen.len() as u64, self.in_view.1 + seen_within);
+        if k >= self.last_tenth {
+            self.tracked_last_tenth += within as u64;
+            self.in_view_last_tenth =
+                (self.in_view_last_tenth.0 + seen.len() as u64, self.in_view_last_tenth.1 + seen_within);
+        }
+        if within < self.min_tracked.0 {
+            self.min_tracked = (within, k + 1);
+        }
+    }
+
+    /// The tracking figures, with the final position errors `errors`.
+    fn tracking(&self, mut errors: Vec<f64>, bound: f64, objects: usize, stream: &Stream3d) -> SoakTracking {
+        let final_tracked = errors.iter().filter(|&&e| e < bound).count();
+        let final_missing = errors.iter().filter(|e| e.is_infinite()).count();
+        errors.sort_unstable_by(f64::total_cmp);
+        let final_median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
+        let fraction = |(seen, within): (u64, u64)| within as f64 / seen.max(1) as f64;
+        SoakTracking {
+            error_bound_km: bound,
+            objects,
+            final_tracked,
+            min_tracked: self.min_tracked.0.min(objects),
+            min_tracked_scan: self.min_tracked.1,
+            mean_tracked: self.tracked_sum as f64 / self.scans as f64,
+            mean_tracked_last_tenth: self.tracked_last_tenth as f64 / (self.scans - self.last_tenth).max(1) as f64,
+            in_view: self.in_view.0,
+            in_view_tracked_fraction: fraction(self.in_view),
+            in_view_tracked_fraction_last_tenth: fraction(self.in_view_last_tenth),
+            final_median_position_error_km: final_median,
+            final_missing_labels: final_missing,
+            dropped_outside_field_of_view: self.dropped,
+            simulated_days: stream.time / 86_400.0,
+        }
+    }
+}
+
+/// The soak's tracker in words ([H, N, Z, K, B]: its capacities).
+fn tracker_text(scenario: Scenario, profile: Profile, seed: u64, [h, n, z, k, b]: [usize; 5]) -> String {
+    format!(
+        "tracker-core Tracker<f64, TwoBodyJ2, SensorNetwork> of `host-sim run --tracker rfisst` (profile {profile:?}: H = {h}, N = {n}, Z = {z}, K = {k}, B = {b}) on {}",
+        match scenario {
+            Scenario::RadarLeo => format!(
+                "radar-leo's radars and orbits with seed {seed}, {} singles + {} crossing pairs",
+                RADAR_LEO.singles, RADAR_LEO.pairs
+            ),
+            _ => format!("`host-sim generate {} --seed {seed}`", scenario.name()),
+        }
+    )
+}
+
+/// The simulation's sensors in words.
+fn sensors_text(sim: &SsaScenario) -> String {
+    let sensors: Vec<String> = sim
+        .sensors
+        .iter()
+        .map(|s| format!("{} (p_D = {}, clutter {} per scan)", s.name, s.detection_probability, s.clutter_rate))
+        .collect();
+    sensors.join("; ")
+}
+
+/// The tracker `host-sim run --tracker rfisst` builds for `file`, on the heap.
+#[allow(clippy::type_complexity)]
+fn soak_tracker<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    file: &crate::scenario::v2::Scenario3d,
+) -> Result<Box<Tracker3d<X, D, H, N, Z, K, B>>, Error>
+where
+    X: Placeable<f64, D>,
+{
+    let (config, objects) = config3d::<X, D, B>(file, TrackerKind::Rfisst)?;
+    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
+        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
+        .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
+    Ok(Box::new(tracker))
+}
+
 fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: Scenario,
     profile: Profile,
@@ -132,13 +254,7 @@ where
     let seed = sim.seed;
     let (file, _) = to_scenario(&sim)?;
     let check = FieldOfViewCheck::new(&file)?;
-    let (config, objects) = config3d::<X, D, B>(&file, TrackerKind::Rfisst)?;
-    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
-        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
-    let mut tracker = Box::new(
-        Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
-            .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?,
-    );
+    let mut tracker = soak_tracker::<X, D, H, N, Z, K, B>(&file)?;
     let mut stream = Stream3d::new(sim)?;
     let objects = stream.states.len();
     let bound = file.evaluation.error_bound;
@@ -146,12 +262,7 @@ where
     let bar = progress(scans, quiet);
     let mut health = Health::default();
     let mut times = ScanTimes::new(scans);
-    let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
-    let (mut dropped, mut resident_start) = (0u64, None);
-    let (mut tracked_sum, mut tracked_last_tenth, mut min_tracked) = (0u64, 0u64, (usize::MAX, 0u64));
-    // (objects in view, of which tracked) over all scans and over the last tenth.
-    let (mut in_view, mut in_view_last_tenth) = ((0u64, 0u64), (0u64, 0u64));
-    let last_tenth = scans - scans / 10;
+    let mut tally = Tally::new(scans);
     for k in 0..scans {
         let Drawn { sensor, time, measurements, outside, in_view: seen } = match stream.scan(k, &check) {
             Ok(scan) => scan,
@@ -161,49 +272,25 @@ where
                 continue;
             }
         };
-        dropped += outside;
+        tally.dropped += outside;
         health.max_measurements = health.max_measurements.max(measurements.len());
-        measurement_total += measurements.len() as u64;
+        tally.measurements += measurements.len() as u64;
         let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
         let step_started = Instant::now();
         let result = tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs);
         times.record(k, step_started.elapsed().as_secs_f64() * 1e3);
         health.record(k, result, non_finite_values(&*tracker));
         if k == 0 {
-            resident_start = peak_resident_kib();
+            tally.resident_start = peak_resident_kib();
         }
         let difference = (tracker.expected_cardinality() - objects as f64).abs();
-        cardinality_error += difference;
-        max_cardinality_error = max_cardinality_error.max(difference);
-        let errors = position_errors(&tracker, &stream.states);
-        let within = errors.iter().filter(|&&e| e < bound).count();
-        let seen_within = seen.iter().filter(|&&i| errors[i] < bound).count() as u64;
-        tracked_sum += within as u64;
-        in_view = (in_view.0 + seen.len() as u64, in_view.1 + seen_within);
-        if k >= last_tenth {
-            tracked_last_tenth += within as u64;
-            in_view_last_tenth = (in_view_last_tenth.0 + seen.len() as u64, in_view_last_tenth.1 + seen_within);
-        }
-        if within < min_tracked.0 {
-            min_tracked = (within, k + 1);
-        }
+        tally.record(k, difference, &position_errors(&tracker, &stream.states), &seen, bound);
         bar.inc(1);
     }
     bar.finish_and_clear();
 
-    let mut errors = position_errors(&tracker, &stream.states);
-    let final_tracked = errors.iter().filter(|&&e| e < bound).count();
-    let final_missing = errors.iter().filter(|e| e.is_infinite()).count();
-    errors.sort_unstable_by(f64::total_cmp);
-    let final_median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
-    let fraction = |(seen, within): (u64, u64)| within as f64 / seen.max(1) as f64;
     let (max_ms, mean_ms, p50_ms, p99_ms) = times.timing();
-    let sensors: Vec<String> = stream
-        .sim
-        .sensors
-        .iter()
-        .map(|s| format!("{} (p_D = {}, clutter {} per scan)", s.name, s.detection_probability, s.clutter_rate))
-        .collect();
+    let errors = position_errors(&tracker, &stream.states);
     Ok(SoakReport {
         scenario: scenario.name().into(),
         scans,
@@ -219,25 +306,10 @@ where
         max_over_median: max_ms / p50_ms,
         mean_ms_per_scan_first_tenth: times.tenths().0,
         mean_ms_per_scan_last_tenth: times.tenths().1,
-        peak_resident_kib_start: resident_start,
+        peak_resident_kib_start: tally.resident_start,
         peak_resident_kib_end: peak_resident_kib(),
         numerical_drops: health.numerical_drops,
-        tracking: Some(SoakTracking {
-            error_bound_km: bound,
-            objects,
-            final_tracked,
-            min_tracked: min_tracked.0.min(objects),
-            min_tracked_scan: min_tracked.1,
-            mean_tracked: tracked_sum as f64 / scans as f64,
-            mean_tracked_last_tenth: tracked_last_tenth as f64 / (scans - last_tenth).max(1) as f64,
-            in_view: in_view.0,
-            in_view_tracked_fraction: fraction(in_view),
-            in_view_tracked_fraction_last_tenth: fraction(in_view_last_tenth),
-            final_median_position_error_km: final_median,
-            final_missing_labels: final_missing,
-            dropped_outside_field_of_view: dropped,
-            simulated_days: stream.time / 86_400.0,
-        }),
+        tracking: Some(tally.tracking(errors, bound, objects, &stream)),
         errors_by_kind: health.errors,
         first_error: health.first_error.map(|(scan, message)| crate::io::report::SoakError { scan, message }),
         track_store_high_water: health.max_tracks,
@@ -245,27 +317,18 @@ where
         hypothesis_capacity: H,
         max_measurements_per_scan: health.max_measurements,
         measurement_capacity: Z,
-        measurements: measurement_total,
+        measurements: tally.measurements,
         births_beyond_object_capacity: health.births_beyond_capacity,
         children_dropped_for_store: health.children_dropped_for_store,
         truth: SoakTruth { initial_objects: objects, births: 0, deaths: 0, max_alive: objects, final_alive: objects },
         final_expected_cardinality: tracker.expected_cardinality(),
-        mean_abs_cardinality_error: cardinality_error / scans as f64,
-        max_abs_cardinality_error: max_cardinality_error,
+        mean_abs_cardinality_error: tally.cardinality_error / scans as f64,
+        max_abs_cardinality_error: tally.max_cardinality_error,
         wall_seconds: started.elapsed().as_secs_f64(),
         setup: SoakSetup {
-            tracker: format!(
-                "tracker-core Tracker<f64, TwoBodyJ2, SensorNetwork> of `host-sim run --tracker rfisst` (profile {profile:?}: H = {H}, N = {N}, Z = {Z}, K = {K}, B = {B}) on {}",
-                match scenario {
-                    Scenario::RadarLeo => format!(
-                        "radar-leo's radars and orbits with seed {seed}, {} singles + {} crossing pairs",
-                        RADAR_LEO.singles, RADAR_LEO.pairs
-                    ),
-                    _ => format!("`host-sim generate {} --seed {seed}`", scenario.name()),
-                }
-            ),
+            tracker: tracker_text(scenario, profile, seed, [H, N, Z, K, B]),
             motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
-            sensor: sensors.join("; "),
+            sensor: sensors_text(&stream.sim),
             scan_interval_s: stream.interval,
             birth_rate_per_scan: 0.0,
             death_rate_per_object_per_scan: 0.0,
@@ -286,9 +349,9 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
         return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
     }
     let sim = match scenario {
-        Scenario::RadarLeo => presets::radar_leo_with(seed, &RADAR_LEO),
-        Scenario::OpticalGeo => presets::optical_geo(seed),
-        Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::soak::run")),
+        Scenario::RadarLeo => crate::sim::presets::radar_leo_with(seed, &RADAR_LEO),
+        Scenario::OpticalGeo => crate::sim::presets::optical_geo(seed),
+        Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::pipeline::soak::planar::run")),
     }
     .map_err(|e| Error::internal(format!("soak: simulation: {e}")))?;
     let profile = choose_profile(&to_scenario(&sim)?.0, None);
@@ -296,20 +359,20 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
         (Scenario::RadarLeo, Profile::Embedded) => soak::<
             RadarRangeAzEl<f64>,
             3,
-            { ssa_caps::HYPOTHESES },
-            { ssa_caps::OBJECTS },
-            { ssa_caps::MEASUREMENTS },
-            { ssa_caps::TRACKS_3D },
-            { ssa_caps::BIRTH_CELLS },
+            { ORBITAL.embedded.hypotheses },
+            { ORBITAL.embedded.objects },
+            { ORBITAL.embedded.measurements },
+            { ORBITAL.embedded.tracks },
+            { ORBITAL.embedded.birth_cells },
         >(scenario, profile, sim, scans, quiet),
         (Scenario::OpticalGeo, Profile::Embedded) => soak::<
             OpticalRaDec<f64>,
             2,
-            { ssa_caps::HYPOTHESES },
-            { ssa_caps::OBJECTS },
-            { ssa_caps::MEASUREMENTS },
-            { ssa_caps::TRACKS_3D },
-            { ssa_caps::BIRTH_CELLS },
+            { ORBITAL.embedded.hypotheses },
+            { ORBITAL.embedded.objects },
+            { ORBITAL.embedded.measurements },
+            { ORBITAL.embedded.tracks },
+            { ORBITAL.embedded.birth_cells },
         >(scenario, profile, sim, scans, quiet),
         _ => Err(Error::internal(format!("soak: {} does not fit the {profile:?} profile", scenario.name()))),
     }
@@ -323,6 +386,7 @@ pub const RADAR_LEO: RadarLeoConfig = RadarLeoConfig { singles: 40, pairs: 10, .
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::presets;
 
     #[test]
     fn the_radar_soak_fits_the_embedded_profile() {

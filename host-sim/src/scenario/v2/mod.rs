@@ -8,12 +8,16 @@
 //! problem as a one-line [`ScenarioError`] naming the field; [`load_any`] reads either version.
 
 use crate::scenario::{
-    BirthDetectionSpec, EvaluationSpec, MAX_PRIOR_LABEL, Scenario, ScenarioError, TrackerSpec, TruthObjectSpec,
-    check_covariance, error, finite, finite_all, positive, read_limited,
+    BirthDetectionSpec, EvaluationSpec, MAX_PRIOR_LABEL, ScenarioError, TrackerSpec, TruthObjectSpec, error, finite,
+    finite_all, positive,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use tracker_core::MotionModel;
+use tracker_core::model::AdmissibleRegion;
+
+mod checks;
+use checks::{check_measurement, covariance6};
 
 /// The format tag of a version 2 file.
 pub const FORMAT_V2: &str = "rfisst-scenario/2";
@@ -26,38 +30,6 @@ pub const MAX_SITE_HEIGHT: f64 = 100.0;
 
 /// The largest number of sensors (tracker-core's `ssa_caps::SENSORS`).
 pub const MAX_SENSORS: usize = tracker_core::ssa_caps::SENSORS;
-
-/// A scenario file of either version.
-#[derive(Debug, Clone, PartialEq)]
-pub enum AnyScenario {
-    /// Version 1: the planar world of paper 003.
-    V1(Box<Scenario>),
-    /// Version 2: 3-D SSA geometry.
-    V2(Box<Scenario3d>),
-}
-
-/// Reads a scenario file of either version: a top-level `"version": 2` selects version 2; without a
-/// `version` (or with 1) the file is read exactly as version 1 always was.
-///
-/// # Errors
-/// A one-line [`ScenarioError`] naming the problem.
-pub fn load_any(path: &Path) -> Result<AnyScenario, ScenarioError> {
-    let text = read_limited(path)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    #[derive(Deserialize)]
-    struct Probe {
-        #[serde(default)]
-        version: Option<serde_json::Value>,
-    }
-    // Invalid JSON, or JSON that is not an object, is reported by the version 1 reader as always.
-    let version = serde_json::from_str::<Probe>(text).ok().and_then(|p| p.version);
-    match version {
-        Some(v) if v.as_u64() == Some(2) => Ok(AnyScenario::V2(Box::new(Scenario3d::from_json(text)?))),
-        Some(v) if v.as_u64() == Some(1) => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-        Some(v) => Err(error("version", format!("{v} is not a known format version (1 or 2)"))),
-        None => Ok(AnyScenario::V1(Box::new(Scenario::from_json(text)?))),
-    }
-}
 
 /// A version 2 scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -181,6 +153,32 @@ impl Measurement3dSpec {
         match self {
             Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => component == 1 || component == 2,
             Measurement3dSpec::Optical => true,
+        }
+    }
+
+    /// Whether a measurement holds the range.
+    pub fn has_range(self) -> bool {
+        self != Measurement3dSpec::Optical
+    }
+
+    /// Whether a measurement holds the range-rate.
+    pub fn has_range_rate(self) -> bool {
+        self == Measurement3dSpec::RadarRangeRate
+    }
+
+    /// Whether the sky is drawn in right ascension and declination (a telescope's frame) rather than
+    /// azimuth and elevation.
+    pub fn sky_in_ra_dec(self) -> bool {
+        self == Measurement3dSpec::Optical
+    }
+
+    /// The most birth components one measurement can give in the admissible region `region`: radar
+    /// headings × speeds × climbs (the range fixes the rest); for the other models the region's bound
+    /// ([`AdmissibleRegion::max_components`]).
+    pub fn birth_components(self, region: &AdmissibleRegion<f64>) -> usize {
+        match self {
+            Measurement3dSpec::Radar => region.headings.saturating_mul(region.speeds).saturating_mul(region.climbs),
+            Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Optical => region.max_components(),
         }
     }
 }
@@ -427,9 +425,9 @@ impl Scenario3d {
     /// # Errors
     /// A one-line [`ScenarioError`] naming the file's problem.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        match load_any(path)? {
-            AnyScenario::V2(s) => Ok(*s),
-            AnyScenario::V1(_) => Err(error("version", "this is a version 1 file; version 2 expected")),
+        match super::load_any(path)? {
+            super::AnyScenario::V2(s) => Ok(*s),
+            super::AnyScenario::V1(_) => Err(error("version", "this is a version 1 file; version 2 expected")),
         }
     }
 
@@ -681,247 +679,4 @@ impl Scenario3d {
         }
         Ok(())
     }
-}
-
-/// Measured values inside their ranges: range ≥ 0, azimuth and right ascension in [−360, 360], elevation and
-/// declination in [−90, 90].
-fn check_measurement(field: &str, kind: Measurement3dSpec, z: &[f64]) -> Result<(), ScenarioError> {
-    let (names, bounds): (&[&str], &[(f64, f64)]) = match kind {
-        Measurement3dSpec::Radar => {
-            (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), (-360.0, 360.0), (-90.0, 90.0)])
-        }
-        Measurement3dSpec::RadarRangeRate => (
-            &["range", "azimuth", "elevation", "range-rate"],
-            &[(0.0, f64::INFINITY), (-360.0, 360.0), (-90.0, 90.0), (f64::NEG_INFINITY, f64::INFINITY)],
-        ),
-        Measurement3dSpec::Optical => (&["right ascension", "declination"], &[(-360.0, 360.0), (-90.0, 90.0)]),
-    };
-    for ((value, name), (low, high)) in z.iter().zip(names).zip(bounds) {
-        if !(*low..=*high).contains(value) {
-            return Err(error(field, format!("{name} {value} is not in [{low}, {high}]")));
-        }
-    }
-    Ok(())
-}
-
-/// `value` (deg) in [low, high].
-fn angle_in(field: &str, value: f64, low: f64, high: f64) -> Result<(), ScenarioError> {
-    if value.is_finite() && (low..=high).contains(&value) {
-        Ok(())
-    } else {
-        Err(error(field, format!("{value} is not in [{low}, {high}] degrees")))
-    }
-}
-
-impl Sensor3dSpec {
-    /// The sensor's fields against the measurement type; errors name `field`.
-    pub fn validate(&self, field: &str, kind: Measurement3dSpec) -> Result<(), ScenarioError> {
-        let site = &self.site;
-        angle_in(&format!("{field}.site.latitude_deg"), site.latitude_deg, -90.0, 90.0)?;
-        angle_in(&format!("{field}.site.longitude_deg"), site.longitude_deg, -360.0, 360.0)?;
-        let h = site.height_km;
-        if !(h.is_finite() && h >= MIN_SITE_HEIGHT) {
-            return Err(error(
-                format!("{field}.site.height_km"),
-                format!("{h} km: the observer is inside the Earth (below {MIN_SITE_HEIGHT} km)"),
-            ));
-        }
-        if h > MAX_SITE_HEIGHT {
-            return Err(error(
-                format!("{field}.site.height_km"),
-                format!("{h} km is above {MAX_SITE_HEIGHT} km: not a ground site"),
-            ));
-        }
-        let wanted = NoiseSpec::fields(kind);
-        for name in ["range_km", "azimuth_arcsec", "elevation_arcsec", "range_rate_km_s"]
-            .into_iter()
-            .chain(["right_ascension_arcsec", "declination_arcsec"])
-        {
-            match (self.noise.get(name), wanted.contains(&name)) {
-                (Some(v), true) => positive(&format!("{field}.noise.{name}"), v)?,
-                (None, true) => {
-                    return Err(error(format!("{field}.noise.{name}"), format!("required for {}", kind.name())));
-                }
-                (Some(_), false) => {
-                    return Err(error(
-                        format!("{field}.noise.{name}"),
-                        format!("not part of a {} measurement", kind.name()),
-                    ));
-                }
-                (None, false) => {}
-            }
-        }
-        let pd = self.detection_probability;
-        if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
-            return Err(error(format!("{field}.detection_probability"), format!("{pd} is not in (0, 1]")));
-        }
-        positive(&format!("{field}.clutter_rate"), self.clutter_rate)?;
-        self.field_of_view.validate(&format!("{field}.field_of_view"), kind)
-    }
-}
-
-impl FieldOfView3dSpec {
-    fn validate(&self, field: &str, kind: Measurement3dSpec) -> Result<(), ScenarioError> {
-        angle_in(&format!("{field}.min_elevation_deg"), self.min_elevation_deg, -90.0, 90.0)?;
-        match self.shape {
-            ShapeSpec::Cone { azimuth_deg, elevation_deg, half_angle_deg } => {
-                angle_in(&format!("{field}.shape.azimuth_deg"), azimuth_deg, -360.0, 360.0)?;
-                angle_in(&format!("{field}.shape.elevation_deg"), elevation_deg, -90.0, 90.0)?;
-                if !(half_angle_deg.is_finite() && half_angle_deg > 0.0 && half_angle_deg <= 180.0) {
-                    return Err(error(
-                        format!("{field}.shape.half_angle_deg"),
-                        format!("{half_angle_deg} is not in (0, 180]: the field of view has no volume"),
-                    ));
-                }
-            }
-            ShapeSpec::Box { azimuth_deg, half_width_deg, elevation_deg: [low, high] } => {
-                angle_in(&format!("{field}.shape.azimuth_deg"), azimuth_deg, -360.0, 360.0)?;
-                if !(half_width_deg.is_finite() && half_width_deg > 0.0 && half_width_deg <= 180.0) {
-                    return Err(error(
-                        format!("{field}.shape.half_width_deg"),
-                        format!("{half_width_deg} is not in (0, 180]: the field of view has no volume"),
-                    ));
-                }
-                angle_in(&format!("{field}.shape.elevation_deg[0]"), low, -90.0, 90.0)?;
-                angle_in(&format!("{field}.shape.elevation_deg[1]"), high, -90.0, 90.0)?;
-                if !(high > low) {
-                    return Err(error(
-                        format!("{field}.shape.elevation_deg"),
-                        format!("[{low}, {high}]: max must exceed min (the field of view has no volume)"),
-                    ));
-                }
-            }
-        }
-        let radar = kind != Measurement3dSpec::Optical;
-        match (self.range_km, radar) {
-            (Some([low, high]), true) => {
-                finite_all(&format!("{field}.range_km"), &[low, high])?;
-                if low < 0.0 {
-                    return Err(error(format!("{field}.range_km"), format!("negative range {low}")));
-                }
-                if !(high > low) {
-                    return Err(error(
-                        format!("{field}.range_km"),
-                        format!("[{low}, {high}]: max must exceed min (the field of view has no volume)"),
-                    ));
-                }
-            }
-            (None, true) => return Err(error(format!("{field}.range_km"), "required for radar")),
-            (Some(_), false) => return Err(error(format!("{field}.range_km"), "not part of an optical field of view")),
-            (None, false) => {}
-        }
-        match (self.range_rate_km_s, kind == Measurement3dSpec::RadarRangeRate) {
-            (Some([low, high]), true) => {
-                finite_all(&format!("{field}.range_rate_km_s"), &[low, high])?;
-                if !(high > low) {
-                    return Err(error(
-                        format!("{field}.range_rate_km_s"),
-                        format!("[{low}, {high}]: max must exceed min (the field of view has no volume)"),
-                    ));
-                }
-            }
-            (None, true) => return Err(error(format!("{field}.range_rate_km_s"), "required for radar-range-rate")),
-            (Some(_), false) => {
-                return Err(error(
-                    format!("{field}.range_rate_km_s"),
-                    format!("not part of a {} measurement", kind.name()),
-                ));
-            }
-            (None, false) => {}
-        }
-        // Nothing of the shape above the mask: a field of view of zero volume.
-        let top = match self.shape {
-            ShapeSpec::Cone { elevation_deg, half_angle_deg, .. } => (elevation_deg + half_angle_deg).min(90.0),
-            ShapeSpec::Box { elevation_deg: [_, high], .. } => high,
-        };
-        if !(top > self.min_elevation_deg) {
-            return Err(error(
-                format!("{field}.min_elevation_deg"),
-                format!(
-                    "{}: nothing of the shape (up to {top} deg) is above the mask, the field of view has no volume",
-                    self.min_elevation_deg
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// The core's region (radians).
-    pub fn region(&self) -> tracker_core::Region<f64> {
-        let shape = match self.shape {
-            ShapeSpec::Cone { azimuth_deg, elevation_deg, half_angle_deg } => tracker_core::LookShape::Cone {
-                azimuth: azimuth_deg.to_radians(),
-                elevation: elevation_deg.to_radians(),
-                half_angle: half_angle_deg.to_radians(),
-            },
-            ShapeSpec::Box { azimuth_deg, half_width_deg, elevation_deg: [low, high] } => {
-                tracker_core::LookShape::Box {
-                    azimuth: azimuth_deg.to_radians(),
-                    half_width: half_width_deg.to_radians(),
-                    elevation: [low.to_radians(), high.to_radians()],
-                }
-            }
-        };
-        tracker_core::Region::Look {
-            shape,
-            min_elevation: self.min_elevation_deg.to_radians(),
-            range: self.range_km,
-            range_rate: self.range_rate_km_s,
-        }
-    }
-}
-
-impl Truth3dSpec {
-    fn validate(&self, scans: &[Scan3dSpec]) -> Result<(), ScenarioError> {
-        if self.scans.len() != scans.len() {
-            return Err(error("truth.scans", format!("has {} entries for {} scans", self.scans.len(), scans.len())));
-        }
-        for (i, object) in self.objects.iter().enumerate() {
-            if self.objects[..i].iter().any(|other| other.id == object.id) {
-                return Err(error(format!("truth.objects[{i}].id"), format!("id {} appears twice", object.id)));
-            }
-        }
-        let known: std::collections::HashSet<u64> = self.objects.iter().map(|o| o.id).collect();
-        for (k, (scan, truth)) in scans.iter().zip(&self.scans).enumerate() {
-            let mut seen = std::collections::HashSet::new();
-            for (i, state) in truth.objects.iter().enumerate() {
-                finite_all(&format!("truth.scans[{k}].objects[{i}].state"), &state.state)?;
-                if !known.contains(&state.id) {
-                    return Err(error(
-                        format!("truth.scans[{k}].objects[{i}].id"),
-                        format!("unknown object id {}", state.id),
-                    ));
-                }
-                if !seen.insert(state.id) {
-                    return Err(error(
-                        format!("truth.scans[{k}].objects[{i}].id"),
-                        format!("id {} appears twice", state.id),
-                    ));
-                }
-            }
-            if let Some(origins) = &truth.origins {
-                if origins.len() != scan.measurements.len() {
-                    return Err(error(
-                        format!("truth.scans[{k}].origins"),
-                        format!("has {} entries for {} measurements", origins.len(), scan.measurements.len()),
-                    ));
-                }
-                let mut produced = std::collections::HashSet::new();
-                for (j, id) in origins.iter().enumerate() {
-                    let Some(id) = id else { continue };
-                    if !seen.contains(id) || !produced.insert(*id) {
-                        return Err(error(
-                            format!("truth.scans[{k}].origins[{j}]"),
-                            format!("object {id} does not exist at this scan or already produced a measurement"),
-                        ));
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-fn covariance6(field: &str, m: &[[f64; 6]; 6]) -> Result<(), ScenarioError> {
-    check_covariance(field, nalgebra::SMatrix::<f64, 6, 6>::from_fn(|i, j| m[i][j]))
 }

@@ -17,11 +17,9 @@
 //! `digest` is [`tracker_core::Tracker::digest`] after the scan (after a rejected scan the tracker is
 //! unchanged); the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 
+use crate::pipeline::planar::setup;
 use crate::scenario::{Scenario, ScenarioError};
-use crate::setup;
 use nalgebra::SVector;
-use std::fmt::Write as _;
-use tracker_core::digest::Fnv1a;
 use tracker_core::{
     BirthModel, Config, Gaussian, LookShape, PositionMeasurement, PriorHypothesis, PriorObject, Real, Region, Sensor,
     SsaConfig, SsaTracker, TwoBody, ssa_caps,
@@ -35,31 +33,15 @@ use tracker_core::{
 /// tracker's motion model), it has more birth cells than the embedded capacity, or the tracker rejects its
 /// configuration.
 pub fn run(scenario: &Scenario, scans: Option<usize>) -> Result<String, ScenarioError> {
-    let count = scans.unwrap_or(scenario.scans.len());
-    if count > scenario.scans.len() {
-        return Err(ScenarioError(format!("--scans {count}: the scenario has only {} scans", scenario.scans.len())));
-    }
+    let count = super::excerpt(scans, scenario.scans.len())?;
     let mut tracker = Box::new(tracker::<f32>(scenario)?);
-    let mut text = String::new();
-    let mut running = Fnv1a::new();
-    for (index, scan) in scenario.scans[..count].iter().enumerate() {
+    Ok(super::text(count, |index| {
+        let scan = &scenario.scans[index];
         let measurements: Vec<SVector<f32, 2>> =
             scan.measurements.iter().map(|z| SVector::from([f32::of_f64(z[0]), f32::of_f64(z[1])])).collect();
         let outcome = tracker.step(scan.time, &measurements);
-        let digest = tracker.digest();
-        running.write(&digest.to_le_bytes());
-        // `write!` to a String cannot fail.
-        let _ = match outcome {
-            Ok(report) => writeln!(
-                text,
-                "scan {index} hypotheses {} tracks {} digest {digest:016x}",
-                report.hypotheses, report.tracks
-            ),
-            Err(error) => writeln!(text, "scan {index} error {error} digest {digest:016x}"),
-        };
-    }
-    let _ = write!(text, "final scans {count} digest {:016x}", running.finish());
-    Ok(text)
+        (outcome, tracker.digest())
+    }))
 }
 
 /// The embedded tracker for `scenario` in scalar `T`: [`setup`]'s `f64` configuration and prior, each value

@@ -1,0 +1,167 @@
+//! `host-sim generate`: simulate a preset (planar, 3-D, or a catalogue seen by a sensors file) and write
+//! it as a scenario file.
+
+use super::CliError;
+use crate::error::Error;
+use crate::scenario::from_simulation::{Generated, Preset3d};
+use crate::scenario::v2::Scenario3d;
+use crate::sim::planar::Preset;
+use std::path::PathBuf;
+
+/// The arguments of `generate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The preset.
+    #[arg(value_enum)]
+    preset: AnyPreset,
+    /// Seed of every random choice.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Output scenario file (JSON).
+    #[arg(long)]
+    out: PathBuf,
+    #[command(flatten)]
+    catalogue: CatalogueArgs,
+    /// radar-leo, optical-geo, tiny-3d: fraction of the objects left out of the prior, in [0, 1].
+    #[arg(long, default_value_t = 0.0)]
+    missing_fraction: f64,
+    /// radar-leo: fragments of a break-up during the run (0: none).
+    #[arg(long, default_value_t = 0)]
+    breakup: usize,
+}
+
+/// The inputs of `generate catalogue` (docs/scenario-format.md, "Catalogue files" and "Sensors files").
+#[derive(clap::Args, Clone)]
+pub struct CatalogueArgs {
+    /// generate catalogue: the catalogue (TLE, 3LE, OMM JSON or CSV).
+    #[arg(long)]
+    catalogue: Option<PathBuf>,
+    /// generate catalogue: the sensors file (`rfisst-sensors/1`).
+    #[arg(long)]
+    sensors: Option<PathBuf>,
+    /// generate catalogue: the start, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]` (the scenario's epoch).
+    #[arg(long)]
+    start: Option<String>,
+    /// generate catalogue: the duration in hours.
+    #[arg(long)]
+    duration_hours: Option<f64>,
+}
+
+impl CatalogueArgs {
+    /// The scenario of `generate catalogue` (`command` names the command in messages).
+    pub(super) fn generate(self, command: &str, seed: u64) -> Result<(Scenario3d, Generated), Error> {
+        let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
+        let catalogue_file = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
+        let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
+        let start = self.start.ok_or_else(|| missing("--start"))?;
+        let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+        crate::scenario::from_catalogue::generate(crate::scenario::from_catalogue::Request {
+            catalogue: &catalogue_file,
+            sensors: &sensors,
+            start: &start,
+            duration_hours,
+            seed,
+        })
+    }
+
+    /// The catalogue options are refused with a preset.
+    fn only_for_catalogue(&self) -> Result<(), Error> {
+        let given =
+            self.catalogue.is_some() || self.sensors.is_some() || self.start.is_some() || self.duration_hours.is_some();
+        if given {
+            return Err(Error::input(
+                "--catalogue, --sensors, --start and --duration-hours are for generate catalogue only",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A preset of `generate`: a planar one (version 1 file) or a 3-D one (version 2 file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum AnyPreset {
+    Planar(Preset),
+    Ssa(Preset3d),
+    /// A catalogue seen by a sensor network (`--catalogue`, `--sensors`, `--start`, `--duration-hours`).
+    Catalogue,
+}
+
+impl clap::ValueEnum for AnyPreset {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[
+            AnyPreset::Planar(Preset::FiftyBirthDeath),
+            AnyPreset::Planar(Preset::FifteenCompare),
+            AnyPreset::Planar(Preset::DebrisCrossing),
+            AnyPreset::Planar(Preset::LinearSmall),
+            AnyPreset::Planar(Preset::Crossings),
+            AnyPreset::Ssa(Preset3d::RadarLeo),
+            AnyPreset::Ssa(Preset3d::OpticalGeo),
+            AnyPreset::Ssa(Preset3d::Tiny3d),
+            AnyPreset::Catalogue,
+        ]
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            AnyPreset::Planar(p) => p.to_possible_value(),
+            AnyPreset::Ssa(p) => p.to_possible_value(),
+            AnyPreset::Catalogue => Some(
+                clap::builder::PossibleValue::new("catalogue")
+                    .help("A TLE/OMM catalogue (--catalogue) seen by the sensors of --sensors; truth by SGP4"),
+            ),
+        }
+    }
+}
+
+/// Runs `generate`.
+pub(super) fn execute(args: Args) -> Result<(), CliError> {
+    let Args { preset, seed, out, catalogue, missing_fraction, breakup } = args;
+    let unknowns_refused = || -> Result<(), Error> {
+        if missing_fraction != 0.0 || breakup != 0 {
+            return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo"));
+        }
+        Ok(())
+    };
+    let figures = match preset {
+        AnyPreset::Planar(preset) => {
+            catalogue.only_for_catalogue()?;
+            unknowns_refused()?;
+            let simulation = preset.simulation(seed);
+            let scenario = simulation.run();
+            scenario.save(&out)?;
+            eprintln!(
+                "wrote {} ({} scans, {} measurements, {} objects)",
+                out.display(),
+                scenario.scans.len(),
+                scenario.scans.iter().map(|s| s.measurements.len()).sum::<usize>(),
+                simulation.objects.len()
+            );
+            return Ok(());
+        }
+        AnyPreset::Ssa(preset) => {
+            catalogue.only_for_catalogue()?;
+            let unknowns = crate::sim::truth::Unknowns { missing_fraction, breakup };
+            let simulation = preset.simulate_with(seed, &unknowns)?;
+            let (scenario, figures) = crate::scenario::from_simulation::to_scenario(&simulation)?;
+            scenario.save(&out)?;
+            figures
+        }
+        AnyPreset::Catalogue => {
+            unknowns_refused()?;
+            let (scenario, figures) = catalogue.generate("generate catalogue", seed)?;
+            crate::scenario::from_catalogue::save_whole(&scenario, &out)?;
+            figures
+        }
+    };
+    eprintln!(
+        "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the field \
+         of view dropped)",
+        out.display(),
+        figures.scans,
+        figures.measurements,
+        figures.max_measurements,
+        figures.objects,
+        figures.dropped_outside
+    );
+    Ok(())
+}

@@ -1,0 +1,34 @@
+//! `host-sim run-catalogue`: `generate catalogue` and `run` in one command.
+
+use super::generate::CatalogueArgs;
+use super::{CliError, Common};
+use crate::pipeline::TrackerKind;
+use crate::scenario::AnyScenario;
+use std::path::PathBuf;
+
+/// The arguments of `run-catalogue`.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    catalogue: CatalogueArgs,
+    /// Seed of the simulated detections, noise and clutter.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Tracker to run.
+    #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
+    tracker: TrackerKind,
+    /// Output directory.
+    #[arg(long)]
+    out: PathBuf,
+    #[command(flatten)]
+    common: Common,
+}
+
+/// Runs `run-catalogue`.
+pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
+    let (scenario, _) = args.catalogue.generate("run-catalogue", args.seed)?;
+    let options = args.common.run_options(args.tracker);
+    let scenario = AnyScenario::V2(Box::new(scenario));
+    let (summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
+    super::run::finish(&summary, clean, &args.out, json)
+}

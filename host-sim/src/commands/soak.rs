@@ -1,0 +1,32 @@
+//! `host-sim soak`: a long run with objects entering and leaving ([`crate::pipeline::soak::run_scenario`]).
+
+use super::{CliError, terminal};
+use std::path::PathBuf;
+
+/// The arguments of `soak`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Number of scans, at most 10,000,000.
+    #[arg(long, default_value_t = 100_000)]
+    scans: u64,
+    /// Seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The soak's geometry: the planar SSA scenario with births and deaths, or a 3-D preset observed without end.
+    #[arg(long, value_enum, default_value = "planar")]
+    scenario: crate::pipeline::soak::Scenario,
+    /// Output JSON file.
+    #[arg(long)]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Runs `soak`.
+pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
+    let report = crate::pipeline::soak::run_scenario(args.scenario, args.scans, args.seed, args.quiet)?;
+    crate::pipeline::output::write_json(&args.out, &report)?;
+    terminal::print(json, &report, || terminal::soak(&report, &args.out));
+    Ok(())
+}

@@ -1,0 +1,53 @@
+//! `host-sim digest`: the QEMU firmware's digest, replayed on the host with the embedded (f32) tracker of
+//! the planar world ([`planar`]) or the radar network ([`orbital`]). Both print the same text, written
+//! once here ([`text`]).
+
+pub mod orbital;
+pub mod planar;
+
+use crate::scenario::ScenarioError;
+use std::fmt::Write as _;
+use tracker_core::digest::Fnv1a;
+use tracker_core::{StepError, StepReport};
+
+/// The scans replayed: `scans` (all `total` when `None`).
+///
+/// # Errors
+/// When `scans` exceeds the scenario's.
+pub fn excerpt(scans: Option<usize>, total: usize) -> Result<usize, ScenarioError> {
+    let count = scans.unwrap_or(total);
+    if count > total {
+        return Err(ScenarioError(format!("--scans {count}: the scenario has only {total} scans")));
+    }
+    Ok(count)
+}
+
+/// The digest text of `count` scans, `scan(index)` stepping the tracker and giving the outcome and the
+/// tracker's digest after it: one line per scan and a final line,
+///
+/// ```text
+/// scan 0 hypotheses 1 tracks 45 digest 1c0ffee15bad5eed
+/// scan 1 error scan time is not after the previous scan digest 1c0ffee15bad5eed
+/// final scans 2 digest 0123456789abcdef
+/// ```
+///
+/// where the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
+pub fn text(count: usize, mut scan: impl FnMut(usize) -> (Result<StepReport<f32>, StepError>, u64)) -> String {
+    let mut text = String::new();
+    let mut running = Fnv1a::new();
+    for index in 0..count {
+        let (outcome, digest) = scan(index);
+        running.write(&digest.to_le_bytes());
+        // `write!` to a String cannot fail.
+        let _ = match outcome {
+            Ok(report) => writeln!(
+                text,
+                "scan {index} hypotheses {} tracks {} digest {digest:016x}",
+                report.hypotheses, report.tracks
+            ),
+            Err(error) => writeln!(text, "scan {index} error {error} digest {digest:016x}"),
+        };
+    }
+    let _ = write!(text, "final scans {count} digest {:016x}", running.finish());
+    text
+}

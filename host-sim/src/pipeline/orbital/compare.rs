@@ -1,0 +1,105 @@
+//! `host-sim compare` on a version 2 file: the bounded tracker and the unbounded reference on the same
+//! scans ([`crate::eval::exactness::compare_scans`]).
+
+use super::tracker::{choose_profile, config3d, measurements_in_radians};
+use crate::error::Error;
+use crate::eval::exactness::{CompareFigures, Scan, compare_scans};
+use crate::pipeline::profile::ORBITAL;
+use crate::pipeline::profile::Profile;
+use crate::pipeline::tracker::TrackerKind;
+use crate::scenario::v2::Scenario3d;
+use crate::{with_capacities, with_measurement};
+use nalgebra::SVector;
+use tracker_core::model::Placeable;
+use tracker_core::sensor::ScanGeometry;
+
+/// The scans of `scenario` as the trackers take them (angles in radians).
+fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<Scan<D>> {
+    scenario
+        .scans
+        .iter()
+        .map(|scan| {
+            let zs = measurements_in_radians(scenario.measurement, &scan.measurements)
+                .iter()
+                .map(|z| SVector::<f64, D>::from_column_slice(z))
+                .collect();
+            (ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None }, zs)
+        })
+        .collect()
+}
+
+fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    budget_bytes: usize,
+) -> Result<CompareFigures, Error>
+where
+    X: Placeable<f64, D>,
+{
+    let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
+    compare_scans::<_, _, 6, D, H, N, Z, K, B>(
+        &config,
+        &prior,
+        scenario.prior.time,
+        budget_bytes,
+        &scans3d::<D>(scenario),
+    )
+    .map_err(Error::input)
+}
+
+/// [`compare3d`] for the measurement model `X`.
+fn compare_for<X: Placeable<f64, D>, const D: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Profile,
+    budget_bytes: usize,
+) -> Result<CompareFigures, Error> {
+    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget_bytes))
+}
+
+/// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
+/// reference (memory budget `budget_bytes`) on the same scans, placed per sensor by the core's
+/// `place_scan` in both ([`compare_scans`]).
+///
+/// # Errors
+/// Bad input: the configuration, or the reference tracker as bounded tracker.
+pub fn compare3d(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    budget_bytes: usize,
+) -> Result<CompareFigures, Error> {
+    if kind == TrackerKind::Reference {
+        return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst"));
+    }
+    let profile = choose_profile(scenario, profile);
+    with_measurement!(scenario.measurement, compare_for, (scenario, kind, profile, budget_bytes))
+}
+
+/// The figures `compare` writes for a version 2 file ([`compare3d`] with the profile it chooses).
+///
+/// # Errors
+/// As [`compare3d`].
+pub fn summary(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    reference: crate::pipeline::tracker::ReferenceBudget,
+) -> Result<crate::io::report::Compare3dSummary, Error> {
+    let profile = choose_profile(scenario, profile);
+    let figures = compare3d(scenario, kind, Some(profile), reference.bytes)?;
+    Ok(crate::io::report::Compare3dSummary {
+        tracker: kind.name().to_string(),
+        profile: profile.name().to_string(),
+        sensors: scenario.sensors.len(),
+        scans: figures.scans.len(),
+        map_agreement: figures.map_agreement,
+        min_captured_mass: figures.min_captured_mass,
+        mean_captured_mass: figures.mean_captured_mass,
+        max_weight_l1: figures.max_weight_l1,
+        max_map_weight_difference: figures.max_map_weight_difference,
+        min_core_captured_mass: figures.min_core_captured_mass,
+        core_rejected_scans: figures.scans.iter().filter(|s| s.core_error.is_some()).count(),
+        reference_rejected_scans: figures.scans.iter().filter(|s| s.reference_error.is_some()).count(),
+    })
+}

@@ -1,0 +1,252 @@
+//! The orbital world's core trackers: the sensor network, configuration and prior of a version 2
+//! scenario, and the tracker (f64, two-body + J2) behind one interface whatever its measurement model and
+//! capacities ([`Runner3d`]).
+
+use crate::error::Error;
+use crate::pipeline::profile::ORBITAL;
+use crate::pipeline::profile::Profile;
+use crate::pipeline::settings;
+use crate::pipeline::snapshot::Track6;
+use crate::pipeline::tracker::{StepInfo, TrackerKind};
+use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
+use crate::{with_capacities, with_measurement};
+use nalgebra::SVector;
+use std::collections::HashMap;
+use tracker_core::model::{Placeable, SensorNetwork};
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
+use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, Sensor, StepError, Tracker, TwoBodyJ2, ssa_caps};
+
+/// Sensors a network holds (tracker-core's `ssa_caps::SENSORS`).
+pub const C: usize = ssa_caps::SENSORS;
+
+/// What the run needs of a posterior.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Posterior6 {
+    /// The MAP hypothesis's tracks.
+    pub map: Vec<Track6>,
+    /// Σ w_h N_h.
+    pub expected_cardinality: f64,
+    /// Hypotheses held.
+    pub hypotheses: usize,
+    /// Existence per label.
+    pub existence: HashMap<u32, f64>,
+}
+
+/// A 3-D core tracker behind one interface, whatever its measurement type and capacities.
+pub trait Runner3d: Send {
+    /// Processes one scan of `sensor` at `time` (measurements in the tracker's units: km, rad, km/s).
+    ///
+    /// # Errors
+    /// The core's [`StepError`]; the tracker is unchanged.
+    fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError>;
+    /// The posterior now.
+    fn posterior(&self) -> Posterior6;
+}
+
+type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
+
+struct Core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
+    tracker: Box<Tracker3d<X, D, H, N, Z, K, B>>,
+}
+
+impl<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Runner3d
+    for Core3d<X, D, H, N, Z, K, B>
+where
+    X: Placeable<f64, D> + Send,
+{
+    fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError> {
+        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
+        let report = self.tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs)?;
+        Ok(StepInfo {
+            children: report.children,
+            hypotheses: report.hypotheses,
+            captured_mass: report.captured_mass,
+            budget_reached: false,
+        })
+    }
+
+    fn posterior(&self) -> Posterior6 {
+        let tracks = self.tracker.tracks();
+        let mut existence: HashMap<u32, f64> = HashMap::new();
+        for t in tracks {
+            *existence.entry(t.label.0).or_insert(0.0) += t.existence;
+        }
+        let mut expected_cardinality = 0.0;
+        let mut hypotheses = 0;
+        let mut map = vec![];
+        for (i, h) in self.tracker.hypotheses().enumerate() {
+            expected_cardinality += h.weight() * h.slots().len() as f64;
+            hypotheses += 1;
+            if i == 0 {
+                map = h
+                    .tracks()
+                    .map(|t| Track6 {
+                        label: t.label.0,
+                        mean: t.state.mean.into(),
+                        existence: existence.get(&t.label.0).copied().unwrap_or(0.0),
+                        covariance: core::array::from_fn(|i| core::array::from_fn(|j| t.state.covariance[(i, j)])),
+                    })
+                    .collect();
+            }
+        }
+        Posterior6 { map, expected_cardinality, hypotheses, existence }
+    }
+}
+
+/// The core's sensors of a scenario (radians).
+fn site_sensors<const D: usize>(scenario: &Scenario3d) -> Vec<SiteSensor<f64, D>> {
+    scenario
+        .sensors
+        .iter()
+        .map(|s| {
+            let sigma = s.noise.sigma(scenario.measurement);
+            SiteSensor {
+                platform: Platform::Ground(GroundSite {
+                    latitude: s.site.latitude_deg.to_radians(),
+                    longitude: s.site.longitude_deg.to_radians(),
+                    height: s.site.height_km,
+                }),
+                sigma: core::array::from_fn(|i| sigma.get(i).copied().unwrap_or(f64::NAN)),
+                detection: Sensor {
+                    detection_probability: s.detection_probability,
+                    clutter_rate: s.clutter_rate,
+                    field_of_view: s.field_of_view.region(),
+                },
+            }
+        })
+        .collect()
+}
+
+/// The core's sensor network of a scenario.
+///
+/// # Errors
+/// The core's message when it rejects the network.
+pub fn network<X: Placeable<f64, D>, const D: usize>(
+    scenario: &Scenario3d,
+) -> Result<SensorNetwork<f64, X, D, C>, Error> {
+    SensorNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &site_sensors::<D>(scenario))
+        .map_err(|e| Error::input(format!("sensors: {e}")))
+}
+
+/// The core configuration and the prior of `scenario` for the tracker `kind` with `B` birth cells.
+///
+/// # Errors
+/// Bad input: a network the core refuses, more birth cells than `B`, no sensor.
+#[allow(clippy::type_complexity)]
+pub fn config3d<X, const D: usize, const B: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+) -> Result<(Config<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, B>, Vec<(f64, Vec<PriorObject<f64, 6>>)>), Error>
+where
+    X: Placeable<f64, D>,
+{
+    let network = network::<X, D>(scenario)?;
+    let cells =
+        settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "this tracker's capacity")
+            .map_err(Error::input)?;
+    let spec = &scenario.tracker;
+    let (selection, store_overflow, numerical_failure) = settings::policies(spec);
+    let first = network.sensors().first().map(|s| s.detection);
+    let config = Config {
+        motion: scenario.motion_model(),
+        measurement: network,
+        // Ignored: every sensor of the network has its own detection model.
+        sensor: first.ok_or_else(|| Error::input("sensors: needs at least one sensor"))?,
+        birth: BirthModel {
+            events: scenario.birth.events.core(),
+            measured: scenario.birth.measured.as_ref().map(|m| m.core()),
+            probability: scenario.birth.probability,
+            cells,
+            detection: settings::birth_detection(scenario.birth.detection),
+        },
+        death_probability: scenario.death_probability,
+        gate: spec.gate,
+        children: settings::children(kind, spec),
+        selection,
+        store_overflow,
+        numerical_failure,
+        seed: spec.seed,
+    };
+    let prior = settings::prior(
+        scenario
+            .prior
+            .hypotheses
+            .iter()
+            .map(|h| (h.weight, h.objects.iter().map(|o| (o.label, &o.mean, &o.covariance)))),
+    );
+    Ok((config, prior))
+}
+
+fn core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+) -> Result<Box<dyn Runner3d>, Error>
+where
+    X: Placeable<f64, D> + Send + 'static,
+{
+    let (config, objects) = config3d::<X, D, B>(scenario, kind)?;
+    let prior: Vec<PriorHypothesis<'_, f64, 6>> =
+        objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
+    let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, scenario.prior.time)
+        .map_err(|e| Error::input(format!("tracker configuration: {e}")))?;
+    Ok(Box::new(Core3d { tracker: Box::new(tracker) }))
+}
+
+/// The profile a run uses: the one asked for, or else `embedded` when the scenario fits it (prior objects
+/// below N, measurements within Z, birth cells within B) and `host` otherwise.
+pub fn choose_profile(scenario: &Scenario3d, asked: Option<Profile>) -> Profile {
+    if let Some(profile) = asked {
+        return profile;
+    }
+    let (_, n, z, _, b) = ORBITAL.embedded.tuple();
+    if scenario.max_prior_objects() < n
+        && scenario.max_measurements() <= z
+        && scenario.birth.cells.len() <= b
+        && birth_components_per_measurement(scenario) <= b
+    {
+        Profile::Embedded
+    } else {
+        Profile::Host
+    }
+}
+
+/// The most birth components one measurement of `scenario` can give (0 without measured births,
+/// [`Measurement3dSpec::birth_components`]). A measurement whose components do not fit the pool gives no
+/// birth.
+pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
+    let Some(measured) = &scenario.birth.measured else { return 0 };
+    scenario.measurement.birth_components(&measured.core().region)
+}
+
+/// Builds the 3-D tracker `kind` for `scenario`.
+///
+/// # Errors
+/// Bad input: the reference tracker (not yet available on version 2 files), a scenario that does not fit
+/// the profile, or a configuration the core rejects.
+pub fn build3d(kind: TrackerKind, profile: Profile, scenario: &Scenario3d) -> Result<Box<dyn Runner3d>, Error> {
+    if kind == TrackerKind::Reference {
+        return Err(Error::input("--tracker reference: not yet supported on version 2 (3-D) scenario files"));
+    }
+    with_measurement!(scenario.measurement, build_for, (kind, profile, scenario))
+}
+
+/// [`build3d`] for the measurement model `X`.
+fn build_for<X, const D: usize>(
+    kind: TrackerKind,
+    profile: Profile,
+    scenario: &Scenario3d,
+) -> Result<Box<dyn Runner3d>, Error>
+where
+    X: Placeable<f64, D> + Send + 'static,
+{
+    with_capacities!(profile, ORBITAL, core3d, [X, D], (scenario, kind))
+}
+
+/// The measurements of a scan in the tracker's units: angles from degrees to radians.
+pub fn measurements_in_radians(kind: Measurement3dSpec, measurements: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    measurements
+        .iter()
+        .map(|z| z.iter().enumerate().map(|(i, &v)| if kind.is_angle(i) { v.to_radians() } else { v }).collect())
+        .collect()
+}

@@ -1,0 +1,62 @@
+//! Which tracker runs, and what one step of any tracker reports.
+
+/// Which tracker to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TrackerKind {
+    /// The unbounded exhaustive reference (every child of every parent).
+    Reference,
+    /// tracker-core with exhaustive children, capped at H∞ hypotheses.
+    Homht,
+    /// tracker-core with R-FISST's sampled children (Metropolis, by clusters), capped at H∞.
+    Rfisst,
+}
+
+impl TrackerKind {
+    /// The name written to outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            TrackerKind::Reference => "reference",
+            TrackerKind::Homht => "homht",
+            TrackerKind::Rfisst => "rfisst",
+        }
+    }
+}
+
+/// What one scan did, in tracker-independent terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepInfo {
+    /// Children with non-zero weight generated.
+    pub children: u64,
+    /// Hypotheses kept.
+    pub hypotheses: usize,
+    /// Fraction of the children's weight kept.
+    pub captured_mass: f64,
+    /// Whether the reference's memory budget forced pruning.
+    pub budget_reached: bool,
+}
+
+/// A scan the tracker rejected, with the tracker's one-line message; the tracker is unchanged.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StepRejected(pub String);
+
+impl std::fmt::Display for StepRejected {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// The unbounded reference's budgets: memory (beyond it the lowest-weight children are dropped) and
+/// children enumerated per scan (beyond it the scan fails: the reference is broken there).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReferenceBudget {
+    /// Bytes of everything that grows with the hypotheses, children and measurements.
+    pub bytes: usize,
+    /// Children enumerated per scan.
+    pub children: u64,
+}
+
+impl Default for ReferenceBudget {
+    fn default() -> Self {
+        Self { bytes: 4 << 30, children: 1_000_000_000 }
+    }
+}
