@@ -9,6 +9,7 @@
 //! (no leap seconds: a second of 60 is refused); dates from year 1000 to 9999.
 
 use crate::scenario::v2::Scenario3d;
+use crate::sim::time::CalendarTime;
 use std::cmp::Ordering;
 use std::fmt;
 
@@ -87,37 +88,13 @@ impl Instant {
     /// A short description of what is wrong.
     pub fn parse(text: &str) -> Result<Self, String> {
         let bad = || format!("\"{text}\" is not a time YYYY-MM-DDThh:mm:ss[.fff] (UTC)");
-        let body = text.strip_suffix('Z').unwrap_or(text);
-        let b = body.as_bytes();
-        if b.len() < 19
-            || !b[..19].is_ascii()
-            || b[4] != b'-'
-            || b[7] != b'-'
-            || b[10] != b'T'
-            || b[13] != b':'
-            || b[16] != b':'
-        {
-            return Err(bad());
+        let time = CalendarTime::parse(text).ok_or_else(bad)?;
+        if time.fraction.len() > MAX_FRACTION_DIGITS {
+            return Err(format!("\"{text}\": more than {MAX_FRACTION_DIGITS} digits of a second"));
         }
-        let number = |range: std::ops::Range<usize>| -> Result<i64, String> {
-            let s = &body[range];
-            if s.bytes().all(|c| c.is_ascii_digit()) { s.parse().map_err(|_| bad()) } else { Err(bad()) }
-        };
-        let (year, month, day) = (number(0..4)?, number(5..7)?, number(8..10)?);
-        let (hour, minute, second) = (number(11..13)?, number(14..16)?, number(17..19)?);
-        let fraction = match &body[19..] {
-            "" => "",
-            rest => {
-                let digits = rest.strip_prefix('.').ok_or_else(bad)?;
-                if digits.is_empty() || !digits.bytes().all(|c| c.is_ascii_digit()) {
-                    return Err(bad());
-                }
-                if digits.len() > MAX_FRACTION_DIGITS {
-                    return Err(format!("\"{text}\": more than {MAX_FRACTION_DIGITS} digits of a second"));
-                }
-                digits
-            }
-        };
+        let (year, month, day) = (i64::from(time.year), i64::from(time.month), i64::from(time.day));
+        let (hour, minute, second) = (i64::from(time.hour), i64::from(time.minute), i64::from(time.second));
+        let fraction = time.fraction;
         if !(1000..=9999).contains(&year) || !(1..=12).contains(&month) || day < 1 || day > days_in_month(year, month) {
             return Err(format!("\"{text}\": no such date (years 1000 to 9999)"));
         }

@@ -39,6 +39,32 @@ fn julian_date_and_gmst_known_values() {
     assert!(parse_iso8601("2024-02-29T23:59:59.5Z").is_ok());
 }
 
+/// The one calendar reader: fixed-width fields, a fraction only with digits; no range checks of its own.
+#[test]
+fn calendar_time_reads_the_fields_and_nothing_more() {
+    use super::time::CalendarTime;
+    let t = CalendarTime::parse("2026-03-20T01:02:03.250Z").expect("valid");
+    assert_eq!((t.year, t.month, t.day, t.hour, t.minute, t.second), (2026, 3, 20, 1, 2, 3));
+    assert_eq!((t.fraction, t.seconds_text), ("250", "03.250"));
+    assert!(t.is_valid());
+    let t = CalendarTime::parse("2026-13-40T25:61:61").expect("the fields are read, the ranges are the caller's");
+    assert!(!t.is_valid());
+    assert!(!CalendarTime::parse("2023-02-29T00:00:00").expect("read").is_valid());
+    assert!(CalendarTime::parse("2000-02-29T00:00:00").expect("read").is_valid());
+    for bad in [
+        "2026-03-20T1:02:03",
+        "2026-03-20T01:02:03.",
+        "2026-03-20T01:02:03.5x",
+        "2026-03-20 01:02:03",
+        "2026-3-20T01:02:03",
+        "+026-03-20T01:02:03",
+        "2026-03-20T01:02:0é",
+        "",
+    ] {
+        assert_eq!(CalendarTime::parse(bad), None, "{bad}");
+    }
+}
+
 #[test]
 fn site_frames() {
     // lat 0 lon 0 at θ = 0: E = y, N = z, U = x; position on the x axis at the equatorial radius.

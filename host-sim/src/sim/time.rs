@@ -16,45 +16,88 @@ pub fn julian_date(year: i32, month: u32, day: u32, hour: u32, minute: u32, seco
     day_number + (hour as f64 * 3600.0 + minute as f64 * 60.0 + second) / 86_400.0
 }
 
-/// Parses `YYYY-MM-DDTHH:MM:SS[.fff][Z]` (UTC) into a Julian date.
+/// A calendar date and time of day as written `YYYY-MM-DDThh:mm:ss[.f…][Z]` (ISO 8601, the CCSDS calendar
+/// form): the one reader of UTC times in host-sim. It reads the fields and nothing more; each format checks the
+/// ranges it allows ([`CalendarTime::is_valid`], its own years and fraction digits).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CalendarTime<'a> {
+    /// Year, four digits.
+    pub year: i32,
+    /// Month, two digits (not yet checked to be 1–12).
+    pub month: u32,
+    /// Day of the month, two digits (not yet checked against the month).
+    pub day: u32,
+    /// Hour, two digits.
+    pub hour: u32,
+    /// Minute, two digits.
+    pub minute: u32,
+    /// Whole seconds, two digits.
+    pub second: u32,
+    /// The digits after the decimal point (empty when there is none).
+    pub fraction: &'a str,
+    /// The seconds as written, `ss[.f…]`.
+    pub seconds_text: &'a str,
+}
+
+impl<'a> CalendarTime<'a> {
+    /// Reads `YYYY-MM-DDThh:mm:ss[.f…][Z]`: fixed-width digit fields, a fraction of at least one digit when
+    /// the point is written. `None` for any other form.
+    pub fn parse(text: &'a str) -> Option<Self> {
+        let body = text.strip_suffix('Z').unwrap_or(text);
+        let b = body.as_bytes();
+        if b.len() < 19 || b[4] != b'-' || b[7] != b'-' || b[10] != b'T' || b[13] != b':' || b[16] != b':' {
+            return None;
+        }
+        let number = |from: usize, to: usize| -> Option<u32> {
+            let field = body.get(from..to)?;
+            if field.bytes().all(|c| c.is_ascii_digit()) { field.parse().ok() } else { None }
+        };
+        let fraction = match body.get(19..)? {
+            "" => "",
+            rest => {
+                let digits = rest.strip_prefix('.')?;
+                if digits.is_empty() || !digits.bytes().all(|c| c.is_ascii_digit()) {
+                    return None;
+                }
+                digits
+            }
+        };
+        Some(CalendarTime {
+            year: i32::try_from(number(0, 4)?).ok()?,
+            month: number(5, 7)?,
+            day: number(8, 10)?,
+            hour: number(11, 13)?,
+            minute: number(14, 16)?,
+            second: number(17, 19)?,
+            fraction,
+            seconds_text: body.get(17..)?,
+        })
+    }
+
+    /// Whether the date exists in the Gregorian calendar and the time of day is one (no leap second).
+    pub fn is_valid(&self) -> bool {
+        let leap = (self.year % 4 == 0 && self.year % 100 != 0) || self.year % 400 == 0;
+        let month_days = [31, if leap { 29 } else { 28 }, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31];
+        (1..=12).contains(&self.month)
+            && self.day >= 1
+            && self.day <= month_days[(self.month.max(1) - 1) as usize]
+            && self.hour < 24
+            && self.minute < 60
+            && self.second < 60
+    }
+}
+
+/// Parses `YYYY-MM-DDTHH:MM:SS[.fff][Z]` (UTC, [`CalendarTime`]) into a Julian date.
 ///
 /// # Errors
 /// [`SsaError::BadEpoch`] for any other form, a field out of range, or a year outside 1901–2099.
 pub fn parse_iso8601(text: &str) -> Result<f64, SsaError> {
-    let text = text.strip_suffix('Z').unwrap_or(text);
-    let (date, time) = text.split_once('T').ok_or(SsaError::BadEpoch)?;
-    let date: Vec<&str> = date.split('-').collect();
-    let time: Vec<&str> = time.split(':').collect();
-    if date.len() != 3 || time.len() != 3 || date[0].len() != 4 || date[1].len() != 2 || date[2].len() != 2 {
+    let time = CalendarTime::parse(text).ok_or(SsaError::BadEpoch)?;
+    if !(1901..=2099).contains(&time.year) || !time.is_valid() {
         return Err(SsaError::BadEpoch);
     }
-    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    if !date.iter().all(|s| digits(s)) || !digits(time[0]) || !digits(time[1]) {
-        return Err(SsaError::BadEpoch);
-    }
-    let second_ok = time[2].bytes().all(|b| b.is_ascii_digit() || b == b'.') && time[2].len() >= 2;
-    if !second_ok {
-        return Err(SsaError::BadEpoch);
-    }
-    let year: i32 = date[0].parse().map_err(|_| SsaError::BadEpoch)?;
-    let month: u32 = date[1].parse().map_err(|_| SsaError::BadEpoch)?;
-    let day: u32 = date[2].parse().map_err(|_| SsaError::BadEpoch)?;
-    let hour: u32 = time[0].parse().map_err(|_| SsaError::BadEpoch)?;
-    let minute: u32 = time[1].parse().map_err(|_| SsaError::BadEpoch)?;
-    let second: f64 = time[2].parse().map_err(|_| SsaError::BadEpoch)?;
-    let leap = year % 4 == 0; // exact for 1901–2099
-    let month_days = [31, if leap { 29 } else { 28 }, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31];
-    let valid = (1901..=2099).contains(&year)
-        && (1..=12).contains(&month)
-        && day >= 1
-        && day <= month_days[(month.max(1) - 1) as usize]
-        && hour < 24
-        && minute < 60
-        && (0.0..60.0).contains(&second);
-    if !valid {
-        return Err(SsaError::BadEpoch);
-    }
-    Ok(julian_date(year, month, day, hour, minute, second))
+    let second: f64 = time.seconds_text.parse().map_err(|_| SsaError::BadEpoch)?;
+    Ok(julian_date(time.year, time.month, time.day, time.hour, time.minute, second))
 }
 
 /// Greenwich mean sidereal time (rad, in [0, 2π)) at a UT1 Julian date: the IAU-82 polynomial in

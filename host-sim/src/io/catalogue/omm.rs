@@ -3,6 +3,7 @@
 use super::entry::{CatalogueEntry, CatalogueError};
 use super::files::err;
 use super::tle::unsigned;
+use crate::sim::time::CalendarTime;
 use sgp4::chrono::{NaiveDate, NaiveDateTime};
 
 /// One OMM value before conversion.
@@ -15,30 +16,15 @@ enum Raw<'a> {
 
 /// An OMM ISO-8601 epoch `YYYY-MM-DDTHH:MM:SS[.fraction of up to 9 digits][Z]`, year in 1900-2099.
 pub fn parse_omm_epoch(text: &str) -> Option<NaiveDateTime> {
-    let text = text.strip_suffix('Z').unwrap_or(text);
-    let (date, time) = text.split_once('T')?;
-    let digits = |s: &str, n: usize| s.len() == n && s.bytes().all(|b| b.is_ascii_digit());
-    let d: Vec<&str> = date.split('-').collect();
-    let (hms, fraction) = time.split_once('.').unwrap_or((time, ""));
-    let t: Vec<&str> = hms.split(':').collect();
-    if d.len() != 3 || t.len() != 3 || !digits(d[0], 4) || !digits(d[1], 2) || !digits(d[2], 2) {
+    let time = CalendarTime::parse(text)?;
+    if time.fraction.len() > 9 || !(1900..=2099).contains(&time.year) {
         return None;
     }
-    if !t.iter().all(|s| digits(s, 2)) || fraction.len() > 9 || !fraction.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    if time.contains('.') && fraction.is_empty() {
-        return None;
-    }
-    let year: i32 = d[0].parse().ok()?;
-    if !(1900..=2099).contains(&year) {
-        return None;
-    }
-    let nanos: u32 = if fraction.is_empty() { 0 } else { format!("{fraction:0<9}").parse().ok()? };
-    NaiveDate::from_ymd_opt(year, d[1].parse().ok()?, d[2].parse().ok()?)?.and_hms_nano_opt(
-        t[0].parse().ok()?,
-        t[1].parse().ok()?,
-        t[2].parse().ok()?,
+    let nanos: u32 = if time.fraction.is_empty() { 0 } else { format!("{:0<9}", time.fraction).parse().ok()? };
+    NaiveDate::from_ymd_opt(time.year, time.month, time.day)?.and_hms_nano_opt(
+        time.hour,
+        time.minute,
+        time.second,
         nanos,
     )
 }
