@@ -9,9 +9,10 @@
 //!   so that one input stays fast).
 #![no_main]
 
-use host_sim::runner::{self, Profile, TrackerKind};
-use host_sim::scenario::{MotionSpec, Scenario};
+use host_sim::pipeline::planar::runner;
 use host_sim::pipeline::planar::setup;
+use host_sim::pipeline::{Profile, ReferenceBudget, TrackerKind};
+use host_sim::scenario::{MotionSpec, Scenario};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -38,8 +39,7 @@ fuzz_target!(|data: &[u8]| {
     // allows: run it on a thread with the CLI's stack size.
     let worker = std::thread::Builder::new().stack_size(512 << 20).spawn(move || {
         for kind in [TrackerKind::Homht, TrackerKind::Rfisst] {
-            let Ok(mut tracker) = runner::build(kind, Profile::Embedded, &scenario, runner::ReferenceBudget::default())
-            else {
+            let Ok(mut tracker) = runner::build(kind, Profile::Embedded, &scenario, ReferenceBudget::default()) else {
                 continue;
             };
             for scan in scenario.scans.iter().take(8) {

@@ -16,9 +16,11 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use nalgebra::{SMatrix, SVector};
-use tracker_core::model::{EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, Measure, MotionModel, ProcessNoise, SensorNetwork};
-use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
+use tracker_core::model::{
+    EARTH_J2, EARTH_MIN_RADIUS, EARTH_MU, EARTH_RADIUS, Measure, MotionModel, ProcessNoise, SensorNetwork,
+};
 use tracker_core::sampler::SamplerConfig;
+use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, LookShape, PriorHypothesis, PriorObject,
     RadarRangeAzEl, Real, Region, Sensor, TrackLabel, Tracker, TwoBodyJ2,

@@ -8,8 +8,8 @@
 //!   for bit.
 #![no_main]
 
-use host_sim::scenario::v2::Scenario3d;
 use host_sim::io::tdm;
+use host_sim::scenario::v2::Scenario3d;
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
 

@@ -313,7 +313,7 @@ mod tests {
         2.0 * std::f64::consts::PI * (a * a * a / mu).sqrt()
     }
 
-    // Measured (`cargo test -p host-sim --lib orbit -- --nocapture`), 5 orbits + 1234.5 s: LEO e = 0.01:
+    // Measured (`cargo test -p host-sim --lib sim::orbit -- --nocapture`), 5 orbits + 1234.5 s: LEO e = 0.01:
     // 3.0e-8 km; a = 10 000 km, e = 0.3: 1.4e-7 km; GEO: 1.7e-7 km.
     #[test]
     fn orbit_two_body_matches_kepler_over_five_orbits() {
@@ -385,7 +385,7 @@ mod tests {
                 eprintln!("LEO, {name}, RK4 {step} s: {:.3e} km", core_error(leo, dt, step));
             }
         }
-        // Measured (`cargo test -p host-sim --lib orbit -- --nocapture`): one orbit (5828 s) 2.4e-4 km with
+        // Measured (`cargo test -p host-sim --lib sim::orbit -- --nocapture`): one orbit (5828 s) 2.4e-4 km with
         // 20 s steps, 1.4e-5 km with 10 s; 6 h 1.25e-3 km with 20 s, 6.7e-5 km with 10 s.
         let one = core_error(leo, one_orbit, 20.0);
         let six = core_error(leo, six_hours, 20.0);
