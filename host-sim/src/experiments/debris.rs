@@ -99,23 +99,8 @@ pub(crate) fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures
     let mean_rfisst_ms = mean(&rfisst_ms);
     let rate = exhaustive_children_per_second(seed);
     let budget = ((mean_rfisst_ms / 1e3) * rate).max(1.0) as u64;
-    let mut homht_scenario = scenario.clone();
-    homht_scenario.tracker.max_children_per_scan = budget;
-    let mut homht = build(TrackerKind::Homht, profile, &homht_scenario, ReferenceBudget::default()).map_err(err)?;
-    let mut homht_series = vec![];
-    let mut homht_rejected = 0usize;
-    let mut homht_ms = vec![];
-    for (k, scan) in scenario.scans.iter().enumerate() {
-        let zs = setup::measurements(scan);
-        let start = Instant::now();
-        if homht.step(scan.time, &zs).is_err() {
-            homht_rejected += 1; // unchanged: it coasts on its prior
-        }
-        homht_ms.push(start.elapsed().as_secs_f64() * 1e3);
-        let s = homht.snapshot();
-        homht_series.push((score(&scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
-        bar.inc(1);
-    }
+    let HomhtRun { series: homht_series, rejected: homht_rejected, ms: homht_ms } =
+        debris_homht(&scenario, profile, budget, &bar)?;
     bar.finish_and_clear();
     let true_count: Vec<f64> =
         (0..scenario.scans.len()).map(|k| truth_positions(&scenario, k).map_or(0.0, |t| t.len() as f64)).collect();
@@ -156,9 +141,53 @@ pub(crate) fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures
         })
         .collect();
     write_json(&dir.join("debris.json"), &DebrisReport { figures: figures.clone(), per_scan })?;
-    let over_time = |f: &dyn Fn(usize) -> Option<f64>| {
-        (0..scenario.scans.len()).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>()
-    };
+    plot_debris(dir, scenario.scans.len(), &rfisst_series, &homht_series, &true_count)?;
+    Ok(figures)
+}
+
+/// HOMHT through the debris crossing, per scan: (GOSPA, expected cardinality) after the step, and ms.
+struct HomhtRun {
+    series: Vec<(Option<f64>, f64)>,
+    /// Scans the tracker rejected; it coasts on its prior through them.
+    rejected: usize,
+    ms: Vec<f64>,
+}
+
+/// Runs HOMHT through the debris crossing with `budget` children per scan.
+fn debris_homht(
+    scenario: &crate::scenario::Scenario,
+    profile: Profile,
+    budget: u64,
+    bar: &indicatif::ProgressBar,
+) -> Result<HomhtRun, Error> {
+    let mut homht_scenario = scenario.clone();
+    homht_scenario.tracker.max_children_per_scan = budget;
+    let mut homht = build(TrackerKind::Homht, profile, &homht_scenario, ReferenceBudget::default()).map_err(err)?;
+    let mut run = HomhtRun { series: vec![], rejected: 0, ms: vec![] };
+    for (k, scan) in scenario.scans.iter().enumerate() {
+        let zs = setup::measurements(scan);
+        let start = Instant::now();
+        if homht.step(scan.time, &zs).is_err() {
+            run.rejected += 1; // unchanged: it coasts on its prior
+        }
+        run.ms.push(start.elapsed().as_secs_f64() * 1e3);
+        let s = homht.snapshot();
+        run.series.push((score(scenario, k, &s).map(|g| g.gospa), s.expected_cardinality()));
+        bar.inc(1);
+    }
+    Ok(run)
+}
+
+/// Plots GOSPA and expected cardinality per scan for both trackers (and the true cardinality).
+fn plot_debris(
+    dir: &Path,
+    scans: usize,
+    rfisst_series: &[(Option<f64>, f64)],
+    homht_series: &[(Option<f64>, f64)],
+    true_count: &[f64],
+) -> Result<(), Error> {
+    let over_time =
+        |f: &dyn Fn(usize) -> Option<f64>| (0..scans).filter_map(|k| f(k).map(|v| (k as f64, v))).collect::<Vec<_>>();
     plots::plot_series(
         &dir.join("debris_gospa"),
         "Debris crossing: GOSPA of the MAP estimates",
@@ -188,7 +217,7 @@ pub(crate) fn debris(dir: &Path, seed: u64, quiet: bool) -> Result<DebrisFigures
             Series { name: "truth".into(), points: over_time(&|k| Some(true_count[k])), markers: false },
         ],
     )?;
-    Ok(figures)
+    Ok(())
 }
 
 /// Children per second of exhaustive enumeration into the tracker's top-H sink, measured on a scaling

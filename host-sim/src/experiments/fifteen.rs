@@ -11,6 +11,7 @@ use crate::pipeline::snapshot::Snapshot;
 use crate::pipeline::{Profile, ReferenceBudget, TrackerKind};
 use crate::plots::{self, Scale, Series};
 use crate::sim::planar;
+use nalgebra::SVector;
 use std::path::Path;
 use std::time::Instant;
 
@@ -45,14 +46,17 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
     let mut homht = build(TrackerKind::Homht, profile, &scenario, ReferenceBudget::default()).map_err(err)?;
     let mut homht_rejected = 0usize;
     // The reference runs while a scan needs at most 2·10⁷ children and its hypotheses fit 1 GiB.
-    let mut reference: Option<Box<dyn Runner>> = Some(
-        build(TrackerKind::Reference, profile, &scenario, ReferenceBudget { bytes: 1 << 30, children: 20_000_000 })
-            .map_err(err)?,
-    );
-    let mut reference_scans = 0usize;
-    let mut reference_budget_reached = false;
+    let mut reference = ReferenceRun {
+        runner: Some(
+            build(TrackerKind::Reference, profile, &scenario, ReferenceBudget { bytes: 1 << 30, children: 20_000_000 })
+                .map_err(err)?,
+        ),
+        scans: 0,
+        budget_reached: false,
+        agreements: 0,
+    };
     let bar = crate::pipeline::output::progress(scenario.scans.len(), quiet, "fifteen");
-    let (mut agree_homht, mut agree_reference) = (0usize, 0usize);
+    let mut agree_homht = 0usize;
     let mut max_difference: f64 = 0.0;
     let mut per_scan = vec![];
     let mut times = [vec![], vec![], vec![]];
@@ -74,27 +78,7 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
         let agrees = map_agrees(&a, &b);
         agree_homht += usize::from(agrees);
         max_difference = max_difference.max(map_estimate_difference(&a, &b));
-        let mut reference_agrees = None;
-        if let Some(runner) = reference.as_mut() {
-            let start = Instant::now();
-            let outcome = runner.step(scan.time, &zs);
-            let seconds = start.elapsed().as_secs_f64();
-            times[2].push(seconds * 1e3);
-            match outcome {
-                Ok(info) => {
-                    let r = runner.snapshot();
-                    let agrees = map_agrees(&a, &r);
-                    agree_reference += usize::from(agrees);
-                    reference_agrees = Some(agrees);
-                    reference_scans += 1;
-                    if info.budget_reached || seconds > 10.0 {
-                        reference_budget_reached |= info.budget_reached;
-                        reference = None;
-                    }
-                }
-                Err(_) => reference = None,
-            }
-        }
+        let reference_agrees = reference.step(scan.time, &zs, &a, &mut times[2]);
         for (slot, snapshot) in [&a, &b].iter().enumerate() {
             if let Some(s) = score(&scenario, k, snapshot) {
                 gospas[slot].push(s.gospa);
@@ -119,9 +103,9 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
         scans: scenario.scans.len(),
         map_agreement: agree_homht as f64 / n,
         max_map_estimate_difference: max_difference,
-        reference_scans,
-        reference_budget_reached,
-        map_agreement_reference: (reference_scans > 0).then(|| agree_reference as f64 / reference_scans as f64),
+        reference_scans: reference.scans,
+        reference_budget_reached: reference.budget_reached,
+        map_agreement_reference: (reference.scans > 0).then(|| reference.agreements as f64 / reference.scans as f64),
         rfisst: FifteenTracker {
             mean_gospa: mean(&gospas[0]),
             mean_ms_per_scan: mean(&times[0]),
@@ -137,6 +121,52 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
         reference: Timing { mean_ms_per_scan: mean(&times[2]), max_ms_per_scan: max(&times[2]) },
     };
     write_json(&dir.join("fifteen.json"), &FifteenReport { figures: figures.clone(), per_scan })?;
+    plot_fifteen(dir, &gospas, &times)?;
+    Ok(figures)
+}
+
+/// The unbounded reference through the run: it stops after a scan that reaches its budget or takes over
+/// 10 s, or that it rejects.
+struct ReferenceRun {
+    /// `None` once it has stopped.
+    runner: Option<Box<dyn Runner>>,
+    /// Scans it completed.
+    scans: usize,
+    budget_reached: bool,
+    /// Completed scans whose MAP hypothesis agreed with R-FISST's.
+    agreements: usize,
+}
+
+impl ReferenceRun {
+    /// Steps the reference while it runs, recording its ms in `ms`; whether its MAP agrees with `rfisst`'s.
+    fn step(&mut self, time: f64, zs: &[SVector<f64, 2>], rfisst: &Snapshot, ms: &mut Vec<f64>) -> Option<bool> {
+        let runner = self.runner.as_mut()?;
+        let start = Instant::now();
+        let outcome = runner.step(time, zs);
+        let seconds = start.elapsed().as_secs_f64();
+        ms.push(seconds * 1e3);
+        match outcome {
+            Ok(info) => {
+                let r = runner.snapshot();
+                let agrees = map_agrees(rfisst, &r);
+                self.agreements += usize::from(agrees);
+                self.scans += 1;
+                if info.budget_reached || seconds > 10.0 {
+                    self.budget_reached |= info.budget_reached;
+                    self.runner = None;
+                }
+                Some(agrees)
+            }
+            Err(_) => {
+                self.runner = None;
+                None
+            }
+        }
+    }
+}
+
+/// Plots GOSPA per scan (R-FISST, HOMHT) and time per scan (R-FISST, HOMHT, reference).
+fn plot_fifteen(dir: &Path, gospas: &[Vec<f64>; 2], times: &[Vec<f64>; 3]) -> Result<(), Error> {
     let points = |v: &[f64]| v.iter().enumerate().map(|(k, &y)| (k as f64, y)).collect::<Vec<_>>();
     plots::plot_series(
         &dir.join("fifteen_gospa"),
@@ -165,5 +195,5 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
             Series { name: "unbounded reference (until its budget)".into(), points: points(&times[2]), markers: true },
         ],
     )?;
-    Ok(figures)
+    Ok(())
 }

@@ -109,8 +109,62 @@ pub(crate) fn scaling_matrix(
 
 /// Paper 003 §V-B, Fig. 15: children generation time vs the number of possible children.
 pub(crate) fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
-    // Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
-    const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
+    let rows = measure_sizes(seed)?;
+    // CSV, JSON and the log-log plot.
+    write_csv(dir, &rows)?;
+    let (crossover, pure_crossover) = crossovers(&rows);
+    let largest = rows.iter().map(|r| r.0).max().unwrap_or(0);
+    let found_all = rows.iter().all(|r| r.5);
+    let sampler = SamplerConfig::default();
+    let figures = ScalingFigures {
+        experiment: "scaling".into(),
+        seed,
+        crossover_children: crossover.map(|c| c as f64),
+        pure_sampling_crossover_children: pure_crossover.map(|c| c as f64),
+        speedup_at_1e8: speedup_at(&rows, 1e8),
+        largest_children: largest as f64,
+        exhaustive_budget_seconds: EXHAUSTIVE_BUDGET_SECONDS,
+        exhaustive_broken_beyond: rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
+        rfisst_found_truth_at_every_size: found_all,
+        rfisst_sizes_truth_missed: rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect(),
+        rfisst_100k_found_truth_at_every_size: rows.iter().all(|r| r.7),
+        rfisst_100k_max_seconds: rows.iter().map(|r| r.6).fold(0.0, f64::max),
+        rfisst_max_seconds: rows.iter().map(|r| r.4).fold(0.0, f64::max),
+        sampler: ScalingSampler {
+            burn_in: sampler.burn_in,
+            steps: sampler.steps,
+            exhaustive_limit: sampler.exhaustive_limit,
+            exact_start: sampler.exact_start,
+        },
+    };
+    let sizes = rows
+        .iter()
+        .map(|r| ScalingSize {
+            children: r.0 as f64,
+            objects: r.1,
+            measurements: r.2,
+            exhaustive_seconds: r.3,
+            rfisst_seconds: r.4,
+            rfisst_found_truth: r.5,
+            rfisst_100k_seconds: r.6,
+            rfisst_100k_found_truth: r.7,
+            pure_sampling_seconds: r.8,
+        })
+        .collect();
+    write_json(&dir.join("scaling.json"), &ScalingReport { figures: figures.clone(), sizes })?;
+    plot_scaling(dir, &rows)?;
+    Ok(figures)
+}
+
+/// Exhaustive enumeration is "broken" beyond this: a stated time budget per parent.
+const EXHAUSTIVE_BUDGET_SECONDS: f64 = 60.0;
+
+/// One measured size: (children, objects, measurements, exhaustive seconds (`None` once broken), R-FISST
+/// seconds, R-FISST found the truth, 100k-step seconds, 100k-step found the truth, pure sampling seconds).
+type Row = (u128, usize, usize, Option<f64>, f64, bool, f64, bool, f64);
+
+/// Times every generator at every size of `scaling_shapes`, smallest first.
+fn measure_sizes(seed: u64) -> Result<Vec<Row>, Error> {
     let mut rows = vec![];
     let mut exhaustive_broken = false;
     let mut last_rate = 0.0f64; // seconds per child, to predict the next size
@@ -156,18 +210,27 @@ pub(crate) fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
             pure_seconds,
         ));
     }
-    // CSV, JSON and the log-log plot.
+    Ok(rows)
+}
+
+/// Writes the rows to `scaling.csv`.
+fn write_csv(dir: &Path, rows: &[Row]) -> Result<(), Error> {
     let mut csv = String::from(
         "children,objects,measurements,exhaustive_seconds,rfisst_seconds,rfisst_found_truth,rfisst_100k_seconds,rfisst_100k_found_truth,pure_sampling_seconds\n",
     );
-    for (children, objects, measurements, exhaustive, rfisst, found, paper, paper_found, pure) in &rows {
+    for (children, objects, measurements, exhaustive, rfisst, found, paper, paper_found, pure) in rows {
         let exhaustive = exhaustive.map_or("broken".to_string(), |e| e.to_string());
         csv.push_str(&format!(
             "{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"
         ));
     }
     std::fs::write(dir.join("scaling.csv"), csv).map_err(|e| Error::output(&dir.join("scaling.csv"), e))?;
-    // Crossover: the smallest size from which R-FISST is faster at every larger size measured.
+    Ok(())
+}
+
+/// The smallest size from which R-FISST (default sampler, then pure sampling) is faster than exhaustive
+/// enumeration at every larger size measured.
+fn crossovers(rows: &[Row]) -> (Option<u128>, Option<u128>) {
     let mut crossover: Option<u128> = None;
     for (i, row) in rows.iter().enumerate() {
         let faster_from_here = rows[i..].iter().all(|r| r.3.is_none_or(|e| r.4 < e));
@@ -184,55 +247,23 @@ pub(crate) fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
             break;
         }
     }
-    // Speed-up at 10⁸ children: log-interpolated between the measured sizes around it.
-    let ratio_at = |target: f64| -> Option<f64> {
-        let points: Vec<(f64, f64)> =
-            rows.iter().filter_map(|r| r.3.map(|e| ((r.0 as f64).log10(), (e / r.4).log10()))).collect();
-        let t = target.log10();
-        points.windows(2).find(|w| w[0].0 <= t && t <= w[1].0).map(|w| {
-            let f = if w[1].0 > w[0].0 { (t - w[0].0) / (w[1].0 - w[0].0) } else { 0.0 };
-            10f64.powf(w[0].1 + f * (w[1].1 - w[0].1))
-        })
-    };
-    let largest = rows.iter().map(|r| r.0).max().unwrap_or(0);
-    let found_all = rows.iter().all(|r| r.5);
-    let sampler = SamplerConfig::default();
-    let figures = ScalingFigures {
-        experiment: "scaling".into(),
-        seed,
-        crossover_children: crossover.map(|c| c as f64),
-        pure_sampling_crossover_children: pure_crossover.map(|c| c as f64),
-        speedup_at_1e8: ratio_at(1e8),
-        largest_children: largest as f64,
-        exhaustive_budget_seconds: EXHAUSTIVE_BUDGET_SECONDS,
-        exhaustive_broken_beyond: rows.iter().filter(|r| r.3.is_some()).map(|r| r.0 as f64).fold(0.0, f64::max),
-        rfisst_found_truth_at_every_size: found_all,
-        rfisst_sizes_truth_missed: rows.iter().filter(|r| !r.5).map(|r| r.0 as f64).collect(),
-        rfisst_100k_found_truth_at_every_size: rows.iter().all(|r| r.7),
-        rfisst_100k_max_seconds: rows.iter().map(|r| r.6).fold(0.0, f64::max),
-        rfisst_max_seconds: rows.iter().map(|r| r.4).fold(0.0, f64::max),
-        sampler: ScalingSampler {
-            burn_in: sampler.burn_in,
-            steps: sampler.steps,
-            exhaustive_limit: sampler.exhaustive_limit,
-            exact_start: sampler.exact_start,
-        },
-    };
-    let sizes = rows
-        .iter()
-        .map(|r| ScalingSize {
-            children: r.0 as f64,
-            objects: r.1,
-            measurements: r.2,
-            exhaustive_seconds: r.3,
-            rfisst_seconds: r.4,
-            rfisst_found_truth: r.5,
-            rfisst_100k_seconds: r.6,
-            rfisst_100k_found_truth: r.7,
-            pure_sampling_seconds: r.8,
-        })
-        .collect();
-    write_json(&dir.join("scaling.json"), &ScalingReport { figures: figures.clone(), sizes })?;
+    (crossover, pure_crossover)
+}
+
+/// Speed-up of R-FISST over exhaustive enumeration at `target` children: log-interpolated between the
+/// measured sizes around it.
+fn speedup_at(rows: &[Row], target: f64) -> Option<f64> {
+    let points: Vec<(f64, f64)> =
+        rows.iter().filter_map(|r| r.3.map(|e| ((r.0 as f64).log10(), (e / r.4).log10()))).collect();
+    let t = target.log10();
+    points.windows(2).find(|w| w[0].0 <= t && t <= w[1].0).map(|w| {
+        let f = if w[1].0 > w[0].0 { (t - w[0].0) / (w[1].0 - w[0].0) } else { 0.0 };
+        10f64.powf(w[0].1 + f * (w[1].1 - w[0].1))
+    })
+}
+
+/// The log-log plot of seconds per parent against possible children, one series per generator.
+fn plot_scaling(dir: &Path, rows: &[Row]) -> Result<(), Error> {
     let series = [
         Series {
             name: "exhaustive (HOMHT)".into(),
@@ -264,5 +295,5 @@ pub(crate) fn scaling(dir: &Path, seed: u64) -> Result<ScalingFigures, Error> {
         Scale::Log10,
         &series,
     )?;
-    Ok(figures)
+    Ok(())
 }

@@ -248,6 +248,109 @@ enum State {
     AfterData,
 }
 
+/// The metadata of the segment being read.
+struct MetaBlock {
+    /// Line of its `META_START`.
+    line: usize,
+    /// Line of `TIME_SYSTEM = UTC`.
+    time_system: Option<usize>,
+    participant: Option<(String, usize)>,
+    angle_type: Option<(AngleType, usize)>,
+}
+
+impl MetaBlock {
+    fn starting_at(line: usize) -> Self {
+        Self { line, time_system: None, participant: None, angle_type: None }
+    }
+
+    /// A metadata line other than `META_STOP`: a supported value of a known keyword.
+    fn read(&mut self, line: usize, key: &str, value: &str) -> Result<(), TdmError> {
+        match key {
+            "TIME_SYSTEM" if value == "UTC" => self.time_system = Some(line),
+            "TIME_SYSTEM" => {
+                return fail(line, key, format!("time system \"{value}\" is not supported (UTC only)"));
+            }
+            "PARTICIPANT_1" if value.is_empty() => return fail(line, key, "empty"),
+            "PARTICIPANT_1" => self.participant = Some((value.to_string(), line)),
+            "ANGLE_TYPE" => {
+                self.angle_type = Some(match value {
+                    "AZEL" => (AngleType::AzEl, line),
+                    "RADEC" => (AngleType::RaDec, line),
+                    _ => {
+                        return fail(line, key, format!("angle type \"{value}\" is not supported (AZEL or RADEC)"));
+                    }
+                });
+            }
+            "RANGE_UNITS" if value != "km" => {
+                return fail(line, key, format!("range units \"{value}\" are not supported (km only)"));
+            }
+            "REFERENCE_FRAME" if value != "TEME" && value != "EME2000" => {
+                return fail(line, key, format!("reference frame \"{value}\" is not supported (TEME)"));
+            }
+            "RANGE_UNITS" | "REFERENCE_FRAME" => {}
+            _ if META_IGNORED.contains(&key)
+                || is_numbered(key, "PARTICIPANT_", 2..=5)
+                || is_numbered(key, "TRANSMIT_DELAY_", 1..=5)
+                || is_numbered(key, "RECEIVE_DELAY_", 1..=5) => {}
+            "META_START" | "DATA_START" => return fail(line, key, "inside a META block (META_STOP missing)"),
+            _ => return fail(line, key, "unknown keyword in the metadata"),
+        }
+        Ok(())
+    }
+}
+
+/// A header line: a known keyword, a valid `CREATION_DATE`; notes the required keywords seen.
+fn header_line(line: usize, key: &str, value: &str, required: &mut [(&str, bool)]) -> Result<(), TdmError> {
+    if !HEADER_KEYS.contains(&key) {
+        return match key {
+            "DATA_START" => fail(line, key, "no META_START ... META_STOP block before the data"),
+            _ => fail(line, key, "unknown keyword in the header"),
+        };
+    }
+    if key == "CREATION_DATE" {
+        parse_time(line, key, value)?;
+    }
+    for (name, seen) in required.iter_mut() {
+        *seen |= *name == key;
+    }
+    Ok(())
+}
+
+/// A data line (or an empty scan's `COMMENT`) of the last segment, appended to its records.
+fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), TdmError> {
+    let segment = tdm.segments.last_mut().ok_or_else(|| TdmError {
+        line,
+        keyword: key.to_string(),
+        message: "data outside a segment".into(),
+    })?;
+    if key == "COMMENT" {
+        if let Some(time) = value.strip_prefix(EMPTY_SCAN) {
+            let time = parse_time(line, "COMMENT EMPTY_SCAN", time.trim())?;
+            segment.records.push(Record { line, time, value: None });
+        }
+        return Ok(());
+    }
+    let kind = match key {
+        "RANGE" => DataKind::Range,
+        "ANGLE_1" => DataKind::Angle1,
+        "ANGLE_2" => DataKind::Angle2,
+        "DOPPLER_INSTANTANEOUS" => DataKind::Doppler,
+        _ if DATA_UNSUPPORTED.contains(&key) => return fail(line, key, "data type not supported"),
+        _ => return fail(line, key, "unknown keyword in the data"),
+    };
+    let mut parts = value.split_whitespace();
+    let (Some(time), Some(number), None) = (parts.next(), parts.next(), parts.next()) else {
+        return fail(line, key, "expected `KEYWORD = time value`");
+    };
+    let time = parse_time(line, key, time)?;
+    let number: f64 = match number.parse() {
+        Ok(v) if f64::is_finite(v) => v,
+        _ => return fail(line, key, format!("\"{number}\" is not a finite number")),
+    };
+    segment.records.push(Record { line, time, value: Some((kind, number)) });
+    Ok(())
+}
+
 /// Parses a TDM in KVN form.
 ///
 /// # Errors
@@ -259,11 +362,7 @@ pub fn parse(text: &str) -> Result<Tdm, TdmError> {
     let mut tdm = Tdm::default();
     let mut state = State::Start;
     let mut header_required = [("CREATION_DATE", false), ("ORIGINATOR", false)];
-    // Metadata of the segment being read.
-    let mut meta_line = 0;
-    let mut time_system: Option<usize> = None;
-    let mut participant: Option<(String, usize)> = None;
-    let mut angle_type: Option<(AngleType, usize)> = None;
+    let mut meta = MetaBlock::starting_at(0);
     let mut last = 0;
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
@@ -288,109 +387,34 @@ pub fn parse(text: &str) -> Result<Tdm, TdmError> {
                     return fail(line, missing, "required in the header, missing");
                 }
                 state = State::Meta;
-                meta_line = line;
-                (time_system, participant, angle_type) = (None, None, None);
+                meta = MetaBlock::starting_at(line);
             }
-            State::Header => {
-                if !HEADER_KEYS.contains(&key) {
-                    return match key {
-                        "DATA_START" => fail(line, key, "no META_START ... META_STOP block before the data"),
-                        _ => fail(line, key, "unknown keyword in the header"),
-                    };
-                }
-                if key == "CREATION_DATE" {
-                    parse_time(line, key, value)?;
-                }
-                for (name, seen) in &mut header_required {
-                    *seen |= *name == key;
-                }
-            }
+            State::Header => header_line(line, key, value, &mut header_required)?,
             State::Meta if key == "META_STOP" => {
-                if time_system.is_none() {
+                if meta.time_system.is_none() {
                     return fail(line, "TIME_SYSTEM", "required in the metadata, missing");
                 }
-                let Some(participant) = participant.take() else {
+                let Some(participant) = meta.participant.take() else {
                     return fail(line, "PARTICIPANT_1", "required in the metadata, missing");
                 };
                 tdm.segments.push(Segment {
-                    meta_line,
+                    meta_line: meta.line,
                     meta_stop_line: line,
                     participant,
-                    angle_type,
+                    angle_type: meta.angle_type,
                     records: vec![],
                 });
                 state = State::BetweenMetaAndData;
             }
-            State::Meta => match key {
-                "TIME_SYSTEM" if value == "UTC" => time_system = Some(line),
-                "TIME_SYSTEM" => {
-                    return fail(line, key, format!("time system \"{value}\" is not supported (UTC only)"));
-                }
-                "PARTICIPANT_1" if value.is_empty() => return fail(line, key, "empty"),
-                "PARTICIPANT_1" => participant = Some((value.to_string(), line)),
-                "ANGLE_TYPE" => {
-                    angle_type = Some(match value {
-                        "AZEL" => (AngleType::AzEl, line),
-                        "RADEC" => (AngleType::RaDec, line),
-                        _ => {
-                            return fail(line, key, format!("angle type \"{value}\" is not supported (AZEL or RADEC)"));
-                        }
-                    });
-                }
-                "RANGE_UNITS" if value != "km" => {
-                    return fail(line, key, format!("range units \"{value}\" are not supported (km only)"));
-                }
-                "REFERENCE_FRAME" if value != "TEME" && value != "EME2000" => {
-                    return fail(line, key, format!("reference frame \"{value}\" is not supported (TEME)"));
-                }
-                "RANGE_UNITS" | "REFERENCE_FRAME" => {}
-                _ if META_IGNORED.contains(&key)
-                    || is_numbered(key, "PARTICIPANT_", 2..=5)
-                    || is_numbered(key, "TRANSMIT_DELAY_", 1..=5)
-                    || is_numbered(key, "RECEIVE_DELAY_", 1..=5) => {}
-                "META_START" | "DATA_START" => return fail(line, key, "inside a META block (META_STOP missing)"),
-                _ => return fail(line, key, "unknown keyword in the metadata"),
-            },
+            State::Meta => meta.read(line, key, value)?,
             State::BetweenMetaAndData if key == "DATA_START" => state = State::Data,
             State::BetweenMetaAndData if key == "COMMENT" => {}
             State::BetweenMetaAndData => return fail(line, key, "DATA_START expected after META_STOP"),
             State::Data if key == "DATA_STOP" => state = State::AfterData,
-            State::Data => {
-                let segment = tdm.segments.last_mut().ok_or_else(|| TdmError {
-                    line,
-                    keyword: key.to_string(),
-                    message: "data outside a segment".into(),
-                })?;
-                if key == "COMMENT" {
-                    if let Some(time) = value.strip_prefix(EMPTY_SCAN) {
-                        let time = parse_time(line, "COMMENT EMPTY_SCAN", time.trim())?;
-                        segment.records.push(Record { line, time, value: None });
-                    }
-                    continue;
-                }
-                let kind = match key {
-                    "RANGE" => DataKind::Range,
-                    "ANGLE_1" => DataKind::Angle1,
-                    "ANGLE_2" => DataKind::Angle2,
-                    "DOPPLER_INSTANTANEOUS" => DataKind::Doppler,
-                    _ if DATA_UNSUPPORTED.contains(&key) => return fail(line, key, "data type not supported"),
-                    _ => return fail(line, key, "unknown keyword in the data"),
-                };
-                let mut parts = value.split_whitespace();
-                let (Some(time), Some(number), None) = (parts.next(), parts.next(), parts.next()) else {
-                    return fail(line, key, "expected `KEYWORD = time value`");
-                };
-                let time = parse_time(line, key, time)?;
-                let number: f64 = match number.parse() {
-                    Ok(v) if f64::is_finite(v) => v,
-                    _ => return fail(line, key, format!("\"{number}\" is not a finite number")),
-                };
-                segment.records.push(Record { line, time, value: Some((kind, number)) });
-            }
+            State::Data => data_line(&mut tdm, line, key, value)?,
             State::AfterData if key == "META_START" => {
                 state = State::Meta;
-                meta_line = line;
-                (time_system, participant, angle_type) = (None, None, None);
+                meta = MetaBlock::starting_at(line);
             }
             State::AfterData if key == "COMMENT" => {}
             State::AfterData => return fail(line, key, "META_START expected after DATA_STOP"),
@@ -433,20 +457,7 @@ pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize
         let Some(sensor) = config.sensors.iter().position(|s| &s.name == name) else {
             return fail(*name_line, "PARTICIPANT_1", format!("\"{name}\" is not a sensor of the configuration"));
         };
-        match segment.angle_type {
-            Some((t, _)) if t == wanted => {}
-            Some((_, line)) => {
-                return fail(
-                    line,
-                    "ANGLE_TYPE",
-                    format!("does not match the configuration's {} measurements", kind.name()),
-                );
-            }
-            None if segment.records.iter().any(|r| r.value.is_some()) => {
-                return fail(segment.meta_stop_line, "ANGLE_TYPE", "required with angle data, missing");
-            }
-            None => {}
-        }
+        check_angle_type(segment, wanted, kind)?;
         let first_of_segment = scans.len();
         let mut empty: Vec<(Scan3dSpec, usize, Instant)> = vec![];
         let mut next = 0; // the component the next data line must be
@@ -524,6 +535,26 @@ pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize
         }
     }
     Ok(scans.into_iter().map(|(scan, line, _)| (scan, line)).collect())
+}
+
+/// The segment's `ANGLE_TYPE` is `wanted` (that of the configuration's `kind` of measurement), or absent
+/// from a segment without data.
+fn check_angle_type(segment: &Segment, wanted: AngleType, kind: Measurement3dSpec) -> Result<(), TdmError> {
+    match segment.angle_type {
+        Some((t, _)) if t == wanted => {}
+        Some((_, line)) => {
+            return fail(
+                line,
+                "ANGLE_TYPE",
+                format!("does not match the configuration's {} measurements", kind.name()),
+            );
+        }
+        None if segment.records.iter().any(|r| r.value.is_some()) => {
+            return fail(segment.meta_stop_line, "ANGLE_TYPE", "required with angle data, missing");
+        }
+        None => {}
+    }
+    Ok(())
 }
 
 fn names(components: &[DataKind]) -> String {
