@@ -1,7 +1,7 @@
 //! `experiment ablation`: R-FISST with one part at a time switched off, on the fifty-object and the debris scenarios.
 
+use super::common::{mean, options};
 use super::debris::{debris_rfisst, fraction_true};
-use super::runs::{mean, options};
 use super::scaling::{scaling_matrix, scaling_shapes, watched_run};
 use crate::error::Error;
 use crate::io::report::{AblationDebris, AblationFifty, AblationVariant};

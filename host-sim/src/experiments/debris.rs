@@ -1,6 +1,6 @@
 //! `experiment debris`: a break-up cloud crossing the field of view, R-FISST against HOMHT with the same time per scan, and the truth-association check.
 
-use super::runs::{err, mean};
+use super::common::{err, mean};
 use super::scaling::{Watch, scaling_matrix};
 use crate::error::Error;
 use crate::io::report::{

@@ -1,6 +1,6 @@
 //! `experiment fifteen` (paper 003 §V-A): R-FISST against HOMHT and the unbounded reference on 15 objects.
 
-use super::runs::err;
+use super::common::err;
 use crate::error::Error;
 use crate::io::report::{FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker, Timing};
 use crate::pipeline::output::write_json;

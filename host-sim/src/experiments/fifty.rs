@@ -1,6 +1,6 @@
 //! `experiment fifty` (paper 003 §IV): 50 objects, 45 known to the prior, 5 births, with `run`'s outputs.
 
-use super::runs::options;
+use super::common::options;
 use crate::error::Error;
 use crate::io::report::RunSummary;
 use crate::pipeline::TrackerKind;

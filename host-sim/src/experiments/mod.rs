@@ -24,6 +24,7 @@
 //! runs it over the seeds. [`perf`] is `host-sim perf`, the benchmarks.
 
 mod ablation;
+mod common;
 mod debris;
 mod fifteen;
 mod fifty;

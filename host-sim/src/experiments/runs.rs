@@ -1,6 +1,7 @@
 //! Running an experiment: its name, the seeds of `--runs`, one run per seed in parallel, and `runs.json`.
 
 use super::ablation::ablation;
+use super::common::err;
 use super::debris::debris;
 use super::fifteen::fifteen;
 use super::fifty::fifty;
@@ -8,8 +9,6 @@ use super::scaling::scaling;
 use crate::error::Error;
 use crate::io::report::{RunsReport, Spread};
 use crate::pipeline::output::write_json;
-use crate::pipeline::planar::Options;
-use crate::pipeline::{Profile, ReferenceBudget};
 use rayon::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -56,10 +55,6 @@ impl Experiment {
 
 /// The experiments, in the order `all` runs them.
 pub const EXPERIMENTS: [&str; 5] = ["fifty", "fifteen", "scaling", "debris", "ablation"];
-
-pub(crate) fn err(e: impl std::fmt::Display) -> Error {
-    Error::internal(e)
-}
 
 /// The seeds of `runs` runs from `seed`: `seed, seed + 1, ...`.
 ///
@@ -141,12 +136,4 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
 
 fn to_value(record: impl serde::Serialize) -> Value {
     serde_json::to_value(record).unwrap_or(Value::Null)
-}
-
-pub(crate) fn options(quiet: bool) -> Options {
-    Options { profile: Profile::Embedded, reference: ReferenceBudget::default(), max_hypotheses_out: 32, quiet }
-}
-
-pub(crate) fn mean(v: &[f64]) -> f64 {
-    if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 }
 }

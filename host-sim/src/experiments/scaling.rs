@@ -1,6 +1,6 @@
 //! `experiment scaling` (paper 003 §V-B, Fig. 15): the time to generate one parent's children against their number, exhaustive and R-FISST.
 
-use super::runs::err;
+use super::common::err;
 use crate::error::Error;
 use crate::io::report::{ScalingFigures, ScalingReport, ScalingSampler, ScalingSize};
 use crate::pipeline::output::write_json;

@@ -1,6 +1,5 @@
 //! One element set of any format ([`CatalogueEntry`]), its checks and the error naming a bad file's line and keyword.
 
-use super::propagation::Satellite;
 use crate::Error;
 use sgp4::chrono::NaiveDateTime;
 use std::fmt;
@@ -158,52 +157,12 @@ impl CatalogueEntry {
     }
 }
 
-/// One object of `host-sim catalogue`'s output.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct ObjectReport {
-    /// Catalogue number.
-    pub norad_id: u64,
-    /// Name, if the file gives one.
-    pub name: Option<String>,
-    /// The line of the file where its element set starts.
-    pub line: usize,
-    /// Epoch (UTC, ISO 8601).
-    pub epoch: String,
-    /// Eccentricity, inclination (deg), mean motion (rev/day), B*.
-    pub eccentricity: f64,
-    /// Inclination (degrees).
-    pub inclination_deg: f64,
-    /// Mean motion (rev/day).
-    pub mean_motion_rev_per_day: f64,
-    /// B* (1/earth radii).
-    pub bstar: f64,
-    /// SGP4 TEME position at the epoch (km), when SGP4 gives one.
-    pub position_km: Option<[f64; 3]>,
-    /// SGP4 TEME velocity at the epoch (km/s).
-    pub velocity_km_s: Option<[f64; 3]>,
-    /// The SGP4 error instead, if any.
-    pub sgp4_error: Option<String>,
-}
-
-/// `host-sim catalogue`'s output: every entry with its SGP4 state at its epoch.
-pub fn report(entries: &[CatalogueEntry]) -> Vec<ObjectReport> {
-    entries
-        .iter()
-        .map(|e| {
-            let state = Satellite::new(e.clone()).and_then(|s| s.teme(0.0));
-            ObjectReport {
-                norad_id: e.norad_id,
-                name: e.name.clone(),
-                line: e.line,
-                epoch: e.epoch.format("%Y-%m-%dT%H:%M:%S%.6fZ").to_string(),
-                eccentricity: e.eccentricity,
-                inclination_deg: e.inclination,
-                mean_motion_rev_per_day: e.mean_motion,
-                bstar: e.bstar,
-                position_km: state.as_ref().ok().map(|s| s.0),
-                velocity_km_s: state.as_ref().ok().map(|s| s.1),
-                sgp4_error: state.err().map(|e| e.to_string()),
-            }
-        })
-        .collect()
+/// A catalogue error at `line` of `file`, naming the keyword (both cut to one line).
+pub(crate) fn err(file: &str, line: usize, keyword: impl Into<String>, message: impl Into<String>) -> CatalogueError {
+    CatalogueError {
+        file: file.to_string(),
+        line,
+        keyword: crate::scenario::one_line(&keyword.into()),
+        message: crate::scenario::one_line(&message.into()),
+    }
 }

@@ -1,6 +1,6 @@
 //! Catalogue files: which format a text is in, reading one (bounded) and parsing it.
 
-use super::entry::{CatalogueEntry, CatalogueError};
+use super::entry::{CatalogueEntry, CatalogueError, err};
 use super::omm::{parse_omm_csv, parse_omm_json};
 use super::tle::parse_tle;
 use crate::Error;
@@ -49,13 +49,4 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, CatalogueErr
         return Err(err(file, 0, "catalogue", "no element set"));
     }
     Ok(entries)
-}
-
-pub(crate) fn err(file: &str, line: usize, keyword: impl Into<String>, message: impl Into<String>) -> CatalogueError {
-    CatalogueError {
-        file: file.to_string(),
-        line,
-        keyword: crate::scenario::one_line(&keyword.into()),
-        message: crate::scenario::one_line(&message.into()),
-    }
 }

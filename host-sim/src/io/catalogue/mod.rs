@@ -23,8 +23,8 @@ pub mod sgp4_check;
 mod tests;
 mod tle;
 
-pub use entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS, ObjectReport, report};
+pub use entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS};
 pub use files::{Format, detect, load, parse};
 pub use omm::{parse_omm_csv, parse_omm_epoch, parse_omm_json};
-pub use propagation::{PropagationError, Satellite, State};
+pub use propagation::{ObjectReport, PropagationError, Satellite, State, report};
 pub use tle::{parse_catalogue_number, parse_tle, tle_checksum};

@@ -1,7 +1,7 @@
 //! CCSDS OMM mean elements as CelesTrak writes them, in JSON and in CSV.
 
+use super::entry::err;
 use super::entry::{CatalogueEntry, CatalogueError};
-use super::files::err;
 use super::tle::unsigned;
 use crate::sim::time::CalendarTime;
 use sgp4::chrono::{NaiveDate, NaiveDateTime};

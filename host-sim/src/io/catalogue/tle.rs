@@ -1,7 +1,7 @@
 //! Two- and three-line element sets: columns, checksums, Alpha-5 catalogue numbers, assumed exponents and epochs.
 
+use super::entry::err;
 use super::entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS};
-use super::files::err;
 use sgp4::chrono::{NaiveDate, NaiveDateTime, NaiveTime};
 
 /// Parses two-line (and three-line, with a name line, optionally "0 NAME") element sets. Blank lines and
