@@ -1,9 +1,11 @@
 //! `host-sim soak`: long runs with objects entering and leaving, in the planar world ([`planar`]) or an
-//! orbital preset observed without end ([`orbital`]); what both share is [`common`].
+//! orbital preset observed without end ([`orbital`]); what both share is [`common`], and the scan loop and
+//! the report written once over both (`run.rs`).
 
 pub mod common;
 pub mod orbital;
 pub mod planar;
+mod run;
 
 pub use common::{MAX_SCANS, Scenario};
 

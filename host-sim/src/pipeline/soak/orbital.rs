@@ -14,15 +14,16 @@
 //! counts the objects whose label the MAP hypothesis holds within the scenario's error bound of the truth
 //! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
-use super::common::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
+use super::common::{MAX_SCANS, Scenario, non_finite_values};
+use super::run::{self, SoakWorld, WorldParts};
 use crate::error::Error;
 use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::pipeline::orbital::{C, FieldOfViewCheck, choose_profile, config3d};
-use crate::pipeline::output::peak_resident_kib;
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::from_simulation::to_scenario;
+use crate::scenario::v2::Scenario3d;
 use crate::sim::orbit::Propagator;
 use crate::sim::presets::RadarLeoConfig;
 use crate::sim::rng::{Random, Stream};
@@ -33,7 +34,7 @@ use nalgebra::SVector;
 use std::time::Instant;
 use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, SensorNetwork};
 use tracker_core::sensor::ScanGeometry;
-use tracker_core::{PriorHypothesis, Tracker, TwoBodyJ2};
+use tracker_core::{PriorHypothesis, StepError, StepReport, Tracker, TwoBodyJ2};
 
 type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
     Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
@@ -122,11 +123,7 @@ where
 
 /// Tracking figures over a soak's scans.
 struct Tally {
-    cardinality_error: f64,
-    max_cardinality_error: f64,
-    measurements: u64,
     dropped: u64,
-    resident_start: Option<u64>,
     tracked_sum: u64,
     tracked_last_tenth: u64,
     /// (fewest objects tracked, its scan + 1).
@@ -141,11 +138,7 @@ struct Tally {
 impl Tally {
     fn new(scans: u64) -> Self {
         Self {
-            cardinality_error: 0.0,
-            max_cardinality_error: 0.0,
-            measurements: 0,
             dropped: 0,
-            resident_start: None,
             tracked_sum: 0,
             tracked_last_tenth: 0,
             min_tracked: (usize::MAX, 0),
@@ -156,10 +149,8 @@ impl Tally {
         }
     }
 
-    /// Scan `k`: the cardinality error, every object's position error, the objects in view.
-    fn record(&mut self, k: u64, cardinality_error: f64, errors: &[f64], seen: &[usize], bound: f64) {
-        self.cardinality_error += cardinality_error;
-        self.max_cardinality_error = self.max_cardinality_error.max(cardinality_error);
+    /// Scan `k`: every object's position error, the objects in view.
+    fn record(&mut self, k: u64, errors: &[f64], seen: &[usize], bound: f64) {
         let within = errors.iter().filter(|&&e| e < bound).count();
         let seen_within = seen.iter().filter(|&&i| errors[i] < bound).count() as u64;
         self.tracked_sum += within as u64;
@@ -227,7 +218,7 @@ fn sensors_text(sim: &SsaScenario) -> String {
 /// The tracker `host-sim run --tracker rfisst` builds for `file`, on the heap.
 #[allow(clippy::type_complexity)]
 fn soak_tracker<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
-    file: &crate::scenario::v2::Scenario3d,
+    file: &Scenario3d,
 ) -> Result<Box<Tracker3d<X, D, H, N, Z, K, B>>, Error>
 where
     X: Placeable<f64, D>,
@@ -240,6 +231,7 @@ where
     Ok(Box::new(tracker))
 }
 
+/// Runs `scans` scans of `sim` (the soak `scenario`) through the tracker of `profile`.
 fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: Scenario,
     profile: Profile,
@@ -254,89 +246,106 @@ where
     let seed = sim.seed;
     let (file, _) = to_scenario(&sim)?;
     let check = FieldOfViewCheck::new(&file)?;
-    let mut tracker = soak_tracker::<X, D, H, N, Z, K, B>(&file)?;
-    let mut stream = Stream3d::new(sim)?;
-    let objects = stream.states.len();
-    let bound = file.evaluation.error_bound;
+    let tracker = soak_tracker::<X, D, H, N, Z, K, B>(&file)?;
+    let stream = Stream3d::new(sim)?;
+    let world = OrbitalSoak {
+        scenario,
+        profile,
+        objects: stream.states.len(),
+        file,
+        check,
+        tracker,
+        stream,
+        tally: Tally::new(scans),
+    };
+    run::soak(world, scenario, scans, seed, quiet, started)
+}
 
-    let bar = progress(scans, quiet);
-    let mut health = Health::default();
-    let mut times = ScanTimes::new(scans);
-    let mut tally = Tally::new(scans);
-    for k in 0..scans {
-        let Drawn { sensor, time, measurements, outside, in_view: seen } = match stream.scan(k, &check) {
-            Ok(scan) => scan,
-            Err(message) => {
-                health.error(k, "Simulation".into(), message);
-                bar.inc(1);
-                continue;
-            }
-        };
-        tally.dropped += outside;
-        health.max_measurements = health.max_measurements.max(measurements.len());
-        tally.measurements += measurements.len() as u64;
-        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
-        let step_started = Instant::now();
-        let result = tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs);
-        times.record(k, step_started.elapsed().as_secs_f64() * 1e3);
-        health.record(k, result, non_finite_values(&*tracker));
-        if k == 0 {
-            tally.resident_start = peak_resident_kib();
-        }
-        let difference = (tracker.expected_cardinality() - objects as f64).abs();
-        tally.record(k, difference, &position_errors(&tracker, &stream.states), &seen, bound);
-        bar.inc(1);
+/// An orbital preset's stream and its tracker, for the soak's loop.
+struct OrbitalSoak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
+where
+    X: Placeable<f64, D>,
+{
+    scenario: Scenario,
+    profile: Profile,
+    /// The number of objects (all alive for the whole run).
+    objects: usize,
+    file: Scenario3d,
+    check: FieldOfViewCheck,
+    tracker: Box<Tracker3d<X, D, H, N, Z, K, B>>,
+    stream: Stream3d,
+    tally: Tally,
+}
+
+/// One drawn scan in the tracker's units.
+struct Scan3d<const D: usize> {
+    geometry: ScanGeometry<f64>,
+    measurements: Vec<SVector<f64, D>>,
+    /// The objects in the field of view.
+    in_view: Vec<usize>,
+}
+
+impl<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> SoakWorld
+    for OrbitalSoak<X, D, H, N, Z, K, B>
+where
+    X: Placeable<f64, D>,
+{
+    type Scan = Scan3d<D>;
+    const HYPOTHESES: usize = H;
+    const TRACKS: usize = K;
+    const MEASUREMENTS: usize = Z;
+
+    fn draw(&mut self, k: u64) -> Result<Self::Scan, String> {
+        let Drawn { sensor, time, measurements, outside, in_view } = self.stream.scan(k, &self.check)?;
+        self.tally.dropped += outside;
+        let measurements = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
+        Ok(Scan3d { geometry: ScanGeometry { sensor, time, observer: None }, measurements, in_view })
     }
-    bar.finish_and_clear();
 
-    let (max_ms, mean_ms, p50_ms, p99_ms) = times.timing();
-    let errors = position_errors(&tracker, &stream.states);
-    Ok(SoakReport {
-        scenario: scenario.name().into(),
-        scans,
-        seed,
-        nan_count: health.non_finite,
-        non_finite_scans: health.non_finite_scans,
-        first_non_finite_scan: health.first_non_finite_scan,
-        max_hypotheses: health.max_hypotheses,
-        max_ms_per_scan: max_ms,
-        mean_ms_per_scan: mean_ms,
-        p50_ms_per_scan: p50_ms,
-        p99_ms_per_scan: p99_ms,
-        max_over_median: max_ms / p50_ms,
-        mean_ms_per_scan_first_tenth: times.tenths().0,
-        mean_ms_per_scan_last_tenth: times.tenths().1,
-        peak_resident_kib_start: tally.resident_start,
-        peak_resident_kib_end: peak_resident_kib(),
-        numerical_drops: health.numerical_drops,
-        tracking: Some(tally.tracking(errors, bound, objects, &stream)),
-        errors_by_kind: health.errors,
-        first_error: health.first_error.map(|(scan, message)| crate::io::report::SoakError { scan, message }),
-        track_store_high_water: health.max_tracks,
-        track_store_capacity: K,
-        hypothesis_capacity: H,
-        max_measurements_per_scan: health.max_measurements,
-        measurement_capacity: Z,
-        measurements: tally.measurements,
-        births_beyond_object_capacity: health.births_beyond_capacity,
-        children_dropped_for_store: health.children_dropped_for_store,
-        truth: SoakTruth { initial_objects: objects, births: 0, deaths: 0, max_alive: objects, final_alive: objects },
-        final_expected_cardinality: tracker.expected_cardinality(),
-        mean_abs_cardinality_error: tally.cardinality_error / scans as f64,
-        max_abs_cardinality_error: tally.max_cardinality_error,
-        wall_seconds: started.elapsed().as_secs_f64(),
-        setup: SoakSetup {
-            tracker: tracker_text(scenario, profile, seed, [H, N, Z, K, B]),
-            motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
-            sensor: sensors_text(&stream.sim),
-            scan_interval_s: stream.interval,
-            birth_rate_per_scan: 0.0,
-            death_rate_per_object_per_scan: 0.0,
-            tracker_birth_probability_per_cell: file.birth.probability,
-            tracker_birth_cells: file.birth.cells.len(),
-            tracker_death_probability: file.death_probability,
-        },
-    })
+    fn measurement_count(scan: &Self::Scan) -> usize {
+        scan.measurements.len()
+    }
+
+    fn step(&mut self, _: u64, scan: &Self::Scan) -> Result<StepReport<f64>, StepError> {
+        self.tracker.step_scan(&scan.geometry, &scan.measurements)
+    }
+
+    fn non_finite_values(&self) -> u64 {
+        non_finite_values(&*self.tracker)
+    }
+
+    fn expected_cardinality(&self) -> f64 {
+        self.tracker.expected_cardinality()
+    }
+
+    fn objects(&self) -> usize {
+        self.objects
+    }
+
+    fn record(&mut self, k: u64, scan: Self::Scan) {
+        let errors = position_errors(&self.tracker, &self.stream.states);
+        self.tally.record(k, &errors, &scan.in_view, self.file.evaluation.error_bound);
+    }
+
+    fn finish(self) -> Result<WorldParts, Error> {
+        let objects = self.objects;
+        let errors = position_errors(&self.tracker, &self.stream.states);
+        Ok(WorldParts {
+            tracking: Some(self.tally.tracking(errors, self.file.evaluation.error_bound, objects, &self.stream)),
+            truth: SoakTruth { initial_objects: objects, births: 0, deaths: 0, max_alive: objects, final_alive: objects },
+            setup: SoakSetup {
+                tracker: tracker_text(self.scenario, self.profile, self.stream.sim.seed, [H, N, Z, K, B]),
+                motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
+                sensor: sensors_text(&self.stream.sim),
+                scan_interval_s: self.stream.interval,
+                birth_rate_per_scan: 0.0,
+                death_rate_per_object_per_scan: 0.0,
+                tracker_birth_probability_per_cell: self.file.birth.probability,
+                tracker_birth_cells: self.file.birth.cells.len(),
+                tracker_death_probability: self.file.death_probability,
+            },
+        })
+    }
 }
 
 /// Runs `scans` scans of the 3-D soak `scenario` (radar-leo or optical-geo) with `seed`.

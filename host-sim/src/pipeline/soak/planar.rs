@@ -61,9 +61,10 @@
 //! assert!(LinearTracker::<f64, 1, 1, 1, 1, 0>::with_objects(config, &[], 0.0).is_ok());
 //! ```
 
-use super::common::{Health, MAX_SCANS, ScanTimes, Scenario, non_finite_values, progress};
+use super::common::{MAX_SCANS, Scenario, non_finite_values};
+use super::run::{SoakWorld, WorldParts, soak};
 use crate::error::Error;
-use crate::io::report::{SoakError, SoakReport, SoakSetup, SoakTruth};
+use crate::io::report::{SoakReport, SoakSetup, SoakTruth};
 use crate::pipeline::planar::setup;
 use crate::pipeline::profile::PLANAR;
 use crate::scenario::FieldOfViewSpec;
@@ -74,7 +75,7 @@ use std::time::Instant;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::{
     BirthDetection, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorObject, SsaConfig,
-    SsaTracker, StoreOverflow, TrackLabel, ssa_caps,
+    SsaTracker, StepError, StepReport, StoreOverflow, TrackLabel, ssa_caps,
 };
 
 /// Objects known to the prior.
@@ -254,74 +255,64 @@ pub fn run(scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
         return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
     }
     let started = Instant::now();
-    let mut world = World::new(seed);
-    let (mut tracker, birth_cells) = tracker(seed, &world.alive)?;
-    let bar = progress(scans, quiet);
-    let mut health = Health::default();
-    let mut times = ScanTimes::new(scans);
-    let (mut cardinality_error, mut max_cardinality_error, mut measurement_total) = (0.0, 0.0f64, 0u64);
-    let mut resident_start = None;
-    for k in 0..scans {
-        let measurements = world.scan(k);
-        health.max_measurements = health.max_measurements.max(measurements.len());
-        measurement_total += measurements.len() as u64;
-        let step_started = Instant::now();
-        let result = tracker.step((k + 1) as f64 * SCAN_INTERVAL, &measurements);
-        times.record(k, step_started.elapsed().as_secs_f64() * 1e3);
-        health.record(k, result, non_finite_values(&*tracker));
-        if k == 0 {
-            resident_start = crate::pipeline::output::peak_resident_kib();
-        }
-        let difference = (tracker.expected_cardinality() - world.alive.len() as f64).abs();
-        cardinality_error += difference;
-        max_cardinality_error = max_cardinality_error.max(difference);
-        bar.inc(1);
-    }
-    bar.finish_and_clear();
+    let world = World::new(seed);
+    let (tracker, birth_cells) = tracker(seed, &world.alive)?;
+    soak(PlanarSoak { world, tracker, birth_cells }, Scenario::Planar, scans, seed, quiet, started)
+}
 
-    let (max_ms, mean_ms, p50_ms, p99_ms) = times.timing();
-    Ok(SoakReport {
-        scenario: Scenario::Planar.name().into(),
-        scans,
-        seed,
-        nan_count: health.non_finite,
-        non_finite_scans: health.non_finite_scans,
-        first_non_finite_scan: health.first_non_finite_scan,
-        max_hypotheses: health.max_hypotheses,
-        max_ms_per_scan: max_ms,
-        mean_ms_per_scan: mean_ms,
-        p50_ms_per_scan: p50_ms,
-        p99_ms_per_scan: p99_ms,
-        max_over_median: max_ms / p50_ms,
-        mean_ms_per_scan_first_tenth: times.tenths().0,
-        mean_ms_per_scan_last_tenth: times.tenths().1,
-        peak_resident_kib_start: resident_start,
-        peak_resident_kib_end: crate::pipeline::output::peak_resident_kib(),
-        numerical_drops: health.numerical_drops,
-        tracking: None,
-        errors_by_kind: health.errors,
-        first_error: health.first_error.map(|(scan, message)| SoakError { scan, message }),
-        track_store_high_water: health.max_tracks,
-        track_store_capacity: ssa_caps::TRACKS,
-        hypothesis_capacity: ssa_caps::HYPOTHESES,
-        max_measurements_per_scan: health.max_measurements,
-        measurement_capacity: ssa_caps::MEASUREMENTS,
-        measurements: measurement_total,
-        births_beyond_object_capacity: health.births_beyond_capacity,
-        children_dropped_for_store: health.children_dropped_for_store,
-        truth: SoakTruth {
-            initial_objects: INITIAL_OBJECTS,
-            births: world.births,
-            deaths: world.deaths,
-            max_alive: world.max_alive,
-            final_alive: world.alive.len(),
-        },
-        final_expected_cardinality: tracker.expected_cardinality(),
-        mean_abs_cardinality_error: cardinality_error / scans as f64,
-        max_abs_cardinality_error: max_cardinality_error,
-        wall_seconds: started.elapsed().as_secs_f64(),
-        setup: setup_record(&world.sensor, birth_cells)?,
-    })
+/// The planar world and its tracker, for the soak's loop.
+struct PlanarSoak {
+    world: World,
+    tracker: Box<SsaTracker<f64>>,
+    birth_cells: usize,
+}
+
+impl SoakWorld for PlanarSoak {
+    type Scan = Vec<SVector<f64, 2>>;
+    const HYPOTHESES: usize = ssa_caps::HYPOTHESES;
+    const TRACKS: usize = ssa_caps::TRACKS;
+    const MEASUREMENTS: usize = ssa_caps::MEASUREMENTS;
+
+    fn draw(&mut self, k: u64) -> Result<Self::Scan, String> {
+        Ok(self.world.scan(k))
+    }
+
+    fn measurement_count(scan: &Self::Scan) -> usize {
+        scan.len()
+    }
+
+    fn step(&mut self, k: u64, scan: &Self::Scan) -> Result<StepReport<f64>, StepError> {
+        self.tracker.step((k + 1) as f64 * SCAN_INTERVAL, scan)
+    }
+
+    fn non_finite_values(&self) -> u64 {
+        non_finite_values(&*self.tracker)
+    }
+
+    fn expected_cardinality(&self) -> f64 {
+        self.tracker.expected_cardinality()
+    }
+
+    fn objects(&self) -> usize {
+        self.world.alive.len()
+    }
+
+    fn record(&mut self, _: u64, _: Self::Scan) {}
+
+    fn finish(self) -> Result<WorldParts, Error> {
+        let world = &self.world;
+        Ok(WorldParts {
+            tracking: None,
+            truth: SoakTruth {
+                initial_objects: INITIAL_OBJECTS,
+                births: world.births,
+                deaths: world.deaths,
+                max_alive: world.max_alive,
+                final_alive: world.alive.len(),
+            },
+            setup: setup_record(&world.sensor, self.birth_cells)?,
+        })
+    }
 }
 
 /// The scenario and tracker in words and numbers.
