@@ -24,7 +24,7 @@ fn or_dash(value: Option<f64>) -> String {
 /// The summary of `run`, `track` and `run-catalogue` (files in `out`).
 pub(super) fn run(summary: &RunSummary, out: &Path) -> String {
     let mut s = String::new();
-    let sensors = summary.sensors.map_or_else(String::new, |n| format!(", {n} sensors"));
+    let sensors = summary.sensors.map_or_else(String::new, |n| format!(", {}", count(n, "sensor")));
     let _ = writeln!(
         s,
         "{}: {} ({} profile) over {} scans{sensors}",
@@ -106,8 +106,11 @@ pub(super) fn compare3d(c: &Compare3dSummary, out: &Path) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{} ({} profile) against the unbounded reference over {} scans of {} sensors",
-        c.tracker, c.profile, c.scans, c.sensors
+        "{} ({} profile) against the unbounded reference over {} scans of {}",
+        c.tracker,
+        c.profile,
+        c.scans,
+        count(c.sensors, "sensor")
     );
     let _ = writeln!(
         s,
@@ -171,4 +174,9 @@ pub(super) fn sgp4_check(r: &Sgp4CheckReport, out: &Path) -> String {
 /// The summary of a report with no figures of its own here (`perf`).
 pub(super) fn written(what: &str, out: &Path) -> String {
     format!("{what}: written to {}\n", out.display())
+}
+
+/// `n` and `noun`, the noun in the plural unless `n` is 1.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
 }
