@@ -13,12 +13,12 @@ use cortex_m_semihosting::{debug, hprintln};
 use nalgebra::{ArrayStorage, SMatrix, SVector};
 use tracker_core::config::Selection;
 use tracker_core::model::ProcessNoise;
-use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor, gmst_iau82};
 use tracker_core::sampler::{Proposal, SamplerConfig};
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor, gmst_iau82};
 use tracker_core::{
-    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, PriorHypothesis,
-    PriorObject, RadarConfig, RadarTracker, Region, Sensor, SensorNetwork, StoreOverflow, TrackLabel, TwoBodyJ2,
-    ssa_caps,
+    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure,
+    PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Region, Sensor, SensorNetwork, StoreOverflow, TrackLabel,
+    TwoBodyJ2, ssa_caps,
 };
 
 /// One scan: its time, sensor and measurements.

@@ -10,8 +10,8 @@ use nalgebra::{ArrayStorage, SMatrix, SVector};
 use tracker_core::config::Selection;
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::{
-    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorHypothesis, PriorObject,
-    Region, Sensor, SsaConfig, StoreOverflow, TrackLabel, TwoBody, ssa_caps,
+    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, PositionMeasurement, PriorHypothesis,
+    PriorObject, Region, Sensor, SsaConfig, StoreOverflow, TrackLabel, TwoBody, ssa_caps,
 };
 
 /// One scan: its time and measurements.

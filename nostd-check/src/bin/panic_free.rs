@@ -22,9 +22,9 @@ use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
 use tracker_core::model::ProcessNoise;
-use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
+use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
     PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, SsaConfig, SsaTracker,
