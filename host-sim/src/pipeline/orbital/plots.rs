@@ -2,8 +2,9 @@
 //! right ascension / declination for telescopes), the expected number of objects and GOSPA over time.
 
 use crate::error::Error;
+use crate::pipeline::run_charts;
 use crate::pipeline::world::ScanRecord;
-use crate::plots::{self, Scale, Series, SkySeries};
+use crate::plots::{self, SkySeries};
 use crate::scenario::v2::{Scenario3d, ShapeSpec};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -81,42 +82,12 @@ pub(super) fn write_plots(
         }
     }
     let hours = |r: &ScanRecord| r.time / 3600.0;
-    let mut series = vec![Series {
-        name: "expected number of objects".into(),
-        points: records.iter().map(|r| (hours(r), r.expected_cardinality)).collect(),
-        markers: false,
-    }];
-    if records.iter().any(|r| r.true_cardinality.is_some()) {
-        series.push(Series {
-            name: "true number of objects".into(),
-            points: records.iter().filter_map(|r| r.true_cardinality.map(|c| (hours(r), c as f64))).collect(),
-            markers: false,
-        });
-    }
-    plots::plot_series(
-        &out.join("expected_cardinality"),
-        "Expected number of objects",
+    run_charts::write(
+        out,
+        records,
         "time since the epoch (h)",
-        "objects",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )?;
-    if records.iter().any(|r| r.gospa.is_some()) {
-        let gospa_series = [Series {
-            name: "GOSPA of the MAP estimates (3-D positions)".into(),
-            points: records.iter().filter_map(|r| r.gospa.map(|g| (hours(r), g))).collect(),
-            markers: false,
-        }];
-        plots::plot_series(
-            &out.join("gospa"),
-            "GOSPA over the run",
-            "time since the epoch (h)",
-            "GOSPA (km)",
-            Scale::Linear,
-            Scale::Linear,
-            &gospa_series,
-        )?;
-    }
-    Ok(())
+        hours,
+        "GOSPA of the MAP estimates (3-D positions)",
+        "GOSPA (km)",
+    )
 }

@@ -3,9 +3,10 @@
 
 use super::truth_positions;
 use crate::error::Error;
+use crate::pipeline::run_charts;
 use crate::pipeline::snapshot::{HypothesisOut, Snapshot, TrackOut};
 use crate::pipeline::world::ScanRecord;
-use crate::plots::{self, FovLines, Scale, Series, SnapshotPanel};
+use crate::plots::{self, FovLines, SnapshotPanel};
 use crate::scenario::{FieldOfViewSpec, Scenario};
 use std::path::Path;
 
@@ -93,42 +94,12 @@ pub(super) fn write_run_plots(
         .collect();
     plots::plot_hypothesis_weights(&out.join("hypothesis_weights"), &weights)?;
     let percent = |r: &ScanRecord| 100.0 * (r.scan + 1) as f64 / n as f64;
-    let mut series = vec![Series {
-        name: "expected number of objects".into(),
-        points: records.iter().map(|r| (percent(r), r.expected_cardinality)).collect(),
-        markers: false,
-    }];
-    if records.iter().any(|r| r.true_cardinality.is_some()) {
-        series.push(Series {
-            name: "true number of objects".into(),
-            points: records.iter().filter_map(|r| r.true_cardinality.map(|c| (percent(r), c as f64))).collect(),
-            markers: false,
-        });
-    }
-    plots::plot_series(
-        &out.join("expected_cardinality"),
-        "Expected number of objects",
+    run_charts::write(
+        out,
+        records,
         "run completed (%)",
-        "objects",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )?;
-    if records.iter().any(|r| r.gospa.is_some()) {
-        let gospa_series = [Series {
-            name: "GOSPA of the MAP estimates".into(),
-            points: records.iter().filter_map(|r| r.gospa.map(|g| (percent(r), g))).collect(),
-            markers: false,
-        }];
-        plots::plot_series(
-            &out.join("gospa"),
-            "GOSPA over the run",
-            "run completed (%)",
-            &format!("GOSPA ({unit})"),
-            Scale::Linear,
-            Scale::Linear,
-            &gospa_series,
-        )?;
-    }
-    Ok(())
+        percent,
+        "GOSPA of the MAP estimates",
+        &format!("GOSPA ({unit})"),
+    )
 }
