@@ -107,11 +107,26 @@ impl<T: Real, const D: usize> Innovation<T, D> {
     /// # Ok::<(), NumericalError>(())
     /// ```
     pub fn new(predicted: SVector<T, D>, covariance: SMatrix<T, D, D>) -> Result<Self, NumericalError> {
+        Self::with_dimension(predicted, covariance, D)
+    }
+
+    /// [`Innovation::new`] for a measurement of `dimension` ≤ `D` components padded to `D`: the padding's
+    /// rows and columns of S are those of the identity, so the Cholesky factor, the distance and the
+    /// determinant are the `dimension`-component ones, and the normaliser is (2π)^(−dimension/2)
+    /// (docs/maths.md §6.10).
+    ///
+    /// # Errors
+    /// As [`Innovation::new`].
+    pub fn with_dimension(
+        predicted: SVector<T, D>,
+        covariance: SMatrix<T, D, D>,
+        dimension: usize,
+    ) -> Result<Self, NumericalError> {
         if !predicted.iter().chain(covariance.iter()).all(|v| v.is_finite_value()) {
             return Err(NumericalError::NonFinite);
         }
         let cholesky = Cholesky::new(covariance).ok_or(NumericalError::NotPositiveDefinite)?.unpack();
-        let mut log_normaliser = -c::<T>(0.5) * T::of_f64(D as f64) * ln(T::two_pi());
+        let mut log_normaliser = -c::<T>(0.5) * T::of_f64(dimension.min(D) as f64) * ln(T::two_pi());
         for i in 0..D {
             let diagonal = cholesky[(i, i)];
             if !(diagonal > T::zero()) {
@@ -168,7 +183,9 @@ impl<T: Real, const D: usize> Innovation<T, D> {
     /// [`Innovation::score`] from the residual ν = z − ẑ (as the measurement model forms it).
     pub fn score_residual(&self, residual: &SVector<T, D>) -> (T, T) {
         let whitened = self.solve_lower(residual);
-        let distance_squared = whitened.norm_squared();
+        // Σ w_i² in component order (nalgebra sums a 4-vector pairwise), so that the zeros of a padded
+        // measurement add nothing and a kind is scored with the bits of its own dimension (docs/maths.md §6.10).
+        let distance_squared = whitened.iter().fold(T::zero(), |sum, w| sum + *w * *w);
         (distance_squared, self.log_normaliser - c::<T>(0.5) * distance_squared)
     }
 }
@@ -227,7 +244,7 @@ pub fn innovation<T: Real, G: Measure<T, S, D>, const S: usize, const D: usize>(
     let h = model.jacobian(&predicted.mean);
     // S = H P⁻ Hᵀ + R
     let s = symmetrise(&(h * predicted.covariance * h.transpose() + model.noise_covariance()));
-    Innovation::new(model.measure(&predicted.mean), s)
+    Innovation::with_dimension(model.measure(&predicted.mean), s, model.dimension())
 }
 
 /// The measurement-independent part of an update: the gain K and the posterior covariance P.

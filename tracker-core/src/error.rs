@@ -197,6 +197,12 @@ pub enum StepError {
         /// Its index in the scan.
         index: usize,
     },
+    /// A measurement is not of the kind of the scan's sensor: in a network of mixed kinds, a component
+    /// beyond the kind's dimension is not zero.
+    MeasurementOfWrongKind {
+        /// Its index in the scan.
+        index: usize,
+    },
     /// The scan time is NaN or infinite.
     NonFiniteTime,
     /// The scan time is not after the previous scan (or the prior).
@@ -252,6 +258,12 @@ impl core::fmt::Display for StepError {
             StepError::NonFiniteMeasurement { index } => write!(f, "measurement {index} is not finite"),
             StepError::MeasurementOutsideFieldOfView { index } => {
                 write!(f, "measurement {index} is outside the field of view")
+            }
+            StepError::MeasurementOfWrongKind { index } => {
+                write!(
+                    f,
+                    "measurement {index} is not of the kind of the scan's sensor (a component beyond its dimension is not 0)"
+                )
             }
             StepError::NonFiniteTime => f.write_str("scan time is not finite"),
             StepError::TimeNotAfterLastScan => f.write_str("scan time is not after the previous scan"),

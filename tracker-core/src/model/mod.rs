@@ -24,9 +24,13 @@
 //! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each a
 //!   [`SiteSensor`](crate::sensor::SiteSensor) with its own noise, field of view, p_D and clutter, placed at
 //!   every scan ([`ScanGeometry`](crate::sensor::ScanGeometry)).
+//! - [`MixedNetwork`]: up to `C` sensors of mixed kinds ([`SensorKind`]: radar, radar with range-rate,
+//!   right ascension and declination, azimuth and elevation only, range only, range and range-rate) in
+//!   one tracker; each kind measures its own components, padded to the tracker's `D = 4`.
 
 mod admissible;
 mod constant_velocity;
+mod mixed;
 mod network;
 mod optical;
 mod position;
@@ -39,6 +43,7 @@ mod two_body_j2;
 pub use crate::sensor::EARTH_RADIUS;
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
+pub use mixed::{KindMeasurement, MixedLook, MixedNetwork, MixedSensor, SensorKind};
 pub use network::{Placeable, SensorNetwork};
 pub use optical::OpticalRaDec;
 pub use position::PositionMeasurement;
@@ -195,6 +200,20 @@ pub trait Measure<T: Real, const S: usize, const D: usize> {
     /// into (−π, π] ([`wrap_angle`](crate::sensor::wrap_angle)). The default is the plain difference.
     fn residual(&self, z: &SVector<T, D>, predicted: &SVector<T, D>) -> SVector<T, D> {
         z - predicted
+    }
+
+    /// How many components this model measures: `D`, or fewer for a model of a network of mixed kinds
+    /// ([`MixedLook`]) whose measurements fill the first components and pad the rest (docs/maths.md
+    /// §6.10). The Gaussian's normaliser (2π)^(−d/2) uses it.
+    fn dimension(&self) -> usize {
+        D
+    }
+
+    /// The look direction of `state` from the sensor, when the field of view must be read from the state
+    /// rather than from its predicted measurement (a sensor that measures no angles). The default,
+    /// `None`, reads the field of view through the predicted measurement.
+    fn look_of_state(&self, _state: &SVector<T, S>) -> Option<crate::sensor::Look<T>> {
+        None
     }
 }
 

@@ -144,7 +144,7 @@ pub struct SensorNetwork<T, X, const D: usize, const C: usize> {
 
 /// The spacecraft frame: rows "East" = ŷ, "North" = x̂, "Up" = ẑ, so that azimuth is right ascension and
 /// elevation declination.
-fn inertial_frame<T: Real>() -> [[T; 3]; 3] {
+pub(super) fn inertial_frame<T: Real>() -> [[T; 3]; 3] {
     let (o, l) = (T::zero(), T::one());
     [[o, l, o], [l, o, o], [o, o, l]]
 }
@@ -220,30 +220,42 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
         let Some(site) = self.sensors().get(sensor) else {
             return Err(PlacementError::UnknownSensor { sensor, sensors: self.count });
         };
-        let (state, frame) = match (site.platform, observer) {
-            (Platform::Ground(_), Some(_)) => return Err(PlacementError::UnexpectedObserver),
-            (Platform::Spacecraft, None) => return Err(PlacementError::MissingObserver),
-            (Platform::Ground(ground), None) => {
-                // The rotation angle in f64 from the f64 scan time, then one cast.
-                // The nominal rate at f64 precision: its f32 rounding alone (3e-8 relative) would move a site
-                // by 13 m after ten days.
-                let nominal = self.rotation.rate == T::of_f64(EARTH_ROTATION_RATE);
-                let rate = if nominal { EARTH_ROTATION_RATE } else { self.rotation.rate.as_f64() };
-                let angle = self.rotation.angle_at_epoch.as_f64() + rate * time;
-                let at = EarthRotation { angle_at_epoch: T::of_f64(wrap_angle(angle)), rate: self.rotation.rate };
-                (ground.observer(&at, T::zero()), ground.enu(&at, T::zero()))
-            }
-            (Platform::Spacecraft, Some(state)) => {
-                if !state.iter().all(|v| v.is_finite_value()) {
-                    return Err(PlacementError::NonFiniteObserver);
-                }
-                if inside_earth(&state) {
-                    return Err(PlacementError::ObserverInsideEarth);
-                }
-                (state, inertial_frame())
-            }
-        };
+        let (state, frame) = observer_and_frame(&self.rotation, site.platform, time, observer)?;
         Ok(Self { current: sensor, frame, placed: X::placed(state, frame, site.sigma), ..*self })
+    }
+}
+
+/// Where a sensor on `platform` is at scan `time` and how its frame lies: the observer's inertial state
+/// and the frame's rows (East, North, Up of a ground site at the scan's Earth rotation angle; the inertial
+/// frame of [`inertial_frame`] for a spacecraft, whose state the scan passes as `observer`).
+pub(super) fn observer_and_frame<T: Real>(
+    rotation: &EarthRotation<T>,
+    platform: Platform<T>,
+    time: f64,
+    observer: Option<[T; 6]>,
+) -> Result<([T; 6], [[T; 3]; 3]), PlacementError> {
+    match (platform, observer) {
+        (Platform::Ground(_), Some(_)) => Err(PlacementError::UnexpectedObserver),
+        (Platform::Spacecraft, None) => Err(PlacementError::MissingObserver),
+        (Platform::Ground(ground), None) => {
+            // The rotation angle in f64 from the f64 scan time, then one cast.
+            // The nominal rate at f64 precision: its f32 rounding alone (3e-8 relative) would move a site
+            // by 13 m after ten days.
+            let nominal = rotation.rate == T::of_f64(EARTH_ROTATION_RATE);
+            let rate = if nominal { EARTH_ROTATION_RATE } else { rotation.rate.as_f64() };
+            let angle = rotation.angle_at_epoch.as_f64() + rate * time;
+            let at = EarthRotation { angle_at_epoch: T::of_f64(wrap_angle(angle)), rate: rotation.rate };
+            Ok((ground.observer(&at, T::zero()), ground.enu(&at, T::zero())))
+        }
+        (Platform::Spacecraft, Some(state)) => {
+            if !state.iter().all(|v| v.is_finite_value()) {
+                return Err(PlacementError::NonFiniteObserver);
+            }
+            if inside_earth(&state) {
+                return Err(PlacementError::ObserverInsideEarth);
+            }
+            Ok((state, inertial_frame()))
+        }
     }
 }
 
@@ -256,6 +268,15 @@ fn inside_earth<T: Real>(state: &[T; 6]) -> bool {
 }
 
 fn check_sensor<T: Real, const D: usize>(sensor: &SiteSensor<T, D>) -> Result<(), &'static str> {
+    check_platform(sensor)?;
+    if !sensor.sigma.iter().all(|&s| s.is_finite_value() && s > T::zero()) {
+        return Err("sensor network: every noise standard deviation must be finite and > 0");
+    }
+    Ok(())
+}
+
+/// The checks of a sensor besides its noise: a ground site on the ellipsoid, a look-angle field of view.
+pub(super) fn check_platform<T: Real, const D: usize>(sensor: &SiteSensor<T, D>) -> Result<(), &'static str> {
     if let Platform::Ground(site) = sensor.platform {
         let half_pi = T::frac_pi_2();
         if !(site.latitude.is_finite_value() && site.latitude >= -half_pi && site.latitude <= half_pi) {
@@ -269,9 +290,6 @@ fn check_sensor<T: Real, const D: usize>(sensor: &SiteSensor<T, D>) -> Result<()
             return Err("sensor network: site height must be in [-1, 100] km (a ground site on the ellipsoid)");
         }
     }
-    if !sensor.sigma.iter().all(|&s| s.is_finite_value() && s > T::zero()) {
-        return Err("sensor network: every noise standard deviation must be finite and > 0");
-    }
     if !matches!(sensor.detection.field_of_view, Region::Look { .. }) {
         return Err("sensor network: a sensor's field of view must be a look-angle region");
     }
@@ -279,7 +297,10 @@ fn check_sensor<T: Real, const D: usize>(sensor: &SiteSensor<T, D>) -> Result<()
 }
 
 /// The clutter volume of a look-angle `region` for measurements of `X` seen in `frame`.
-fn angular_volume<T: Real, X: Placeable<T, D>, const D: usize>(region: &Region<T>, frame: &[[T; 3]; 3]) -> T {
+pub(super) fn angular_volume<T: Real, X: Placeable<T, D>, const D: usize>(
+    region: &Region<T>,
+    frame: &[[T; 3]; 3],
+) -> T {
     let Region::Look { shape, min_elevation, range, range_rate } = *region else {
         return region.volume();
     };

@@ -146,6 +146,21 @@ pub trait Placement<T: Real, const D: usize> {
     fn clutter_volume(&self, region: &Region<T>) -> T {
         region.volume()
     }
+
+    /// Whether `z` is a measurement of this placed sensor's kind: always, except for a network of mixed
+    /// kinds, whose measurements must leave the components beyond their kind's dimension at zero.
+    fn fits(&self, _z: &SVector<T, D>) -> bool {
+        true
+    }
+
+    /// Whether measurement `z` lies in `region`. The default is [`Region::sees`]; a sensor that measures
+    /// no angles checks only the windows of what it measures.
+    fn measurement_in_view(&self, region: &Region<T>, z: &SVector<T, D>) -> bool
+    where
+        Self: Sized,
+    {
+        region.sees(self, z)
+    }
 }
 
 impl<T: Real> Region<T> {

@@ -43,6 +43,7 @@ mod score;
 mod view;
 
 pub use scan::{PlacedScan, check_scan, place_scan};
+pub use score::in_field_of_view;
 pub use view::HypothesisView;
 
 use crate::association::Column;

@@ -42,7 +42,10 @@ pub fn check_scan<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D
         if !z.iter().all(|v| v.is_finite_value()) {
             return Err(StepError::NonFiniteMeasurement { index });
         }
-        if !field_of_view.sees(model, z) {
+        if !model.fits(z) {
+            return Err(StepError::MeasurementOfWrongKind { index });
+        }
+        if !model.measurement_in_view(field_of_view, z) {
             return Err(StepError::MeasurementOutsideFieldOfView { index });
         }
     }

@@ -13,6 +13,7 @@ use crate::pool::BirthPool;
 use crate::real::Real;
 use crate::real::ln;
 use crate::report::NumericalDrops;
+use crate::sensor::Region;
 use crate::store::Track;
 use nalgebra::SVector;
 
@@ -153,6 +154,22 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
     }
 }
 
+/// Whether an object at `state`, whose measurement by the placed sensor `model` is predicted at
+/// `predicted`, lies in `region`: read from the predicted measurement ([`Region::sees`]), or from the
+/// state's look direction for a sensor that measures no angles ([`Measure::look_of_state`](crate::Measure::look_of_state)). The tracker and the
+/// host's reference decide every missed detection here.
+pub fn in_field_of_view<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usize>(
+    region: &Region<T>,
+    model: &G,
+    state: &Gaussian<T, S>,
+    predicted: &SVector<T, D>,
+) -> bool {
+    match model.look_of_state(&state.mean) {
+        Some(look) => region.contains_look(&look),
+        None => region.sees(model, predicted),
+    }
+}
+
 /// Predicts `track` by `dt`: its state, innovation and whether it is in view; for a track in view, also
 /// checks that an update is possible (its gain and posterior covariance), so that a failure drops or fails
 /// the track before any child holds it.
@@ -168,7 +185,8 @@ where
 {
     let state = ekf::predict(motion, &track.state, dt)?;
     let innovation = ekf::innovation(&placed.model, &state)?;
-    let in_field_of_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+    let in_field_of_view =
+        in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted);
     if in_field_of_view {
         ekf::correction(&placed.model, &state, &innovation)?;
     }
@@ -210,7 +228,7 @@ where
         *cells.states.at_mut(cell) = state;
         *cells.innovations.at_mut(cell) = innovation;
         *cells.in_field_of_view.at_mut(cell) =
-            placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+            in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted);
         *cells.probabilities.at_mut(cell) = alpha;
         *cells.pool_cell.at_mut(cell) = pool_cell;
         cells.count += 1;

@@ -1,0 +1,699 @@
+//! Sensor networks of mixed kinds in one tracker: radars, telescopes, angles-only and ranging stations
+//! (docs/maths.md §6.10).
+//!
+//! A [`MixedNetwork`] holds up to `C` sensors, each of its own [`SensorKind`]. Its measurements are
+//! vectors of the tracker's `D = 4` components: a kind of dimension d fills the first d in its own order
+//! ([`SensorKind::components`]) and leaves the rest at zero. The placed model ([`MixedLook`]) pads every
+//! quantity so that the padding cannot change a number:
+//!
+//! - h(x) and the residual are zero in the padding, and H's padded rows are zero;
+//! - R is the identity in the padding, so S = H P Hᵀ + R is block-diagonal with an identity block.
+//!
+//! The Cholesky factor of S is then the d × d factor with an identity block (every padded entry is an
+//! exact 0 or 1), the Mahalanobis distance and ln det S are the d-dimensional ones, the gain's padded
+//! columns are zero, and the normaliser is (2π)^(−d/2) ([`Measure::dimension`]). So each kind is scored
+//! and updated in its own dimension, with the same bits as a tracker of that kind alone: radar, radar
+//! with range-rate and right ascension/declination delegate to [`RadarRangeAzEl`], [`RadarRangeRate`]
+//! and [`OpticalRaDec`].
+//!
+//! Each sensor's clutter intensity is in its own measurement units (its field of view's volume in its
+//! own coordinates), so every entry p_D g(z | x) / κ(z) is dimensionless and the weights of children
+//! under different sensors are comparable. A range-only or range and range-rate sensor measures no
+//! angles: whether an object is in its field of view is read from the object's look direction
+//! ([`Measure::look_of_state`]), and a measurement is in view when its range (and range-rate) lie in the
+//! windows.
+//!
+//! **Births.** Radar kinds use the radar admissible regions, right ascension/declination the optical one;
+//! an azimuth/elevation measurement is turned into the inertial direction it names and uses the optical
+//! region (with an isotropic angular σ, the larger of σ_A cos E and σ_E). Range-only kinds give no birth
+//! density: their objects are born from another sensor's measurements.
+
+use super::network::{angular_volume, check_platform, inertial_frame, observer_and_frame};
+use super::{
+    AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, Placeable, RadarRangeAzEl,
+    RadarRangeRate,
+};
+use crate::real::{Real, atan2, cos, sin, sqrt};
+use crate::sensor::frames::{EarthRotation, wrap_angle};
+use crate::sensor::{Look, LookAxes, Placement, PlacementError, Platform, Region, ScanGeometry, Sensor, SiteSensor};
+use nalgebra::{SMatrix, SVector};
+
+/// The measurement components of a [`MixedNetwork`]: the largest kind's dimension.
+pub const MIXED_DIMENSION: usize = 4;
+
+/// What a sensor measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SensorKind {
+    /// Range, azimuth, elevation (km, rad, rad).
+    Radar,
+    /// Range, azimuth, elevation, range-rate (km, rad, rad, km/s).
+    RadarRangeRate,
+    /// Topocentric right ascension and declination (rad).
+    OpticalRaDec,
+    /// Azimuth and elevation only (rad): a ground station's mount angles.
+    AzEl,
+    /// Range only (km).
+    Range,
+    /// Range and range-rate (km, km/s).
+    RangeRangeRate,
+}
+
+impl SensorKind {
+    /// Every kind, in a fixed order.
+    pub const ALL: [SensorKind; 6] = [
+        SensorKind::Radar,
+        SensorKind::RadarRangeRate,
+        SensorKind::OpticalRaDec,
+        SensorKind::AzEl,
+        SensorKind::Range,
+        SensorKind::RangeRangeRate,
+    ];
+
+    /// How many components it measures.
+    pub const fn dimension(self) -> usize {
+        match self {
+            SensorKind::Radar => 3,
+            SensorKind::RadarRangeRate => 4,
+            SensorKind::OpticalRaDec | SensorKind::AzEl | SensorKind::RangeRangeRate => 2,
+            SensorKind::Range => 1,
+        }
+    }
+
+    /// Its components in order, by name.
+    pub const fn components(self) -> &'static [&'static str] {
+        match self {
+            SensorKind::Radar => &["range", "azimuth", "elevation"],
+            SensorKind::RadarRangeRate => &["range", "azimuth", "elevation", "range_rate"],
+            SensorKind::OpticalRaDec => &["right_ascension", "declination"],
+            SensorKind::AzEl => &["azimuth", "elevation"],
+            SensorKind::Range => &["range"],
+            SensorKind::RangeRangeRate => &["range", "range_rate"],
+        }
+    }
+
+    /// The look coordinates besides the angles that it measures (the windows its field of view has).
+    pub const fn axes(self) -> LookAxes {
+        match self {
+            SensorKind::Radar | SensorKind::Range => LookAxes { range: true, range_rate: false },
+            SensorKind::RadarRangeRate | SensorKind::RangeRangeRate => LookAxes { range: true, range_rate: true },
+            SensorKind::OpticalRaDec | SensorKind::AzEl => LookAxes { range: false, range_rate: false },
+        }
+    }
+
+    /// Whether it measures angles.
+    pub const fn measures_angles(self) -> bool {
+        !matches!(self, SensorKind::Range | SensorKind::RangeRangeRate)
+    }
+
+    /// A short name (also the scenario files' spelling).
+    pub const fn name(self) -> &'static str {
+        match self {
+            SensorKind::Radar => "radar",
+            SensorKind::RadarRangeRate => "radar_range_rate",
+            SensorKind::OpticalRaDec => "optical",
+            SensorKind::AzEl => "az_el",
+            SensorKind::Range => "range",
+            SensorKind::RangeRangeRate => "range_range_rate",
+        }
+    }
+}
+
+impl core::fmt::Display for SensorKind {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One measurement of a named kind: what a caller hands to [`MixedNetwork::pack`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum KindMeasurement<T> {
+    /// (ρ, A, E).
+    Radar([T; 3]),
+    /// (ρ, A, E, ρ̇).
+    RadarRangeRate([T; 4]),
+    /// (α, δ).
+    OpticalRaDec([T; 2]),
+    /// (A, E).
+    AzEl([T; 2]),
+    /// ρ.
+    Range(T),
+    /// (ρ, ρ̇).
+    RangeRangeRate([T; 2]),
+}
+
+impl<T: Real> KindMeasurement<T> {
+    /// Its kind.
+    pub const fn kind(&self) -> SensorKind {
+        match self {
+            KindMeasurement::Radar(_) => SensorKind::Radar,
+            KindMeasurement::RadarRangeRate(_) => SensorKind::RadarRangeRate,
+            KindMeasurement::OpticalRaDec(_) => SensorKind::OpticalRaDec,
+            KindMeasurement::AzEl(_) => SensorKind::AzEl,
+            KindMeasurement::Range(_) => SensorKind::Range,
+            KindMeasurement::RangeRangeRate(_) => SensorKind::RangeRangeRate,
+        }
+    }
+
+    /// The padded vector: its components first, zeros after.
+    pub fn padded(&self) -> SVector<T, MIXED_DIMENSION> {
+        let o = T::zero();
+        SVector::from(match *self {
+            KindMeasurement::Radar([a, b, c]) => [a, b, c, o],
+            KindMeasurement::RadarRangeRate(z) => z,
+            KindMeasurement::OpticalRaDec([a, b]) | KindMeasurement::AzEl([a, b]) => [a, b, o, o],
+            KindMeasurement::RangeRangeRate([a, b]) => [a, b, o, o],
+            KindMeasurement::Range(a) => [a, o, o, o],
+        })
+    }
+}
+
+/// A measurement of the wrong kind for the sensor it was given to ([`MixedNetwork::pack`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum KindError {
+    /// The network has no such sensor.
+    UnknownSensor {
+        /// The index given.
+        sensor: usize,
+        /// How many sensors there are.
+        sensors: usize,
+    },
+    /// The measurement's kind is not the sensor's.
+    WrongKind {
+        /// The sensor's index.
+        sensor: usize,
+        /// The sensor's kind.
+        expected: SensorKind,
+        /// The measurement's kind.
+        received: SensorKind,
+    },
+}
+
+impl core::fmt::Display for KindError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            KindError::UnknownSensor { sensor, sensors } => {
+                write!(f, "sensor {sensor} is unknown (the network has {sensors})")
+            }
+            KindError::WrongKind { sensor, expected, received } => {
+                write!(f, "sensor {sensor} measures {expected}, not {received}")
+            }
+        }
+    }
+}
+
+impl core::error::Error for KindError {}
+
+/// One sensor of a [`MixedNetwork`]: its kind, and where it is, its noise and how it detects. `sigma`
+/// holds the kind's components first ([`SensorKind::components`]); the rest must be zero.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct MixedSensor<T> {
+    /// What it measures.
+    pub kind: SensorKind,
+    /// Platform, noise (padded with zeros) and detection model.
+    pub sensor: SiteSensor<T, MIXED_DIMENSION>,
+}
+
+/// The measurement model of one sensor of a [`MixedNetwork`], placed at a scan (see the module
+/// documentation for the padding).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct MixedLook<T> {
+    /// What it measures.
+    pub kind: SensorKind,
+    /// The observer's inertial position and velocity (km, km/s).
+    pub observer: [T; 6],
+    /// The sensor frame's East, North, Up rows in inertial coordinates.
+    pub frame: [[T; 3]; 3],
+    /// Noise standard deviations of the kind's components, then zeros.
+    pub sigma: [T; MIXED_DIMENSION],
+}
+
+type Vector4<T> = SVector<T, MIXED_DIMENSION>;
+
+impl<T: Real> MixedLook<T> {
+    fn radar(&self) -> RadarRangeAzEl<T> {
+        let [a, b, c, _] = self.sigma;
+        RadarRangeAzEl { observer: self.observer, enu: self.frame, sigma: [a, b, c] }
+    }
+
+    fn radar_rate(&self) -> RadarRangeRate<T> {
+        RadarRangeRate { observer: self.observer, enu: self.frame, sigma: self.sigma }
+    }
+
+    fn optical(&self) -> OpticalRaDec<T> {
+        let [a, b, ..] = self.sigma;
+        OpticalRaDec { observer: self.observer, sigma: [a, b] }
+    }
+
+    /// (ρ, A, E, ρ̇) of `state` and the Jacobian rows of the four.
+    fn full(&self, state: &SVector<T, 6>) -> (Vector4<T>, SMatrix<T, 4, 6>) {
+        let radar = self.radar_rate();
+        (radar.measure(state), radar.jacobian(state))
+    }
+}
+
+/// `values` in the first components, zeros after.
+fn pad<T: Real, const K: usize>(values: &SVector<T, K>) -> Vector4<T> {
+    let mut padded = Vector4::zeros();
+    for (out, value) in padded.iter_mut().zip(values.iter()) {
+        *out = *value;
+    }
+    padded
+}
+
+/// Rows `rows` of `h` in the first rows, zeros after.
+fn pick_rows<T: Real>(h: &SMatrix<T, 4, 6>, rows: &[usize]) -> SMatrix<T, 4, 6> {
+    let mut picked = SMatrix::<T, 4, 6>::zeros();
+    for (out, &row) in rows.iter().enumerate() {
+        picked.set_row(out, &h.row(row));
+    }
+    picked
+}
+
+/// The first `K` components of `z`.
+fn head<T: Real, const K: usize>(z: &Vector4<T>) -> SVector<T, K> {
+    SVector::from_fn(|i, _| z[i])
+}
+
+impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for MixedLook<T> {
+    fn measure(&self, state: &SVector<T, 6>) -> Vector4<T> {
+        let o = T::zero();
+        match self.kind {
+            SensorKind::Radar => pad(&self.radar().measure(state)),
+            SensorKind::RadarRangeRate => self.radar_rate().measure(state),
+            SensorKind::OpticalRaDec => pad(&self.optical().measure(state)),
+            SensorKind::AzEl => {
+                let z = self.radar().measure(state);
+                SVector::from([z[1], z[2], o, o])
+            }
+            SensorKind::Range => {
+                let z = self.radar().measure(state);
+                SVector::from([z[0], o, o, o])
+            }
+            SensorKind::RangeRangeRate => {
+                let z = self.radar_rate().measure(state);
+                SVector::from([z[0], z[3], o, o])
+            }
+        }
+    }
+
+    fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, 4, 6> {
+        match self.kind {
+            SensorKind::Radar => {
+                let h = self.radar().jacobian(state);
+                let mut padded = SMatrix::<T, 4, 6>::zeros();
+                for row in 0..3 {
+                    padded.set_row(row, &h.row(row));
+                }
+                padded
+            }
+            SensorKind::RadarRangeRate => self.radar_rate().jacobian(state),
+            SensorKind::OpticalRaDec => {
+                let h = self.optical().jacobian(state);
+                let mut padded = SMatrix::<T, 4, 6>::zeros();
+                for row in 0..2 {
+                    padded.set_row(row, &h.row(row));
+                }
+                padded
+            }
+            SensorKind::AzEl => pick_rows(&self.full(state).1, &[1, 2]),
+            SensorKind::Range => pick_rows(&self.full(state).1, &[0]),
+            SensorKind::RangeRangeRate => pick_rows(&self.full(state).1, &[0, 3]),
+        }
+    }
+
+    /// diag(σ²) in the kind's components, the identity in the padding.
+    fn noise_covariance(&self) -> SMatrix<T, 4, 4> {
+        let dimension = self.kind.dimension();
+        SMatrix::from_diagonal(&SVector::from_fn(
+            |i, _| {
+                if i < dimension { self.sigma[i] * self.sigma[i] } else { T::one() }
+            },
+        ))
+    }
+
+    /// The kind's residual (its angles wrapped), exactly zero in the padding whatever `z` holds there.
+    fn residual(&self, z: &Vector4<T>, predicted: &Vector4<T>) -> Vector4<T> {
+        let o = T::zero();
+        match self.kind {
+            SensorKind::Radar => pad(&self.radar().residual(&head::<T, 3>(z), &head::<T, 3>(predicted))),
+            SensorKind::RadarRangeRate => self.radar_rate().residual(z, predicted),
+            SensorKind::OpticalRaDec => pad(&self.optical().residual(&head::<T, 2>(z), &head::<T, 2>(predicted))),
+            SensorKind::AzEl => SVector::from([wrap_angle(z[0] - predicted[0]), z[1] - predicted[1], o, o]),
+            SensorKind::Range => SVector::from([z[0] - predicted[0], o, o, o]),
+            SensorKind::RangeRangeRate => SVector::from([z[0] - predicted[0], z[1] - predicted[1], o, o]),
+        }
+    }
+
+    fn dimension(&self) -> usize {
+        self.kind.dimension()
+    }
+
+    /// For the kinds without angles, the full look (ρ, A, E and ρ̇ where measured) of `state`.
+    fn look_of_state(&self, state: &SVector<T, 6>) -> Option<Look<T>> {
+        if self.kind.measures_angles() {
+            return None;
+        }
+        let z = self.radar_rate().measure(state);
+        let range_rate = self.kind.axes().range_rate.then_some(z[3]);
+        Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate })
+    }
+}
+
+fn in_window<T: Real>(window: Option<[T; 2]>, value: T) -> bool {
+    window.is_none_or(|[low, high]| value >= low && value <= high)
+}
+
+impl<T: Real> Placement<T, MIXED_DIMENSION> for MixedLook<T> {
+    fn look_axes(&self) -> Option<LookAxes> {
+        Some(self.kind.axes())
+    }
+
+    /// The look of a measurement that has angles (`None` for the range kinds).
+    fn look(&self, z: &Vector4<T>) -> Option<Look<T>> {
+        match self.kind {
+            SensorKind::Radar => Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: None }),
+            SensorKind::RadarRangeRate => {
+                Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate: Some(z[3]) })
+            }
+            SensorKind::OpticalRaDec => <OpticalRaDec<T> as Placeable<T, 2>>::look_in(&self.frame, &head::<T, 2>(z)),
+            SensorKind::AzEl => Some(Look { azimuth: z[0], elevation: z[1], range: None, range_rate: None }),
+            SensorKind::Range | SensorKind::RangeRangeRate => None,
+        }
+    }
+
+    fn clutter_volume(&self, region: &Region<T>) -> T {
+        kind_volume(self.kind, region, &self.frame)
+    }
+
+    fn fits(&self, z: &Vector4<T>) -> bool {
+        z.iter().skip(self.kind.dimension()).all(|v| *v == T::zero())
+    }
+
+    /// The range kinds: range (and range-rate) in the windows; the others through their look.
+    fn measurement_in_view(&self, region: &Region<T>, z: &Vector4<T>) -> bool {
+        match (self.kind, region) {
+            (SensorKind::Range, Region::Look { range, .. }) => in_window(*range, z[0]),
+            (SensorKind::RangeRangeRate, Region::Look { range, range_rate, .. }) => {
+                in_window(*range, z[0]) && in_window(*range_rate, z[1])
+            }
+            _ => region.sees(self, z),
+        }
+    }
+}
+
+/// The clutter volume of `region` in the coordinates of `kind` seen in `frame`.
+fn kind_volume<T: Real>(kind: SensorKind, region: &Region<T>, frame: &[[T; 3]; 3]) -> T {
+    match (kind, region) {
+        (SensorKind::OpticalRaDec, _) => angular_volume::<T, OpticalRaDec<T>, 2>(region, frame),
+        (SensorKind::Range | SensorKind::RangeRangeRate, Region::Look { range, range_rate, .. }) => {
+            let extent = |window: Option<[T; 2]>| window.map_or(T::one(), |[low, high]| high - low);
+            extent(*range) * extent(*range_rate)
+        }
+        _ => angular_volume::<T, RadarRangeAzEl<T>, 3>(region, frame),
+    }
+}
+
+impl<T: Real> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedLook<T> {
+    fn birth_components(
+        &self,
+        z: &Vector4<T>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        match self.kind {
+            SensorKind::Radar => self.radar().birth_components(&head::<T, 3>(z), region, out),
+            SensorKind::RadarRangeRate => self.radar_rate().birth_components(z, region, out),
+            SensorKind::OpticalRaDec => self.optical().birth_components(&head::<T, 2>(z), region, out),
+            SensorKind::AzEl => {
+                let (direction, sigma) = self.az_el_as_ra_dec(z[0], z[1]);
+                self.optical().with_sigma(sigma).birth_components(&direction, region, out)
+            }
+            SensorKind::Range | SensorKind::RangeRangeRate => Err(BirthError::Unsupported),
+        }
+    }
+}
+
+impl<T: Real> MixedLook<T> {
+    /// The inertial right ascension and declination of look angles (A, E) in the sensor's frame, and an
+    /// isotropic σ for them: σ = max(σ_A cos E, σ_E) across the line of sight, σ / cos δ in α.
+    fn az_el_as_ra_dec(&self, azimuth: T, elevation: T) -> (SVector<T, 2>, [T; 2]) {
+        let (east, north, up) = (sin(azimuth) * cos(elevation), cos(azimuth) * cos(elevation), sin(elevation));
+        let [e, n, u] = self.frame;
+        let unit: [T; 3] = core::array::from_fn(|k| east * e[k] + north * n[k] + up * u[k]);
+        let horizontal = sqrt(unit[0] * unit[0] + unit[1] * unit[1]);
+        let (alpha, delta) = (atan2(unit[1], unit[0]), atan2(unit[2], horizontal));
+        let [sigma_azimuth, sigma_elevation, ..] = self.sigma;
+        let across = sigma_azimuth * cos(elevation);
+        let sigma = if across > sigma_elevation { across } else { sigma_elevation };
+        (SVector::from([alpha, delta]), [sigma / cos(delta), sigma])
+    }
+}
+
+impl<T: Real> OpticalRaDec<T> {
+    fn with_sigma(self, sigma: [T; 2]) -> Self {
+        Self { sigma, ..self }
+    }
+}
+
+/// Up to `C` sensors of mixed kinds ([`SensorKind`]) for a 6-state inertial motion model, measurements of
+/// [`MIXED_DIMENSION`] components (docs/maths.md §6.10).
+///
+/// # Examples
+/// A radar and a range-only station; a range measurement packed for the second one.
+/// ```
+/// use tracker_core::model::{KindMeasurement, MixedNetwork, MixedSensor, SensorKind};
+/// use tracker_core::sensor::{EarthRotation, GroundSite, LookShape, Platform, Region, Sensor, SiteSensor};
+/// let field_of_view = |range_rate| Region::Look {
+///     shape: LookShape::Cone { azimuth: 0.0, elevation: 1.2, half_angle: 0.6 },
+///     min_elevation: 0.1,
+///     range: Some([200.0, 3000.0]),
+///     range_rate,
+/// };
+/// let site = Platform::Ground(GroundSite { latitude: 0.7, longitude: 0.1, height: 0.1 });
+/// let sensor = |kind, sigma| MixedSensor {
+///     kind,
+///     sensor: SiteSensor {
+///         platform: site,
+///         sigma,
+///         detection: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view: field_of_view(None) },
+///     },
+/// };
+/// let network: MixedNetwork<f64, 4> = MixedNetwork::new(
+///     EarthRotation::new(0.0),
+///     &[sensor(SensorKind::Radar, [0.02, 5e-4, 5e-4, 0.0]), sensor(SensorKind::Range, [0.005, 0.0, 0.0, 0.0])],
+/// )?;
+/// let z = network.pack(1, &KindMeasurement::Range(1234.5))?;
+/// assert_eq!(z.as_slice(), &[1234.5, 0.0, 0.0, 0.0]);
+/// assert!(network.pack(1, &KindMeasurement::AzEl([0.1, 0.2])).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MixedNetwork<T, const C: usize> {
+    rotation: EarthRotation<T>,
+    sensors: [MixedSensor<T>; C],
+    volumes: [T; C],
+    count: usize,
+    current: usize,
+    placed: MixedLook<T>,
+}
+
+impl<T: Real, const C: usize> MixedNetwork<T, C> {
+    /// A network of `sensors`, placed at the first one at time 0.
+    ///
+    /// # Errors
+    /// A static description of the first invalid part: more sensors than `C`, none, a site outside
+    /// latitude [−π/2, π/2] or below 1 km under the ellipsoid, a noise of the kind's components that is
+    /// not finite and > 0 or a padded one that is not 0, a field of view that is not a look-angle region
+    /// with the windows of what the kind measures, or one of zero (or non-finite) volume in the kind's own
+    /// coordinates.
+    pub fn new(rotation: EarthRotation<T>, sensors: &[MixedSensor<T>]) -> Result<Self, &'static str> {
+        const { assert!(C > 0, "a sensor network needs room for one sensor") };
+        let Some(first) = sensors.first() else {
+            return Err("sensor network: no sensors");
+        };
+        if sensors.len() > C {
+            return Err("sensor network: more sensors than its capacity C");
+        }
+        if !(rotation.angle_at_epoch.is_finite_value() && rotation.rate.is_finite_value()) {
+            return Err("sensor network: Earth rotation angle and rate must be finite");
+        }
+        let mut network = Self {
+            rotation,
+            sensors: [*first; C],
+            volumes: [T::one(); C],
+            count: sensors.len(),
+            current: 0,
+            placed: MixedLook {
+                kind: first.kind,
+                observer: [T::zero(); 6],
+                frame: inertial_frame(),
+                sigma: first.sensor.sigma,
+            },
+        };
+        for (index, sensor) in sensors.iter().enumerate() {
+            check_platform(&sensor.sensor)?;
+            check_noise(sensor)?;
+            // The frame at time 0, as [`super::SensorNetwork::new`] forms it (the same volume's bits).
+            let frame = match sensor.sensor.platform {
+                Platform::Ground(site) => site.enu(&rotation, T::zero()),
+                Platform::Spacecraft => inertial_frame(),
+            };
+            let volume = kind_volume(sensor.kind, &sensor.sensor.detection.field_of_view, &frame);
+            sensor.sensor.detection.validate_parts(sensor.kind.dimension(), Some(sensor.kind.axes()), volume)?;
+            if let (Some(slot), Some(volume_slot)) = (network.sensors.get_mut(index), network.volumes.get_mut(index)) {
+                *slot = *sensor;
+                *volume_slot = volume;
+            }
+        }
+        if let Ok(placed) = network.place_at(0, 0.0, None) {
+            network = placed;
+        }
+        Ok(network)
+    }
+
+    /// The sensors.
+    pub fn sensors(&self) -> &[MixedSensor<T>] {
+        self.sensors.get(..self.count).unwrap_or(&[])
+    }
+
+    /// The sensor the network is placed at.
+    pub fn current_sensor(&self) -> usize {
+        self.current
+    }
+
+    /// The clutter volume of sensor `index`'s field of view in its own measurement coordinates.
+    pub fn volume(&self, index: usize) -> Option<T> {
+        self.volumes.get(..self.count).and_then(|volumes| volumes.get(index)).copied()
+    }
+
+    /// The model of the current placement.
+    pub fn placed(&self) -> &MixedLook<T> {
+        &self.placed
+    }
+
+    /// The kinds present, each once, in [`SensorKind::ALL`]'s order.
+    pub fn kinds(&self) -> impl Iterator<Item = SensorKind> + '_ {
+        SensorKind::ALL.into_iter().filter(|kind| self.sensors().iter().any(|sensor| sensor.kind == *kind))
+    }
+
+    /// `measurement` as the padded vector a scan of sensor `sensor` takes.
+    ///
+    /// # Errors
+    /// [`KindError`] for an unknown sensor or a measurement of another kind.
+    pub fn pack(&self, sensor: usize, measurement: &KindMeasurement<T>) -> Result<Vector4<T>, KindError> {
+        let Some(site) = self.sensors().get(sensor) else {
+            return Err(KindError::UnknownSensor { sensor, sensors: self.count });
+        };
+        if site.kind != measurement.kind() {
+            return Err(KindError::WrongKind { sensor, expected: site.kind, received: measurement.kind() });
+        }
+        Ok(measurement.padded())
+    }
+
+    fn place_at(&self, sensor: usize, time: f64, observer: Option<[T; 6]>) -> Result<Self, PlacementError> {
+        let Some(site) = self.sensors().get(sensor) else {
+            return Err(PlacementError::UnknownSensor { sensor, sensors: self.count });
+        };
+        let (state, frame) = observer_and_frame(&self.rotation, site.sensor.platform, time, observer)?;
+        let placed = MixedLook { kind: site.kind, observer: state, frame, sigma: site.sensor.sigma };
+        Ok(Self { current: sensor, placed, ..*self })
+    }
+}
+
+/// The kind's noise components finite and > 0, the padding zero.
+fn check_noise<T: Real>(sensor: &MixedSensor<T>) -> Result<(), &'static str> {
+    let (own, padding) = sensor.sensor.sigma.split_at(sensor.kind.dimension());
+    if !own.iter().all(|&s| s.is_finite_value() && s > T::zero()) {
+        return Err("sensor network: every noise standard deviation of the kind's components must be finite and > 0");
+    }
+    if !padding.iter().all(|&s| s == T::zero()) {
+        return Err("sensor network: noise beyond the kind's components must be 0");
+    }
+    Ok(())
+}
+
+impl<T: Real, const C: usize> Measure<T, 6, MIXED_DIMENSION> for MixedNetwork<T, C> {
+    fn measure(&self, state: &SVector<T, 6>) -> Vector4<T> {
+        self.placed.measure(state)
+    }
+
+    fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, 4, 6> {
+        self.placed.jacobian(state)
+    }
+
+    fn noise_covariance(&self) -> SMatrix<T, 4, 4> {
+        self.placed.noise_covariance()
+    }
+
+    fn residual(&self, z: &Vector4<T>, predicted: &Vector4<T>) -> Vector4<T> {
+        self.placed.residual(z, predicted)
+    }
+
+    fn dimension(&self) -> usize {
+        self.placed.dimension()
+    }
+
+    fn look_of_state(&self, state: &SVector<T, 6>) -> Option<Look<T>> {
+        self.placed.look_of_state(state)
+    }
+}
+
+impl<T: Real, const C: usize> Placement<T, MIXED_DIMENSION> for MixedNetwork<T, C> {
+    fn look_axes(&self) -> Option<LookAxes> {
+        self.placed.look_axes()
+    }
+
+    fn look(&self, z: &Vector4<T>) -> Option<Look<T>> {
+        self.placed.look(z)
+    }
+
+    fn clutter_volume(&self, region: &Region<T>) -> T {
+        match (self.sensors().get(self.current), self.volume(self.current)) {
+            (Some(sensor), Some(volume)) if sensor.sensor.detection.field_of_view == *region => volume,
+            _ => self.placed.clutter_volume(region),
+        }
+    }
+
+    fn sensor_count(&self) -> usize {
+        self.count
+    }
+
+    fn place(&self, scan: &ScanGeometry<T>) -> Result<Self, PlacementError>
+    where
+        Self: Sized + Clone,
+    {
+        self.place_at(scan.sensor, scan.time, scan.observer)
+    }
+
+    fn detection(&self) -> Option<Sensor<T>> {
+        self.sensors().get(self.current).map(|sensor| sensor.sensor.detection)
+    }
+
+    fn fits(&self, z: &Vector4<T>) -> bool {
+        self.placed.fits(z)
+    }
+
+    fn measurement_in_view(&self, region: &Region<T>, z: &Vector4<T>) -> bool {
+        self.placed.measurement_in_view(region, z)
+    }
+}
+
+impl<T: Real, const C: usize> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedNetwork<T, C> {
+    fn birth_components(
+        &self,
+        z: &Vector4<T>,
+        region: &AdmissibleRegion<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        self.placed.birth_components(z, region, out)
+    }
+}
+
+#[cfg(test)]
+mod tests;
