@@ -1,7 +1,7 @@
 //! Prints `core::mem::size_of` of the default configurations' trackers.
 //!
 //! `cargo run -p tracker-core --example sizes`
-use tracker_core::{OpticalTracker, RadarTracker, SsaTracker, ssa_caps};
+use tracker_core::{NetworkTracker, OpticalTracker, RadarTracker, SsaTracker, ssa_caps};
 
 fn main() {
     println!(
@@ -19,4 +19,7 @@ fn main() {
     println!("size_of::<RadarTracker<f32>>() = {} bytes", core::mem::size_of::<RadarTracker<f32>>());
     println!("size_of::<OpticalTracker<f64>>() = {} bytes", core::mem::size_of::<OpticalTracker<f64>>());
     println!("size_of::<OpticalTracker<f32>>() = {} bytes", core::mem::size_of::<OpticalTracker<f32>>());
+    println!("NetworkTracker: the 3-D caps with C = {} sensors of mixed kinds, D = 4", ssa_caps::NETWORK_SENSORS);
+    println!("size_of::<NetworkTracker<f64>>() = {} bytes", core::mem::size_of::<NetworkTracker<f64>>());
+    println!("size_of::<NetworkTracker<f32>>() = {} bytes", core::mem::size_of::<NetworkTracker<f32>>());
 }

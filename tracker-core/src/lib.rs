@@ -81,8 +81,8 @@ pub use ekf::NumericalError;
 pub use error::{ConfigError, StepError};
 pub use gaussian::Gaussian;
 pub use model::{
-    BirthGeometry, ConstantVelocity, Measure, MeasurementModel, MotionModel, OpticalRaDec, PositionMeasurement,
-    RadarRangeAzEl, SensorNetwork, TwoBody, TwoBodyJ2,
+    BirthGeometry, ConstantVelocity, KindMeasurement, Measure, MeasurementModel, MixedNetwork, MixedSensor,
+    MotionModel, OpticalRaDec, PositionMeasurement, RadarRangeAzEl, SensorKind, SensorNetwork, TwoBody, TwoBodyJ2,
 };
 pub use real::Real;
 pub use report::StepReport;
@@ -112,6 +112,10 @@ pub mod ssa_caps {
     pub const TRACKS_3D: usize = 192;
     /// C: sensors of a [`RadarTracker`](crate::RadarTracker) or [`OpticalTracker`](crate::OpticalTracker).
     pub const SENSORS: usize = 4;
+    /// C of a [`NetworkTracker`](crate::NetworkTracker): sensors of mixed kinds. Eight covers a regional
+    /// network (two radars, two telescopes, an angles-only and a ranging station, and room for two more)
+    /// at about 0.2 KiB per sensor; the host profile takes more (host-sim's `--profile host`).
+    pub const NETWORK_SENSORS: usize = 8;
 }
 
 /// The default SSA tracker: planar two-body motion, position measurements, [`ssa_caps`] capacities.
@@ -171,6 +175,27 @@ pub type OpticalTracker<T> = Tracker<
 
 /// The configuration type of [`OpticalTracker`].
 pub type OpticalConfig<T> = Config<T, TwoBodyJ2<T>, OpticalNetwork<T>, 6, { ssa_caps::BIRTH_CELLS }>;
+
+/// Up to [`ssa_caps::NETWORK_SENSORS`] sensors of mixed kinds (radar, radar with range-rate, RA/Dec,
+/// az/el, range, range and range-rate), measurements padded to 4 components (docs/maths.md §6.10).
+pub type Network<T> = MixedNetwork<T, { ssa_caps::NETWORK_SENSORS }>;
+
+/// The fused 3-D tracker: two-body + J2 motion, a [`Network`] of mixed kinds, [`ssa_caps`] capacities.
+pub type NetworkTracker<T> = Tracker<
+    T,
+    TwoBodyJ2<T>,
+    Network<T>,
+    6,
+    { model::MIXED_DIMENSION },
+    { ssa_caps::HYPOTHESES },
+    { ssa_caps::OBJECTS },
+    { ssa_caps::MEASUREMENTS },
+    { ssa_caps::TRACKS_3D },
+    { ssa_caps::BIRTH_CELLS },
+>;
+
+/// The configuration type of [`NetworkTracker`].
+pub type NetworkConfig<T> = Config<T, TwoBodyJ2<T>, Network<T>, 6, { ssa_caps::BIRTH_CELLS }>;
 
 /// A constant-velocity tracker with position measurements and caller-chosen capacities.
 pub type LinearTracker<T, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =

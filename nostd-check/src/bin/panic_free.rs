@@ -12,8 +12,9 @@
 //! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
 //! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
 //! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
-//! sensor index and observer per scan), and the birth geometry `BirthGeometry::birth_components` of the
-//! radar (with and without range-rate), optical and planar models in f64 and f32 (any measurement, region,
+//! sensor index and observer per scan), `NetworkTracker<f64>` and `NetworkTracker<f32>` (sensors of every
+//! kind, any sensor index per scan), and the birth geometry `BirthGeometry::birth_components` of the
+//! radar (with and without range-rate), optical, mixed-kind and planar models in f64 and f32 (any measurement, region,
 //! observer and output length).
 #![no_std]
 #![no_main]
@@ -24,11 +25,11 @@ use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOv
 use tracker_core::model::ProcessNoise;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
-use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
+use tracker_core::sensor::{EarthRotation, GroundSite, LookAxes, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement,
-    PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, SsaConfig, SsaTracker,
-    TrackLabel, TwoBody, TwoBodyJ2, ssa_caps,
+    BirthDetection, BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, MixedSensor, Network, NetworkConfig,
+    NetworkTracker, PositionMeasurement, PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real,
+    Region, Sensor, SensorKind, SsaConfig, SsaTracker, TrackLabel, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 // The C runtime provides `_start`, which calls `main`.
@@ -271,9 +272,87 @@ fn radar<T: Real>(argc: i32) -> u64 {
     digest
 }
 
+/// `NetworkTracker<T>`: sensors of every kind (radar, radar with range-rate, RA/Dec, az/el, range, range
+/// and range-rate) in one network, `new`, then `step_scan` and `digest` over opaque scans and sensors.
+fn network<T: Real>(argc: i32) -> u64 {
+    let c = T::of_f64;
+    let x = c(f64::from(argc));
+    let region = |axes: LookAxes| Region::Look {
+        shape: LookShape::Cone { azimuth: c(0.3) * x, elevation: c(0.9), half_angle: c(0.7) * x },
+        min_elevation: c(0.1) * x,
+        range: axes.range.then_some([T::zero(), c(3000.0) * x]),
+        range_rate: axes.range_rate.then_some([c(-8.0), c(8.0) * x]),
+    };
+    let sensor = |kind: SensorKind, latitude: f64| {
+        let sigma: [T; 4] = core::array::from_fn(|i| if i < kind.dimension() { c(1e-3) * x } else { T::zero() });
+        MixedSensor {
+            kind,
+            sensor: SiteSensor {
+                platform: Platform::Ground(GroundSite {
+                    latitude: c(latitude) * x,
+                    longitude: c(-1.8),
+                    height: c(0.2),
+                }),
+                sigma,
+                detection: Sensor {
+                    detection_probability: c(0.9) / x,
+                    clutter_rate: x,
+                    field_of_view: region(kind.axes()),
+                },
+            },
+        }
+    };
+    let sensors = black_box(SensorKind::ALL.map(|kind| sensor(kind, 0.7)));
+    let Ok(network) = Network::<T>::new(EarthRotation::new(c(0.4) * x), &sensors[..argc as usize % 7]) else {
+        return 3;
+    };
+    let config: NetworkConfig<T> = black_box(Config {
+        motion: TwoBodyJ2::<T> {
+            mu: c(398_600.441_8),
+            j2: c(1.082_626_68e-3) * x,
+            radius: c(6378.137),
+            min_radius: c(6300.0),
+            noise: ProcessNoise::Isotropic(c(1e-12) * x),
+            max_step: c(20.0),
+            max_substeps: 2000,
+        },
+        measurement: network,
+        sensor: sensors[0].sensor.detection,
+        birth: BirthModel::none(),
+        death_probability: c(1e-4) * x,
+        gate: if argc > 3 { None } else { Some(c(25.0) * x) },
+        children: children(argc),
+        selection: selection(argc),
+        store_overflow: store_overflow(argc),
+        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        seed: argc as u64,
+    });
+    let state = |z: f64| Gaussian {
+        mean: SVector::from([c(-1400.0) * x, c(-5000.0), c(z), c(7.0), T::zero(), c(1.0)]),
+        covariance: SMatrix::identity() * x,
+    };
+    let objects = [PriorObject { label: TrackLabel(0), state: state(4200.0) }];
+    let prior = [PriorHypothesis { weight: c(1.0), objects: &objects[..] }];
+    let Ok(mut tracker) = NetworkTracker::<T>::new(config, black_box(&prior[..]), black_box(0.0)) else { return 2 };
+    let zs: [SVector<T, 4>; MEASUREMENTS] =
+        core::array::from_fn(|i| SVector::from([c(800.0 + 20.0 * i as f64) * x, c(0.1 * i as f64), c(0.8), x]));
+    let mut digest = 0u64;
+    for k in 1..=argc as usize {
+        let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
+        let geometry = black_box(ScanGeometry { sensor: k % 7, time: 10.0 * k as f64, observer: None });
+        if tracker.step_scan(&geometry, scan).is_err() {
+            digest ^= 1;
+        }
+        digest ^= tracker.digest();
+    }
+    digest
+}
+
 /// `birth_components` of every model with one, on opaque models, measurements, regions and output slices.
 fn births<T: Real>(argc: i32) -> u64 {
-    use tracker_core::model::{AdmissibleRegion, BirthComponent, OpticalRaDec, RadarRangeAzEl, RadarRangeRate};
+    use tracker_core::model::{
+        AdmissibleRegion, BirthComponent, MixedLook, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
+    };
     use tracker_core::{BirthGeometry, model::MAX_BIRTH_COMPONENTS};
     let c = T::of_f64;
     let x = c(f64::from(argc));
@@ -298,6 +377,10 @@ fn births<T: Real>(argc: i32) -> u64 {
     fold(rate.birth_components(&z, &region, &mut out[..length]));
     let optical = OpticalRaDec { observer, sigma: black_box([c(5e-6), c(5e-6)]) };
     fold(optical.birth_components(&black_box(SVector::from([c(0.3) * x, c(0.1)])), &region, &mut out[..length]));
+    let kind = black_box(SensorKind::ALL[argc as usize % 6]);
+    let mixed = MixedLook { kind, observer, frame: enu, sigma: black_box([c(5e-6), c(5e-6), c(1e-3), c(1e-4)]) };
+    let z = black_box(SVector::from([c(0.3) * x, c(0.1), c(0.9), c(-1.0)]));
+    fold(mixed.birth_components(&z, &region, &mut out[..length]));
     let mut planar = [BirthComponent::<T, 4>::ZERO; 2];
     let sensor = PositionMeasurement::isotropic(c(0.5) * x);
     fold(sensor.birth_components(&black_box(SVector::from([x, c(2.0)])), &region, &mut planar[..length % 3]));
@@ -312,6 +395,8 @@ pub extern "C" fn main(argc: i32, _argv: *const *const u8) -> i32 {
         ^ linear(argc)
         ^ radar::<f64>(argc)
         ^ radar::<f32>(argc)
+        ^ network::<f64>(argc)
+        ^ network::<f32>(argc)
         ^ births::<f64>(argc)
         ^ births::<f32>(argc);
     (digest & 0x7f) as i32

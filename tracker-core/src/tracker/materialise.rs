@@ -333,7 +333,8 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         merged: &mut usize,
     ) {
         let tracks = next_store.as_slice();
-        let slots = &mut self.child_slots[..count];
+        // count ≤ N by construction; `get_mut` keeps the step provably panic-free whatever the inlining.
+        let Some(slots) = self.child_slots.get_mut(..count) else { return };
         // Labels are distinct within a child, so the order is unique.
         let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
         insertion_sort_by(slots, |&a, &b| label(a) < label(b));
