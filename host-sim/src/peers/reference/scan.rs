@@ -2,6 +2,7 @@
 //! recursive enumeration of every parent's children.
 
 use super::*;
+use tracker_core::tracker::in_field_of_view;
 
 impl<M, G, const S: usize, const D: usize, const B: usize> ReferenceTracker<M, G, S, D, B>
 where
@@ -21,7 +22,8 @@ where
                 (Err(_), Some(cell)) => return Err(StepError::BirthCell { cell }),
                 (Err(_), None) => continue, // a pool cell is left out of this scan, as in the core
             };
-            let in_view = placed.detection.field_of_view.sees(&placed.model, &innovation.predicted);
+            let in_view =
+                in_field_of_view(&placed.detection.field_of_view, &placed.model, &gaussian, &innovation.predicted);
             births.push((innovation, in_view));
             cells.push((gaussian, alpha, pool_cell));
             no_birth += (1.0 - alpha).ln();
@@ -115,7 +117,7 @@ where
             let numerical = |error| StepError::Numerical { label: TrackLabel(track.label), error };
             let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
             let innovation = ekf::innovation(model, &state).map_err(numerical)?;
-            let in_view = detection.field_of_view.sees(model, &innovation.predicted);
+            let in_view = in_field_of_view(&detection.field_of_view, model, &state, &innovation.predicted);
             column(&innovation, in_view, None);
             predicted.push(Predicted { state, innovation, in_view });
         }

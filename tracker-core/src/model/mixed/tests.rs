@@ -389,3 +389,64 @@ fn invalid_sensors_and_packs_are_refused() {
     assert_eq!(network.pack(2, &KindMeasurement::Range(1.0)), Err(KindError::UnknownSensor { sensor: 2, sensors: 2 }));
     assert_eq!(network.pack(1, &KindMeasurement::Radar([1.0, 2.0, 3.0])).map(|z| z[3]), Ok(0.0));
 }
+
+/// MAP weights after each telescope scan of a radar-tracked object, with the telescope's cone `cone`
+/// (one clutter measurement per telescope scan, inside its cone; the object never detected by it).
+fn weights_under_telescope_scans(cone: LookShape<f64>) -> Vec<f64> {
+    let rotation = EarthRotation::new(0.3);
+    let radar = mixed_sensor(SensorKind::Radar, ground(SITES[0].0, SITES[0].1));
+    let mut telescope = mixed_sensor(SensorKind::OpticalRaDec, ground(SITES[1].0, SITES[1].1));
+    if let Region::Look { shape, .. } = &mut telescope.sensor.detection.field_of_view {
+        *shape = cone;
+    }
+    let network: MixedNetwork<f64, 2> = MixedNetwork::new(rotation, &[radar, telescope]).unwrap();
+    let truth0 = truth(&rotation);
+    let objects =
+        [PriorObject { label: TrackLabel(0), state: Gaussian { mean: truth0, covariance: prior_covariance() } }];
+    let prior = [PriorHypothesis { weight: 1.0, objects: &objects }];
+    let config = Config { death_probability: 0.01, ..config(network, radar.sensor.detection) };
+    let mut tracker: Tracker4<MixedNetwork<f64, 2>> = Tracker::new(config, &prior, 0.0).unwrap();
+    let mut state = truth0;
+    let mut weights = Vec::new();
+    for scan in 1..=12u32 {
+        state = motion().propagate(&state, 10.0).unwrap().state;
+        let sensor = scan as usize % 2;
+        let geometry = ScanGeometry { sensor, time: 10.0 * f64::from(scan), observer: None };
+        let placed = network.place(&geometry).unwrap();
+        let z = if sensor == 0 {
+            placed.measure(&state)
+        } else {
+            // Clutter at the telescope's boresight, as (α, δ).
+            let Region::Look { shape: LookShape::Cone { azimuth, elevation, .. }, .. } =
+                network.sensors()[1].sensor.detection.field_of_view
+            else {
+                unreachable!()
+            };
+            let (direction, _) = placed.placed().az_el_as_ra_dec(azimuth, elevation);
+            pad(&direction)
+        };
+        tracker.step_scan(&geometry, &[z]).unwrap();
+        if sensor == 1 {
+            let map = tracker.map_hypothesis();
+            let kept = map.tracks().count();
+            weights.push(if kept == 1 { map.weight() } else { 0.0 });
+        }
+    }
+    weights
+}
+
+#[test]
+fn a_radar_object_is_not_weakened_by_telescope_scans_it_is_outside_of() {
+    let away = LookShape::Cone { azimuth: 0.0, elevation: 30.0 * DEGREE, half_angle: 3.0 * DEGREE };
+    let wide = LookShape::Cone { azimuth: 0.0, elevation: 90.0 * DEGREE, half_angle: 80.0 * DEGREE };
+    let outside = weights_under_telescope_scans(away);
+    let inside = weights_under_telescope_scans(wide);
+    eprintln!(
+        "MAP weight after each telescope scan: object outside its cone {outside:?}, inside but missed {inside:?}"
+    );
+    // Outside: no missed detection, no death (deaths are of objects in view): the object keeps its weight
+    // (the 3e-11 that is missing is the radar scans' clutter and death hypotheses).
+    assert!(outside.iter().all(|&w| w > 1.0 - 1e-9), "{outside:?}");
+    // Inside and never detected: each miss moves weight to the object's death.
+    assert!(inside.iter().all(|&w| w < 0.95), "{inside:?}");
+}
