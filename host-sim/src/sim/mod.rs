@@ -12,6 +12,7 @@
 pub mod breakup;
 pub mod error;
 pub mod field_of_view;
+pub mod fk5;
 pub mod frames;
 pub mod orbit;
 pub mod planar;
