@@ -192,6 +192,39 @@ impl Reduction {
     }
 }
 
+/// A right ascension and declination (rad) of EME2000 as TEME ones at the UTC Julian date `jd_utc`.
+///
+/// # Errors
+/// [`TimeScaleError`] when the date's leap seconds are not in the table.
+pub fn ra_dec_eme2000_to_teme(alpha: f64, delta: f64, jd_utc: f64) -> Result<(f64, f64), TimeScaleError> {
+    let direction = [delta.cos() * alpha.cos(), delta.cos() * alpha.sin(), delta.sin()];
+    let [x, y, z] = apply(&Reduction::at(tt_of_utc(jd_utc)?).j2000_to_teme(), direction);
+    Ok((y.atan2(x), z.atan2(x.hypot(y))))
+}
+
+/// An inertial state (km, km/s) of EME2000 as a TEME one at the UTC Julian date `jd_utc`.
+///
+/// # Errors
+/// [`TimeScaleError`] when the date's leap seconds are not in the table.
+pub fn state_eme2000_to_teme(state: [f64; 6], jd_utc: f64) -> Result<[f64; 6], TimeScaleError> {
+    let rotation = Reduction::at(tt_of_utc(jd_utc)?).j2000_to_teme();
+    let [x, y, z] = apply(&rotation, [state[0], state[1], state[2]]);
+    let [u, v, w] = apply(&rotation, [state[3], state[4], state[5]]);
+    Ok([x, y, z, u, v, w])
+}
+
+/// A 6 × 6 covariance of EME2000 as a TEME one: blockdiag(M, M) C blockdiag(M, M)ᵀ.
+///
+/// # Errors
+/// [`TimeScaleError`] when the date's leap seconds are not in the table.
+pub fn covariance_eme2000_to_teme(covariance: [[f64; 6]; 6], jd_utc: f64) -> Result<[[f64; 6]; 6], TimeScaleError> {
+    let m = Reduction::at(tt_of_utc(jd_utc)?).j2000_to_teme();
+    let block = |i: usize, j: usize| if i / 3 == j / 3 { m[i % 3][j % 3] } else { 0.0 };
+    let left: [[f64; 6]; 6] =
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| block(i, k) * covariance[k][j]).sum()));
+    Ok(std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| left[i][k] * block(j, k)).sum())))
+}
+
 /// The time scales of tracking data.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TimeSystem {

@@ -97,3 +97,31 @@ fn eme2000_and_teme_differ_by_the_precession_since_2000() {
     let angle = x[0].clamp(-1.0, 1.0).acos().to_degrees();
     assert!((0.13..0.16).contains(&angle), "{angle}°");
 }
+
+#[test]
+fn directions_states_and_covariances_turn_together() {
+    let jd_utc = julian_date(2004, 4, 6, 7, 51, 28.386009);
+    let m = Reduction::at(tt_of_utc(jd_utc).unwrap()).teme_to_j2000();
+    let r_j2000 = apply(&m, R_TEME);
+    let v_j2000 = apply(&m, V_TEME);
+    let state = state_eme2000_to_teme([r_j2000[0], r_j2000[1], r_j2000[2], v_j2000[0], v_j2000[1], v_j2000[2]], jd_utc)
+        .unwrap();
+    assert_close([state[0], state[1], state[2]], R_TEME, 1e-9, "r");
+    assert_close([state[3], state[4], state[5]], V_TEME, 1e-12, "v");
+    let norm = r_j2000.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let (alpha, delta) =
+        ra_dec_eme2000_to_teme(r_j2000[1].atan2(r_j2000[0]), (r_j2000[2] / norm).asin(), jd_utc).unwrap();
+    let teme_norm = R_TEME.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(
+        (alpha - R_TEME[1].atan2(R_TEME[0])).abs() < 1e-13 && (delta - (R_TEME[2] / teme_norm).asin()).abs() < 1e-13
+    );
+    // A covariance's trace and a diagonal one's rotation.
+    let mut covariance = [[0.0; 6]; 6];
+    for (k, row) in covariance.iter_mut().enumerate() {
+        row[k] = 1.0 + k as f64;
+    }
+    let turned = covariance_eme2000_to_teme(covariance, jd_utc).unwrap();
+    let trace: f64 = (0..6).map(|k| turned[k][k]).sum();
+    assert!((trace - 21.0).abs() < 1e-12, "{trace}");
+    assert!((0..6).all(|i| (0..6).all(|j| (turned[i][j] - turned[j][i]).abs() < 1e-15)));
+}
