@@ -17,6 +17,7 @@ pub mod frames;
 pub mod orbit;
 pub mod planar;
 pub mod presets;
+pub mod refraction;
 pub mod rng;
 pub mod sensor;
 pub mod site;
