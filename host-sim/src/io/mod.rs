@@ -3,6 +3,7 @@
 //! their exact UTC times ([`ccsds`]), and the typed JSON records of every report ([`report`]).
 
 pub mod catalogue;
+pub mod angles;
 pub mod ccsds;
 pub mod oem;
 pub mod report;
