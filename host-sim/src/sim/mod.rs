@@ -22,6 +22,8 @@ pub mod site;
 pub mod ssa;
 #[cfg(test)]
 mod ssa_tests;
+#[cfg(test)]
+mod long_gap_tests;
 pub mod time;
 pub mod truth;
 pub mod vector;
