@@ -46,39 +46,38 @@ struct Notices {
 }
 
 impl Notices {
-    /// Scan `k` at `time` was refused by the core (`sensor`: its sensor's name when the world names it).
-    fn refused(&mut self, bar: &indicatif::ProgressBar, k: usize, time: f64, sensor: Option<&str>, why: &str) {
+    /// The line for scan `k` at `time` refused by the core (`sensor`: its name when the world names it).
+    fn refused(&mut self, k: usize, time: f64, sensor: Option<&str>, why: &str) -> Option<String> {
         self.refused += 1;
-        if self.refused <= NOTICE_LINES {
-            let sensor = sensor.map_or(String::new(), |s| format!(", sensor {s}"));
-            bar.suspend(|| eprintln!("warning: scan {k} (t = {time}{sensor}) refused: {why}; the run goes on"));
-        }
+        let sensor = sensor.map_or(String::new(), |s| format!(", sensor {s}"));
+        (self.refused <= NOTICE_LINES).then(|| format!("warning: scan {k} (t = {time}{sensor}) refused: {why}; the run goes on"))
     }
 
-    /// Scan `k` at `time` dropped tracks for a numerical failure.
-    fn dropped(&mut self, bar: &indicatif::ProgressBar, k: usize, time: f64, drops: &tracker_core::report::NumericalDrops) {
+    /// The line for scan `k` at `time` whose step dropped tracks for a numerical failure.
+    fn dropped(&mut self, k: usize, time: f64, drops: &tracker_core::report::NumericalDrops) -> Option<String> {
+        let (label, error) = drops.first?;
         self.drops += 1;
-        if self.drops <= NOTICE_LINES
-            && let Some((label, error)) = drops.first
-        {
-            let count = drops.count;
-            bar.suspend(|| {
-                eprintln!("warning: scan {k} (t = {time}): {count} track(s) dropped for a numerical failure, first track {} ({error})", label.0);
-            });
-        }
+        (self.drops <= NOTICE_LINES).then(|| {
+            format!(
+                "warning: scan {k} (t = {time}): {} track(s) dropped for a numerical failure, the first track {} ({error})",
+                drops.count, label.0
+            )
+        })
     }
 
     /// The counts of the scans beyond the first [`NOTICE_LINES`] of each kind.
-    fn finish(&self) {
+    fn finish(&self) -> Vec<String> {
+        let mut lines = vec![];
         if self.refused > NOTICE_LINES {
-            eprintln!("warning: {} more scans refused (refused_scans in summary.json)", self.refused - NOTICE_LINES);
+            lines.push(format!("warning: {} more scans refused (refused_scans in summary.json)", self.refused - NOTICE_LINES));
         }
         if self.drops > NOTICE_LINES {
-            eprintln!(
+            lines.push(format!(
                 "warning: {} more scans dropped tracks for a numerical failure (numerical_drops in summary.json)",
                 self.drops - NOTICE_LINES
-            );
+            ));
         }
+        lines
     }
 }
 
@@ -175,13 +174,15 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
                 (None, Some(e), false)
             }
             Err(StepFailure::Refused(e)) => {
-                notices.refused(&bar, k, time, world.sensor_name(k).as_deref(), &e);
+                if let Some(line) = notices.refused(k, time, world.sensor_name(k).as_deref(), &e) {
+                    bar.suspend(|| eprintln!("{line}"));
+                }
                 (None, Some(e), true)
             }
         };
         let numerical_drops = info.map(|i| i.numerical_drops).unwrap_or_default();
-        if numerical_drops.count > 0 {
-            notices.dropped(&bar, k, time, &numerical_drops);
+        if let Some(line) = notices.dropped(k, time, &numerical_drops) {
+            bar.suspend(|| eprintln!("{line}"));
         }
         let posterior = world.posterior();
         tally.peak_hypotheses = tally.peak_hypotheses.max(posterior.hypotheses);
@@ -215,7 +216,9 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
         });
     }
     bar.finish_and_clear();
-    notices.finish();
+    for line in notices.finish() {
+        eprintln!("{line}");
+    }
     csv.flush().map_err(csv_error)?;
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
@@ -314,4 +317,35 @@ fn refused_scans<W: World<P>, const P: usize>(world: &W, records: &[ScanRecord])
         })
         .collect();
     RefusedScans { count: reasons.len(), reasons }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tracker_core::report::NumericalDrops;
+    use tracker_core::{NumericalError, TrackLabel};
+
+    #[test]
+    fn a_line_per_scan_for_the_first_ten_then_one_count() {
+        let mut notices = Notices::default();
+        let drops = NumericalDrops { count: 2, first: Some((TrackLabel(7), NumericalError::NonFinite)) };
+        assert_eq!(notices.dropped(0, 1.0, &NumericalDrops::default()), None, "no drop, no line");
+        for k in 0..25 {
+            let refused = notices.refused(k, 2.0, Some("radar"), "measurement 0 is outside the field of view");
+            let dropped = notices.dropped(k, 2.0, &drops);
+            assert_eq!(refused.is_some(), k < NOTICE_LINES, "{k}");
+            assert_eq!(dropped.is_some(), k < NOTICE_LINES, "{k}");
+            if k == 0 {
+                assert_eq!(
+                    refused.as_deref(),
+                    Some("warning: scan 0 (t = 2, sensor radar) refused: measurement 0 is outside the field of view; the run goes on")
+                );
+                let dropped = dropped.unwrap_or_default();
+                assert!(dropped.contains("2 track(s) dropped") && dropped.contains("track 7"), "{dropped}");
+            }
+        }
+        let finish = notices.finish();
+        assert_eq!(finish.len(), 2, "{finish:?}");
+        assert!(finish[0].contains("15 more scans refused") && finish[1].contains("15 more scans dropped"), "{finish:?}");
+    }
 }
