@@ -14,7 +14,11 @@ fn p(path: &Path) -> &str {
 }
 
 fn describe(output: &Output) -> String {
-    format!("stdout:\n{}\nstderr:\n{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr))
+    format!(
+        "stdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    )
 }
 
 fn read_json(path: &Path) -> Value {
@@ -25,7 +29,7 @@ fn read_json(path: &Path) -> Value {
 /// Planar two-body: an object on a 7000 km circular orbit seen at 10, 20 and 30 s, and a prior object at
 /// the centre, where gravity is singular: the core drops it at the first scan.
 fn centre_object_scenario() -> Value {
-    let mu: f64 = 398_600.4418;
+    let mu: f64 = 398_600.441_8;
     let r: f64 = 7000.0;
     let speed = (mu / r).sqrt();
     let omega = speed / r;

@@ -50,7 +50,8 @@ impl Notices {
     fn refused(&mut self, k: usize, time: f64, sensor: Option<&str>, why: &str) -> Option<String> {
         self.refused += 1;
         let sensor = sensor.map_or(String::new(), |s| format!(", sensor {s}"));
-        (self.refused <= NOTICE_LINES).then(|| format!("warning: scan {k} (t = {time}{sensor}) refused: {why}; the run goes on"))
+        (self.refused <= NOTICE_LINES)
+            .then(|| format!("warning: scan {k} (t = {time}{sensor}) refused: {why}; the run goes on"))
     }
 
     /// The line for scan `k` at `time` whose step dropped tracks for a numerical failure.
@@ -69,7 +70,10 @@ impl Notices {
     fn finish(&self) -> Vec<String> {
         let mut lines = vec![];
         if self.refused > NOTICE_LINES {
-            lines.push(format!("warning: {} more scans refused (refused_scans in summary.json)", self.refused - NOTICE_LINES));
+            lines.push(format!(
+                "warning: {} more scans refused (refused_scans in summary.json)",
+                self.refused - NOTICE_LINES
+            ));
         }
         if self.drops > NOTICE_LINES {
             lines.push(format!(
@@ -338,7 +342,9 @@ mod tests {
             if k == 0 {
                 assert_eq!(
                     refused.as_deref(),
-                    Some("warning: scan 0 (t = 2, sensor radar) refused: measurement 0 is outside the field of view; the run goes on")
+                    Some(
+                        "warning: scan 0 (t = 2, sensor radar) refused: measurement 0 is outside the field of view; the run goes on"
+                    )
                 );
                 let dropped = dropped.unwrap_or_default();
                 assert!(dropped.contains("2 track(s) dropped") && dropped.contains("track 7"), "{dropped}");
@@ -346,6 +352,9 @@ mod tests {
         }
         let finish = notices.finish();
         assert_eq!(finish.len(), 2, "{finish:?}");
-        assert!(finish[0].contains("15 more scans refused") && finish[1].contains("15 more scans dropped"), "{finish:?}");
+        assert!(
+            finish[0].contains("15 more scans refused") && finish[1].contains("15 more scans dropped"),
+            "{finish:?}"
+        );
     }
 }

@@ -13,6 +13,8 @@ pub mod breakup;
 pub mod error;
 pub mod field_of_view;
 pub mod frames;
+#[cfg(test)]
+mod long_gap_tests;
 pub mod orbit;
 pub mod planar;
 pub mod presets;
@@ -22,8 +24,6 @@ pub mod site;
 pub mod ssa;
 #[cfg(test)]
 mod ssa_tests;
-#[cfg(test)]
-mod long_gap_tests;
 pub mod time;
 pub mod truth;
 pub mod vector;

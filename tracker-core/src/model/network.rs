@@ -20,8 +20,8 @@ use super::{
 use crate::real::{Real, c, cos, sin, sqrt};
 use crate::sensor::frames::{EarthRotation, look_angles, wrap_angle};
 use crate::sensor::{
-    EARTH_ROTATION_RATE, Look, LookAxes, MAX_OBSERVER_DISTANCE, Placement, PlacementError, Platform, Region, ScanGeometry,
-    Sensor, SiteSensor, WGS84_FLATTENING,
+    EARTH_ROTATION_RATE, Look, LookAxes, MAX_OBSERVER_DISTANCE, Placement, PlacementError, Platform, Region,
+    ScanGeometry, Sensor, SiteSensor, WGS84_FLATTENING,
 };
 use nalgebra::{SMatrix, SVector};
 

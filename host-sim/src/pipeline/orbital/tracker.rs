@@ -250,6 +250,8 @@ pub fn measurements_in_radians(kind: Measurement3dSpec, measurements: &[Vec<f64>
     let wrapped = |i: usize, v: f64| if kind.wraps(i) { crate::io::angles::wrap(v) } else { v };
     measurements
         .iter()
-        .map(|z| z.iter().enumerate().map(|(i, &v)| if kind.is_angle(i) { wrapped(i, v).to_radians() } else { v }).collect())
+        .map(|z| {
+            z.iter().enumerate().map(|(i, &v)| if kind.is_angle(i) { wrapped(i, v).to_radians() } else { v }).collect()
+        })
         .collect()
 }

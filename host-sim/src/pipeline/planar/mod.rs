@@ -127,9 +127,11 @@ impl World<2> for PlanarWorld<'_> {
         let scan = &self.scenario.scans[k];
         let outcome = self.runner.step(scan.time, &setup::measurements(scan));
         self.numerical_drops = outcome.as_ref().map_or(0, |info| info.numerical_drops.count);
-        outcome.map_err(|StepRejected(message, refused)| {
-            if refused { StepFailure::Refused(message) } else { StepFailure::Rejected(message) }
-        })
+        outcome.map_err(
+            |StepRejected(message, refused)| {
+                if refused { StepFailure::Refused(message) } else { StepFailure::Rejected(message) }
+            },
+        )
     }
 
     fn posterior(&mut self) -> Posterior {

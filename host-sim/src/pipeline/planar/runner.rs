@@ -33,7 +33,8 @@ where
     M: MotionModel<f64, 4> + Send,
 {
     fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected> {
-        let report = self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string(), is_refused_input(&e)))?;
+        let report =
+            self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string(), is_refused_input(&e)))?;
         Ok(StepInfo {
             children: report.children,
             hypotheses: report.hypotheses,

@@ -11,9 +11,7 @@ const TURN: (f64, f64) = crate::io::angles::ACCEPTED_TURN;
 
 pub(super) fn check_measurement(field: &str, kind: Measurement3dSpec, z: &[f64]) -> Result<(), ScenarioError> {
     let (names, bounds): (&[&str], &[(f64, f64)]) = match kind {
-        Measurement3dSpec::Radar => {
-            (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0)])
-        }
+        Measurement3dSpec::Radar => (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0)]),
         Measurement3dSpec::RadarRangeRate => (
             &["range", "azimuth", "elevation", "range-rate"],
             &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0), (f64::NEG_INFINITY, f64::INFINITY)],
