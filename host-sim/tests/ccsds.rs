@@ -126,6 +126,101 @@ fn tracking_the_tdm_export_of_an_optical_scenario_gives_the_run_estimates_bit_fo
     assert_eq!(read(&track.join("estimates.csv")), expected);
 }
 
+/// `360 + value` for a decimal `value` without an exponent, computed exactly in decimal.
+fn plus_a_turn(value: &str) -> String {
+    let (sign, magnitude) = value.strip_prefix('-').map_or((1, value), |m| (-1, m));
+    let (whole, fraction) = magnitude.split_once('.').unwrap_or((magnitude, ""));
+    let digits: i128 = format!("{whole}{fraction}").parse().expect("decimal digits");
+    let sum = (360 * 10i128.pow(fraction.len() as u32) + sign * digits).to_string();
+    let sum = format!("{sum:0>width$}", width = fraction.len() + 1);
+    let (head, tail) = sum.split_at(sum.len() - fraction.len());
+    if tail.is_empty() { head.to_string() } else { format!("{head}.{tail}") }
+}
+
+/// Every TDM under `from` copied to `to` with its negative `ANGLE_1` (azimuth or right ascension) written
+/// in [0°, 360°) instead, and with `every` the others too a turn higher; returns the copies and how many
+/// values moved.
+fn shifted_copies(from: &Path, to: &Path, every: bool) -> (Vec<PathBuf>, usize) {
+    std::fs::create_dir_all(to).expect("shifted dir");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(from).expect("tdm dir").map(|e| e.expect("entry").path()).collect();
+    files.sort();
+    let mut moved = 0;
+    let copies = files
+        .iter()
+        .map(|file| {
+            let text: Vec<String> = read(file)
+                .lines()
+                .map(|line| match line.strip_prefix("ANGLE_1 = ").and_then(|rest| rest.split_once(' ')) {
+                    Some((time, value)) if every || value.starts_with('-') => {
+                        moved += 1;
+                        format!("ANGLE_1 = {time} {}", plus_a_turn(value))
+                    }
+                    _ => line.to_string(),
+                })
+                .collect();
+            let copy = to.join(file.file_name().expect("file name"));
+            std::fs::write(&copy, text.join("\n") + "\n").expect("write shifted TDM");
+            copy
+        })
+        .collect();
+    (copies, moved)
+}
+
+/// `track` of `files` with `config`, into `out`.
+fn track(files: &[PathBuf], config: &Path, tracker: &str, out: &Path) -> Output {
+    let mut args: Vec<String> = vec!["track".into(), "--tdm".into()];
+    args.extend(files.iter().map(|f| p(f).to_string()));
+    args.extend(["--config", p(config), "--tracker", tracker, "--out", p(out), "--quiet"].map(String::from));
+    host_sim(&args)
+}
+
+#[test]
+fn azimuth_and_right_ascension_in_0_360_track_bit_for_bit_as_in_180_180() {
+    assert_eq!(plus_a_turn("-9.125"), "350.875");
+    assert_eq!(plus_a_turn("-0.0005"), "359.9995");
+    assert_eq!(plus_a_turn("-180"), "180");
+    assert_eq!(plus_a_turn("12.5"), "372.5");
+    // Issue 29: 6 of the 11 scans of tiny-3d (seed 1) were refused as outside the field of view. Its
+    // azimuths are written in [0, 360); the telescope's right ascensions (all in [0, 180] at this epoch)
+    // a turn higher, in [360, 540].
+    for (preset, tracker) in [("tiny-3d", "homht"), ("optical-geo", "rfisst")] {
+        let dir = TempDir::new("angles");
+        let mut s = generate(&dir, preset);
+        if preset == "optical-geo" {
+            // Four scans of three measurements each keep the debug-build run short.
+            let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
+                .iter()
+                .map(|scan| {
+                    let mut scan = scan.clone();
+                    let zs: Vec<Value> = scan["measurements"].as_array().expect("measurements")[..3].to_vec();
+                    scan["measurements"] = Value::Array(zs);
+                    scan
+                })
+                .collect();
+            s["scans"] = Value::Array(scans);
+            s.as_object_mut().expect("object").remove("truth");
+        }
+        let scenario = dir.join("scenario.json");
+        save(&s, &scenario);
+        let tdm = dir.join("tdm");
+        ok(host_sim(&["export-tdm", p(&scenario), "--out", p(&tdm)]));
+        let mut plain: Vec<PathBuf> =
+            std::fs::read_dir(&tdm).expect("tdm dir").map(|e| e.expect("entry").path()).collect();
+        plain.sort();
+        let (shifted, moved) = shifted_copies(&tdm, &dir.join("shifted"), preset == "optical-geo");
+        assert!(moved > 0, "{preset}: no angle shifted");
+        let (plain_out, shifted_out) = (dir.join("plain-out"), dir.join("shifted-out"));
+        ok(track(&plain, &scenario, tracker, &plain_out));
+        let output = track(&shifted, &scenario, tracker, &shifted_out);
+        ok(output);
+        let expected = read(&plain_out.join("estimates.csv"));
+        assert!(expected.lines().count() > 4, "{preset}: estimates written");
+        assert_eq!(read(&shifted_out.join("estimates.csv")), expected, "{preset}");
+        let summary: Value = serde_json::from_str(&read(&shifted_out.join("summary.json"))).expect("summary");
+        assert_eq!(summary["refused_scans"]["count"], 0, "{preset}: {summary}");
+    }
+}
+
 /// The segments of an OEM: label → [(time, state, covariance lower triangle)].
 type Segments = HashMap<u32, Vec<(Instant, [f64; 6], Vec<f64>)>>;
 

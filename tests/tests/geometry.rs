@@ -546,6 +546,33 @@ fn spacecraft_observer_inside_the_earth_is_refused_unchanged() {
 }
 
 #[test]
+fn spacecraft_observer_beyond_a_plausible_distance_is_refused_unchanged() {
+    fn check<T: Real>() {
+        // Issue 33: 1e300 km (f64) and 1e20 km (f32) were accepted and the real track ended dropped.
+        let far = if core::mem::size_of::<T>() == 8 { 1e300 } else { 1e20 };
+        let beyond = tracker_core::sensor::MAX_OBSERVER_DISTANCE * 1.001;
+        for distance in [far, beyond, 1e9] {
+            for axis in 0..3 {
+                let mut observer = [0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+                observer[axis] = if axis == 1 { -distance } else { distance };
+                let observer = observer.map(c::<T>);
+                assert_refused::<T>(
+                    |t| t.step_scan(&ScanGeometry { sensor: 1, time: 5.0, observer: Some(observer) }, &[]),
+                    StepError::Placement(PlacementError::ObserverTooFar),
+                );
+            }
+        }
+        // At the Sun–Earth L2 distance (1.5e6 km) and just inside the bound: accepted.
+        for distance in [1.5e6, tracker_core::sensor::MAX_OBSERVER_DISTANCE * 0.999] {
+            let mut tracker = small::<T>();
+            let observer = [distance, 0.0, 0.0, 0.0, 0.3, 0.0].map(c::<T>);
+            assert!(tracker.step_scan(&ScanGeometry { sensor: 1, time: 5.0, observer: Some(observer) }, &[]).is_ok());
+        }
+    }
+    for_scalars!(check);
+}
+
+#[test]
 fn observer_passed_to_a_ground_site_is_refused_unchanged() {
     fn check<T: Real>() {
         let observer = Some(spacecraft_observer::<T>());

@@ -63,8 +63,17 @@ pub(super) fn run(summary: &RunSummary, out: &Path) -> String {
         summary.mean_captured_mass,
         summary.min_captured_mass
     );
-    if !summary.rejected_scans.is_empty() {
-        let _ = writeln!(s, "  {} scans rejected (rejected_scans in summary.json)", summary.rejected_scans.len());
+    let refused = summary.refused_scans.count;
+    if summary.rejected_scans.len() > refused {
+        let rejected = summary.rejected_scans.len() - refused;
+        let _ = writeln!(s, "  {rejected} scans rejected (rejected_scans in summary.json)");
+    }
+    if refused > 0 {
+        let _ = writeln!(s, "  {refused} scans refused for their input (refused_scans in summary.json)");
+    }
+    if summary.numerical_drops.count > 0 {
+        let count = summary.numerical_drops.count;
+        let _ = writeln!(s, "  {count} tracks dropped for a numerical failure (numerical_drops in summary.json)");
     }
     let _ = writeln!(s, "  files in {} (summary.json holds every figure; --json prints it)", out.display());
     s

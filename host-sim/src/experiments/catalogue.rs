@@ -48,8 +48,9 @@ use std::path::Path;
 
 /// The experiment's start (UTC): the catalogue's epoch and the scenarios'. The telescope's site turns dark
 /// (Sun 12° below the horizon) soon after, so that both trackers start from a current prior; its night
-/// ends about 10 hours later, and the next begins just after the 24 hours (the tracker's longest gap
-/// between scans is 20 s × 1100 sub-steps, shorter than a day).
+/// ends about 10 hours later, and the next begins just after the 24 hours (when this was written the
+/// tracker's longest gap between scans was 20 s × 1100 sub-steps, shorter than a day; it is 48 h since
+/// issue 29).
 pub const START: &str = "2026-03-20T02:00:00Z";
 
 /// Earth's radius (km) and gravitational parameter (km³/s²) of SGP4's WGS-72.

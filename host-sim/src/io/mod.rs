@@ -2,6 +2,7 @@
 //! SGP4, checked by [`catalogue::sgp4_check`]), CCSDS tracking data ([`tdm`]) and orbit ephemerides ([`oem`]) with
 //! their exact UTC times ([`ccsds`]), and the typed JSON records of every report ([`report`]).
 
+pub mod angles;
 pub mod catalogue;
 pub mod ccsds;
 pub mod oem;

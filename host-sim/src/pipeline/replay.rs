@@ -6,12 +6,17 @@
 //! expected cardinality, and label switches along GOSPA's assignment ([`crate::eval::score`]). A born
 //! object is *confirmed* once GOSPA with cut-off `error_bound` assigns it a MAP track whose label's
 //! existence probability reaches `confirmation_existence` ([`crate::eval::births`]).
+//!
+//! Nothing the tracker does not take passes in silence: a scan the core refuses for its input (a
+//! measurement outside the field of view, …) is reported and the run goes on (`refused_scans`); tracks the
+//! core drops for a numerical failure are counted (`numerical_drops`). Each gets a stderr line, for the
+//! first [`NOTICE_LINES`] scans of each kind and then one count at the end.
 
 use crate::error::Error;
 use crate::eval::births::{BirthTally, MapTrack};
 use crate::eval::metrics::LabelSwitches;
 use crate::eval::score::{Scored, score};
-use crate::io::report::{RejectedScan, RunSummary};
+use crate::io::report::{NumericalDrop, NumericalDropsSummary, RefusedScan, RefusedScans, RejectedScan, RunSummary};
 use crate::pipeline::output::{mean, peak_resident_kib, progress, write_json};
 use crate::pipeline::world::{Posterior, ScanRecord, StepFailure, TruthObject, World, csv_line};
 use std::io::Write;
@@ -26,6 +31,58 @@ struct Tally {
     in_view_red_stars: usize,
     out_of_view_red_stars: usize,
     peak_hypotheses: usize,
+}
+
+/// Scans of one kind (refused, with numerical drops) that get their own stderr line; the rest are counted
+/// in one line at the end of the run.
+pub const NOTICE_LINES: usize = 10;
+
+/// The stderr lines of refused scans and numerical drops: one per scan for the first [`NOTICE_LINES`] of
+/// each kind, then a count.
+#[derive(Default)]
+struct Notices {
+    refused: usize,
+    drops: usize,
+}
+
+impl Notices {
+    /// The line for scan `k` at `time` refused by the core (`sensor`: its name when the world names it).
+    fn refused(&mut self, k: usize, time: f64, sensor: Option<&str>, why: &str) -> Option<String> {
+        self.refused += 1;
+        let sensor = sensor.map_or(String::new(), |s| format!(", sensor {s}"));
+        (self.refused <= NOTICE_LINES)
+            .then(|| format!("warning: scan {k} (t = {time}{sensor}) refused: {why}; the run goes on"))
+    }
+
+    /// The line for scan `k` at `time` whose step dropped tracks for a numerical failure.
+    fn dropped(&mut self, k: usize, time: f64, drops: &tracker_core::report::NumericalDrops) -> Option<String> {
+        let (label, error) = drops.first?;
+        self.drops += 1;
+        (self.drops <= NOTICE_LINES).then(|| {
+            format!(
+                "warning: scan {k} (t = {time}): {} track(s) dropped for a numerical failure, the first track {} ({error})",
+                drops.count, label.0
+            )
+        })
+    }
+
+    /// The counts of the scans beyond the first [`NOTICE_LINES`] of each kind.
+    fn finish(&self) -> Vec<String> {
+        let mut lines = vec![];
+        if self.refused > NOTICE_LINES {
+            lines.push(format!(
+                "warning: {} more scans refused (refused_scans in summary.json)",
+                self.refused - NOTICE_LINES
+            ));
+        }
+        if self.drops > NOTICE_LINES {
+            lines.push(format!(
+                "warning: {} more scans dropped tracks for a numerical failure (numerical_drops in summary.json)",
+                self.drops - NOTICE_LINES
+            ));
+        }
+        lines
+    }
 }
 
 /// The first `P` entries of `state`.
@@ -103,23 +160,34 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let n = world.scans();
     let mut records = Vec::with_capacity(n);
     let bar = progress(n, quiet, heading.tracker);
+    let mut notices = Notices::default();
     for k in 0..n {
         let time = world.time(k);
         let start = Instant::now();
         let outcome = world.step(k);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         bar.inc(1);
-        let (info, error) = match outcome {
-            Ok(info) => (Some(info), None),
+        let (info, error, refused) = match outcome {
+            Ok(info) => (Some(info), None, false),
             Err(StepFailure::BadInput(e)) => {
                 bar.finish_and_clear();
                 return Err(Error::input(format!("scans[{k}]: {e}")));
             }
             Err(StepFailure::Rejected(e)) => {
                 bar.suspend(|| eprintln!("warning: scan {k} (t = {time}) rejected: {e}"));
-                (None, Some(e))
+                (None, Some(e), false)
+            }
+            Err(StepFailure::Refused(e)) => {
+                if let Some(line) = notices.refused(k, time, world.sensor_name(k).as_deref(), &e) {
+                    bar.suspend(|| eprintln!("{line}"));
+                }
+                (None, Some(e), true)
             }
         };
+        let numerical_drops = info.map(|i| i.numerical_drops).unwrap_or_default();
+        if let Some(line) = notices.dropped(k, time, &numerical_drops) {
+            bar.suspend(|| eprintln!("{line}"));
+        }
         let posterior = world.posterior();
         tally.peak_hypotheses = tally.peak_hypotheses.max(posterior.hypotheses);
         let truth = world.truth(k);
@@ -147,16 +215,24 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             gospa: scored.as_ref().map(|s| s.gospa),
             ospa: scored.as_ref().map(|s| s.ospa),
             error,
+            refused,
+            numerical_drops,
         });
     }
     bar.finish_and_clear();
+    for line in notices.finish() {
+        eprintln!("{line}");
+    }
     csv.flush().map_err(csv_error)?;
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
+    summary.numerical_drops = numerical_drops(&records);
+    summary.refused_scans = refused_scans(&*world, &records);
     // The process's peak resident memory so far (Linux), to check the reference's budget.
     summary.peak_resident_kib = peak_resident_kib();
     write_json(&out.join("summary.json"), &summary)?;
-    let clean = summary.rejected_scans.is_empty();
+    // Refused scans are reported and the run goes on; a scan the tracker failed on is exit code 3.
+    let clean = records.iter().all(|r| r.error.is_none() || r.refused);
     Ok((summary, clean))
 }
 
@@ -209,5 +285,76 @@ fn summarise(
             .collect(),
         peak_resident_kib: None,
         sensors: heading.sensors,
+        numerical_drops: NumericalDropsSummary::default(),
+        refused_scans: RefusedScans::default(),
+    }
+}
+
+/// `numerical_drops` of the summary: per scan with drops, the first dropped track and the count.
+fn numerical_drops(records: &[ScanRecord]) -> NumericalDropsSummary {
+    let tracks: Vec<NumericalDrop> = records
+        .iter()
+        .filter_map(|r| {
+            let (label, error) = r.numerical_drops.first?;
+            Some(NumericalDrop {
+                scan: r.scan,
+                time: r.time,
+                label: label.0,
+                reason: error.to_string(),
+                dropped: r.numerical_drops.count,
+            })
+        })
+        .collect();
+    NumericalDropsSummary { count: records.iter().map(|r| r.numerical_drops.count).sum(), tracks }
+}
+
+/// `refused_scans` of the summary: every scan the core refused for its input, with its reason.
+fn refused_scans<W: World<P>, const P: usize>(world: &W, records: &[ScanRecord]) -> RefusedScans {
+    let reasons: Vec<RefusedScan> = records
+        .iter()
+        .filter(|r| r.refused)
+        .map(|r| RefusedScan {
+            scan: r.scan,
+            time: r.time,
+            sensor: world.sensor_name(r.scan),
+            reason: r.error.clone().unwrap_or_default(),
+        })
+        .collect();
+    RefusedScans { count: reasons.len(), reasons }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tracker_core::report::NumericalDrops;
+    use tracker_core::{NumericalError, TrackLabel};
+
+    #[test]
+    fn a_line_per_scan_for_the_first_ten_then_one_count() {
+        let mut notices = Notices::default();
+        let drops = NumericalDrops { count: 2, first: Some((TrackLabel(7), NumericalError::NonFinite)) };
+        assert_eq!(notices.dropped(0, 1.0, &NumericalDrops::default()), None, "no drop, no line");
+        for k in 0..25 {
+            let refused = notices.refused(k, 2.0, Some("radar"), "measurement 0 is outside the field of view");
+            let dropped = notices.dropped(k, 2.0, &drops);
+            assert_eq!(refused.is_some(), k < NOTICE_LINES, "{k}");
+            assert_eq!(dropped.is_some(), k < NOTICE_LINES, "{k}");
+            if k == 0 {
+                assert_eq!(
+                    refused.as_deref(),
+                    Some(
+                        "warning: scan 0 (t = 2, sensor radar) refused: measurement 0 is outside the field of view; the run goes on"
+                    )
+                );
+                let dropped = dropped.unwrap_or_default();
+                assert!(dropped.contains("2 track(s) dropped") && dropped.contains("track 7"), "{dropped}");
+            }
+        }
+        let finish = notices.finish();
+        assert_eq!(finish.len(), 2, "{finish:?}");
+        assert!(
+            finish[0].contains("15 more scans refused") && finish[1].contains("15 more scans dropped"),
+            "{finish:?}"
+        );
     }
 }

@@ -33,11 +33,28 @@ pub struct StepInfo {
     pub captured_mass: f64,
     /// Whether the reference's memory budget forced pruning.
     pub budget_reached: bool,
+    /// Tracks the core dropped for a numerical failure (its count and the first one with its reason);
+    /// none for the reference, which has no drop policy.
+    pub numerical_drops: tracker_core::report::NumericalDrops,
 }
 
-/// A scan the tracker rejected, with the tracker's one-line message; the tracker is unchanged.
+/// Whether the core refused the scan for its own input (a measurement outside the field of view or not
+/// finite, more measurements than the capacity): the tracker is unchanged and the run goes on with the
+/// next scan, its gap measured from the last accepted scan; any other error is the tracker failing.
+pub fn is_refused_input(error: &tracker_core::StepError) -> bool {
+    use tracker_core::StepError;
+    matches!(
+        error,
+        StepError::MeasurementOutsideFieldOfView { .. }
+            | StepError::NonFiniteMeasurement { .. }
+            | StepError::TooManyMeasurements { .. }
+    )
+}
+
+/// A scan the tracker rejected, with the tracker's one-line message and whether it refused the scan's
+/// input ([`is_refused_input`]); the tracker is unchanged.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct StepRejected(pub String);
+pub struct StepRejected(pub String, pub bool);
 
 impl std::fmt::Display for StepRejected {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -47,6 +47,9 @@ pub struct TruthObject<'a> {
 pub enum StepFailure {
     /// The tracker rejected the scan (it is unchanged); the run goes on and exits with code 3.
     Rejected(String),
+    /// The core refused the scan's input ([`crate::pipeline::tracker::is_refused_input`]; the tracker is
+    /// unchanged): the run reports it (`refused_scans`) and goes on, and exits 0.
+    Refused(String),
     /// The scan is bad input for this world (the run stops with exit code 2).
     BadInput(String),
 }
@@ -93,6 +96,10 @@ pub trait World<const P: usize> {
     fn truth(&self, k: usize) -> Option<Vec<TruthObject<'_>>>;
     /// Truth ids of the objects that produced a measurement at scan `k`.
     fn detected(&self, k: usize) -> Vec<u64>;
+    /// The name of scan `k`'s sensor, in worlds whose sensors have names.
+    fn sensor_name(&self, _k: usize) -> Option<String> {
+        None
+    }
     /// Whether `state` lies in the field of view of scan `k`'s sensor.
     fn in_view(&self, k: usize, state: &[f64]) -> bool;
     /// The header of `estimates.csv`.
@@ -140,6 +147,10 @@ pub struct ScanRecord {
     pub ospa: Option<f64>,
     /// The tracker's error when it rejected the scan.
     pub error: Option<String>,
+    /// Whether that error refused the scan's input ([`StepFailure::Refused`]).
+    pub refused: bool,
+    /// Tracks the core dropped for a numerical failure at this scan.
+    pub numerical_drops: tracker_core::report::NumericalDrops,
 }
 
 /// Writes one line of `estimates.csv`: the scan's columns, then label, mean, existence and the bound.

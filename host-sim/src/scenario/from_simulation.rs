@@ -159,6 +159,9 @@ pub struct Generated {
     pub dropped_outside: usize,
 }
 
+/// The generated scenarios' `motion.max_substeps`: with 20 s sub-steps, gaps of up to 48 h.
+pub const MAX_SUBSTEPS: u32 = 8640;
+
 /// The version 2 scenario of a simulation.
 ///
 /// # Errors
@@ -218,7 +221,9 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         motion: Motion3dSpec::TwoBodyJ2 {
             process_noise: ProcessNoiseSpec::Isotropic { q: settings.q },
             max_step: 20.0,
-            max_substeps: 1100,
+            // 20 s × 8640 = 172 800 s: gaps of up to 48 h between scans (issue 29); a prediction costs
+            // ⌈gap / 20 s⌉ RK4 sub-steps, so ordinary gaps cost what they did.
+            max_substeps: MAX_SUBSTEPS,
         },
         measurement,
         sensors,

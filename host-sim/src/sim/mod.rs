@@ -14,6 +14,8 @@ pub mod error;
 pub mod field_of_view;
 pub mod fk5;
 pub mod frames;
+#[cfg(test)]
+mod long_gap_tests;
 pub mod orbit;
 pub mod planar;
 pub mod presets;

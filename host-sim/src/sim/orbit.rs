@@ -368,7 +368,7 @@ mod tests {
 
     /// The core's fixed-step RK4 two-body + J2 against this reference: position error (km) after `dt`.
     fn core_error(x0: [f64; 6], dt: f64, max_step: f64) -> f64 {
-        let model = TwoBodyJ2::<f64>::earth(ProcessNoise::Isotropic(1e-12), max_step, 5000);
+        let model = TwoBodyJ2::<f64>::earth(ProcessNoise::Isotropic(1e-12), max_step, 20_000);
         let core = model.propagate(&SVector::from(x0), dt).unwrap().state;
         let reference = Propagator::EARTH.propagate(x0, dt).unwrap();
         position_error(&core.into(), &reference)
@@ -394,5 +394,14 @@ mod tests {
         // Fourth order: halving the step divides the error by about 16.
         let six_fine = core_error(leo, six_hours, 10.0);
         assert!(six_fine < six / 10.0, "6 h: {six_fine} km with 10 s steps, {six} km with 20 s");
+        // The generated scenarios' longest gap (issue 29): 48 h, 8640 sub-steps of 20 s.
+        let two_days = 48.0 * 3600.0;
+        let leo_48h = core_error(leo, two_days, 20.0);
+        let geo = at_perigee(mu, 42_164.0, 0.0002, 0.05);
+        let geo_48h = core_error(geo, two_days, 20.0);
+        eprintln!("48 h with 20 s RK4 steps: LEO {leo_48h:.3e} km, GEO {geo_48h:.3e} km");
+        // Measured: LEO 3.04e-2 km (30 m), GEO 1.1e-7 km.
+        assert!(leo_48h < 5e-2, "48 h LEO with 20 s RK4 steps: {leo_48h} km");
+        assert!(geo_48h < 1e-6, "48 h GEO with 20 s RK4 steps: {geo_48h} km");
     }
 }

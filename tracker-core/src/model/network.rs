@@ -20,8 +20,8 @@ use super::{
 use crate::real::{Real, c, cos, sin, sqrt};
 use crate::sensor::frames::{EarthRotation, look_angles, wrap_angle};
 use crate::sensor::{
-    EARTH_ROTATION_RATE, Look, LookAxes, Placement, PlacementError, Platform, Region, ScanGeometry, Sensor, SiteSensor,
-    WGS84_FLATTENING,
+    EARTH_ROTATION_RATE, Look, LookAxes, MAX_OBSERVER_DISTANCE, Placement, PlacementError, Platform, Region,
+    ScanGeometry, Sensor, SiteSensor, WGS84_FLATTENING,
 };
 use nalgebra::{SMatrix, SVector};
 
@@ -254,6 +254,9 @@ pub(super) fn observer_and_frame<T: Real>(
             if inside_earth(&state) {
                 return Err(PlacementError::ObserverInsideEarth);
             }
+            if beyond_plausible_distance(&state) {
+                return Err(PlacementError::ObserverTooFar);
+            }
             Ok((state, inertial_frame()))
         }
     }
@@ -265,6 +268,12 @@ fn inside_earth<T: Real>(state: &[T; 6]) -> bool {
     let b = a * (1.0 - WGS84_FLATTENING);
     let [x, y, z, ..] = state.map(T::as_f64);
     (x * x + y * y) / (a * a) + z * z / (b * b) < 1.0
+}
+
+/// Whether an inertial position is farther from the Earth's centre than [`MAX_OBSERVER_DISTANCE`].
+fn beyond_plausible_distance<T: Real>(state: &[T; 6]) -> bool {
+    let [x, y, z, ..] = state.map(T::as_f64);
+    x * x + y * y + z * z > MAX_OBSERVER_DISTANCE * MAX_OBSERVER_DISTANCE
 }
 
 fn check_sensor<T: Real, const D: usize>(sensor: &SiteSensor<T, D>) -> Result<(), &'static str> {

@@ -22,4 +22,4 @@ pub use field_of_view::{Look, LookAxes, LookShape, Region};
 pub use frames::{
     EARTH_RADIUS, EARTH_ROTATION_RATE, EarthRotation, GroundSite, WGS84_FLATTENING, gmst_iau82, wrap_angle,
 };
-pub use placement::{Placement, PlacementError, Platform, ScanGeometry, SiteSensor};
+pub use placement::{MAX_OBSERVER_DISTANCE, Placement, PlacementError, Platform, ScanGeometry, SiteSensor};

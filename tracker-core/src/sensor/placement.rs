@@ -76,7 +76,15 @@ pub enum PlacementError {
     NonFiniteObserver,
     /// The observer is inside the Earth's WGS-84 ellipsoid.
     ObserverInsideEarth,
+    /// The observer is farther from the Earth's centre than [`MAX_OBSERVER_DISTANCE`].
+    ObserverTooFar,
 }
+
+/// The farthest a spacecraft observer may be from the Earth's centre (km): 10⁷ km, about 26 lunar
+/// distances and 6.7 times the Sun–Earth L1/L2 distance (1.5·10⁶ km, the edge of the Earth's Hill sphere),
+/// so every observer bound to the Earth is accepted and a state in the wrong units (m, or an overflowed
+/// value) is refused before it turns every track's innovation into a numerical failure.
+pub const MAX_OBSERVER_DISTANCE: f64 = 1.0e7;
 
 impl core::fmt::Display for PlacementError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -88,6 +96,9 @@ impl core::fmt::Display for PlacementError {
             PlacementError::UnexpectedObserver => f.write_str("scan passes an observer state to a sensor without one"),
             PlacementError::NonFiniteObserver => f.write_str("observer state is not finite"),
             PlacementError::ObserverInsideEarth => f.write_str("observer is inside the Earth"),
+            PlacementError::ObserverTooFar => {
+                write!(f, "observer is more than {MAX_OBSERVER_DISTANCE:e} km from the Earth's centre")
+            }
         }
     }
 }
@@ -107,8 +118,8 @@ pub trait Placement<T: Real, const D: usize> {
     /// time. The default describes one sensor without an observer and returns a copy of itself.
     ///
     /// # Errors
-    /// [`PlacementError`] for an unknown sensor or an observer that is missing, unexpected, non-finite or
-    /// inside the Earth.
+    /// [`PlacementError`] for an unknown sensor or an observer that is missing, unexpected, non-finite,
+    /// inside the Earth or farther than [`MAX_OBSERVER_DISTANCE`].
     fn place(&self, scan: &ScanGeometry<T>) -> Result<Self, PlacementError>
     where
         Self: Sized + Clone,

@@ -10,6 +10,7 @@
 
 mod catalogue;
 mod compare;
+mod dropped;
 mod experiments;
 mod perf;
 mod sampler_check;
@@ -19,6 +20,7 @@ mod summary;
 
 pub use catalogue::{CatalogueReport, CatalogueTracker};
 pub use compare::{Compare3dSummary, CompareReport, CompareScan, CompareSide, CompareSummary};
+pub use dropped::{NumericalDrop, NumericalDropsSummary, RefusedScan, RefusedScans};
 pub use experiments::{
     AblationDebris, AblationFifty, AblationVariant, AssociationCheck, CheckOutcome, DebrisFigures, DebrisHomht,
     DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,

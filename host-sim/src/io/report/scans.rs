@@ -21,6 +21,10 @@ pub struct ScanLine {
     pub tracks: Vec<TrackOut>,
     /// Existence probability per label.
     pub existence: Vec<LabelExistence>,
+    /// Tracks the core dropped for a numerical failure at this scan (`numerical_drops` in summary.json
+    /// names them).
+    #[serde(default)]
+    pub numerical_drops: usize,
 }
 
 /// A hypothesis of `scans.jsonl`.

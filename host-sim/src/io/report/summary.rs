@@ -51,7 +51,8 @@ pub struct RunSummary {
     pub mean_captured_mass: f64,
     /// Smallest captured mass of the accepted scans.
     pub min_captured_mass: f64,
-    /// The scans the tracker rejected.
+    /// The scans the tracker did not take: those it rejected and those it refused for their input (listed
+    /// again, with their sensor and time, in `refused_scans`).
     pub rejected_scans: Vec<RejectedScan>,
     /// Scans at which the reference's memory budget forced pruning.
     pub reference_budget_reached_scans: Vec<usize>,
@@ -60,6 +61,12 @@ pub struct RunSummary {
     /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensors: Option<usize>,
+    /// Tracks the core dropped for a numerical failure (issue 33).
+    #[serde(default)]
+    pub numerical_drops: super::NumericalDropsSummary,
+    /// Scans the core refused for their input; the run went on (issue 29).
+    #[serde(default)]
+    pub refused_scans: super::RefusedScans,
 }
 
 /// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.

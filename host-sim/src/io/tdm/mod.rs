@@ -6,6 +6,8 @@
 //! - radar: `ANGLE_TYPE = AZEL`, `RANGE` (one-way slant range, `RANGE_UNITS = km`), `ANGLE_1` (azimuth,
 //!   deg), `ANGLE_2` (elevation, deg), `DOPPLER_INSTANTANEOUS` (range-rate, km/s) for `radar-range-rate`;
 //!   optical: `ANGLE_TYPE = RADEC`, `ANGLE_1` (right ascension, deg), `ANGLE_2` (declination, deg);
+//!   `ANGLE_1` (azimuth or right ascension) in any convention within [−360°, 720°], wrapped exactly to
+//!   (−180°, 180°] as it is read ([`crate::io::angles`]);
 //! - a measurement is its components' lines in that order, all with the scan's time; every distinct time
 //!   is one scan; a scan without measurements is a data-section line `COMMENT EMPTY_SCAN <time>`;
 //! - values are written in their shortest round-trip decimal form (the scenario's own degrees: no unit
@@ -344,6 +346,11 @@ fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), T
     };
     let time = parse_time(line, key, time)?;
     let number: f64 = match number.parse() {
+        // Azimuth and right ascension: wrapped once, exactly, to (−180°, 180°] (crate::io::angles).
+        Ok(v) if f64::is_finite(v) && kind == DataKind::Angle1 => match crate::io::angles::wrap_decimal(number) {
+            Some(wrapped) => wrapped,
+            None => return fail(line, key, format!("{v} deg is outside [-360, 720]")),
+        },
         Ok(v) if f64::is_finite(v) => v,
         _ => return fail(line, key, format!("\"{number}\" is not a finite number")),
     };

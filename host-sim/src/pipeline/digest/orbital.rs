@@ -47,11 +47,13 @@ pub fn run(scenario: &Scenario3d, scans: Option<usize>) -> Result<String, Scenar
     }))
 }
 
-/// One measurement in the tracker's units and scalar: angles from degrees to radians in `f64`, then each
-/// component rounded once.
+/// One measurement in the tracker's units and scalar: angles from degrees to radians in `f64` (azimuth
+/// and right ascension first wrapped to (−180°, 180°], [`crate::io::angles::wrap`]), then each component
+/// rounded once.
 fn measurement(kind: Measurement3dSpec, z: &[f64]) -> SVector<f32, 3> {
     SVector::from_fn(|i, _| {
         let v = z.get(i).copied().unwrap_or(f64::NAN);
+        let v = if kind.wraps(i) { crate::io::angles::wrap(v) } else { v };
         f32::of_f64(if kind.is_angle(i) { v.to_radians() } else { v })
     })
 }

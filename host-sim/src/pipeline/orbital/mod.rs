@@ -27,7 +27,7 @@ use crate::error::Error;
 use crate::io::report::RunSummary;
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
-use crate::pipeline::tracker::{StepInfo, TrackerKind};
+use crate::pipeline::tracker::{StepInfo, TrackerKind, is_refused_input};
 use crate::pipeline::world::{Estimate, Heading, Posterior, ScanRecord, StepFailure, TruthObject, World};
 use crate::scenario::v2::Scenario3d;
 use plots::SkyTruth;
@@ -131,6 +131,7 @@ impl World<3> for OrbitalWorld<'_> {
         self.runner.step(scan.sensor, scan.time, &zs).map_err(|e| match e {
             // Bad input, not a tracker failure: one line and exit code 2.
             StepError::TimeStepTooLong { .. } | StepError::Placement(_) => StepFailure::BadInput(e.to_string()),
+            e if is_refused_input(&e) => StepFailure::Refused(e.to_string()),
             e => StepFailure::Rejected(e.to_string()),
         })
     }
@@ -154,6 +155,10 @@ impl World<3> for OrbitalWorld<'_> {
     fn detected(&self, k: usize) -> Vec<u64> {
         let origins = self.scenario.truth.as_ref().and_then(|t| t.scans[k].origins.as_ref());
         origins.into_iter().flatten().flatten().copied().collect()
+    }
+
+    fn sensor_name(&self, k: usize) -> Option<String> {
+        self.scenario.sensors.get(self.scenario.scans[k].sensor).map(|s| s.name.clone())
     }
 
     fn in_view(&self, k: usize, state: &[f64]) -> bool {

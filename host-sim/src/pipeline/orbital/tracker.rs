@@ -63,6 +63,7 @@ where
             hypotheses: report.hypotheses,
             captured_mass: report.captured_mass,
             budget_reached: false,
+            numerical_drops: report.numerical_drops,
         })
     }
 
@@ -243,10 +244,14 @@ where
     with_capacities!(profile, ORBITAL, core3d, [X, D], (scenario, kind))
 }
 
-/// The measurements of a scan in the tracker's units: angles from degrees to radians.
+/// The measurements of a scan in the tracker's units: angles from degrees to radians, azimuth and right
+/// ascension first wrapped to the core's (−180°, 180°] ([`crate::io::angles::wrap`]; the identity there).
 pub fn measurements_in_radians(kind: Measurement3dSpec, measurements: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let wrapped = |i: usize, v: f64| if kind.wraps(i) { crate::io::angles::wrap(v) } else { v };
     measurements
         .iter()
-        .map(|z| z.iter().enumerate().map(|(i, &v)| if kind.is_angle(i) { v.to_radians() } else { v }).collect())
+        .map(|z| {
+            z.iter().enumerate().map(|(i, &v)| if kind.is_angle(i) { wrapped(i, v).to_radians() } else { v }).collect()
+        })
         .collect()
 }

@@ -15,7 +15,7 @@ use crate::eval::score::Scored;
 use crate::io::report::{LabelExistence, RunSummary, ScanHypothesis, ScanLine};
 use crate::pipeline::profile::Profile;
 use crate::pipeline::snapshot::Snapshot;
-use crate::pipeline::tracker::{ReferenceBudget, StepInfo, TrackerKind};
+use crate::pipeline::tracker::{ReferenceBudget, StepInfo, StepRejected, TrackerKind};
 use crate::pipeline::world::{Estimate, Heading, Posterior, ScanRecord, StepFailure, TruthObject, World};
 use crate::scenario::Scenario;
 use runner::{Runner, build};
@@ -63,6 +63,8 @@ pub struct PlanarWorld<'a> {
     /// Scans whose posterior is plotted, and (scan, MAP tracks and weights, within the bound) there.
     snapshot_scans: Vec<usize>,
     snapshots: Vec<(usize, Snapshot, Vec<bool>)>,
+    /// Tracks the core dropped for a numerical failure at the last step (for scans.jsonl).
+    numerical_drops: usize,
     out: PathBuf,
 }
 
@@ -87,6 +89,7 @@ impl<'a> PlanarWorld<'a> {
             scans_file: std::io::BufWriter::new(file),
             snapshot_scans: plots::SNAPSHOT_FRACTIONS.iter().map(|&f| plots::scan_at(f, n)).collect(),
             snapshots: vec![],
+            numerical_drops: 0,
             out: out.to_path_buf(),
         })
     }
@@ -122,7 +125,13 @@ impl World<2> for PlanarWorld<'_> {
 
     fn step(&mut self, k: usize) -> Result<StepInfo, StepFailure> {
         let scan = &self.scenario.scans[k];
-        self.runner.step(scan.time, &setup::measurements(scan)).map_err(|e| StepFailure::Rejected(e.0))
+        let outcome = self.runner.step(scan.time, &setup::measurements(scan));
+        self.numerical_drops = outcome.as_ref().map_or(0, |info| info.numerical_drops.count);
+        outcome.map_err(
+            |StepRejected(message, refused)| {
+                if refused { StepFailure::Refused(message) } else { StepFailure::Rejected(message) }
+            },
+        )
     }
 
     fn posterior(&mut self) -> Posterior {
@@ -173,7 +182,8 @@ impl World<2> for PlanarWorld<'_> {
         _posterior: &Posterior,
         within: &[Option<bool>],
     ) -> Result<(), Error> {
-        let line = scan_line(k, self.scenario.scans[k].time, &self.snapshot, self.options.max_hypotheses_out);
+        let mut line = scan_line(k, self.scenario.scans[k].time, &self.snapshot, self.options.max_hypotheses_out);
+        line.numerical_drops = self.numerical_drops;
         let path = &self.scans_path;
         serde_json::to_writer(&mut self.scans_file, &line).map_err(|e| Error::output(path, e))?;
         writeln!(self.scans_file).map_err(|e| Error::output(path, e))?;
@@ -236,6 +246,7 @@ fn scan_line(k: usize, time: f64, snapshot: &Snapshot, max: usize) -> ScanLine {
         hypotheses_total: snapshot.hypotheses.len(),
         hypotheses,
         tracks,
+        numerical_drops: 0,
         existence,
     }
 }

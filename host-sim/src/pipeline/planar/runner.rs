@@ -2,11 +2,11 @@
 //! trackers (capacities of the [`Profile`]'s [`PLANAR`] table) and the unbounded reference alike.
 
 use super::setup;
-use crate::peers::reference::ReferenceTracker;
+use crate::peers::reference::{ReferenceError, ReferenceTracker};
 use crate::pipeline::profile::PLANAR;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::snapshot::Snapshot;
-use crate::pipeline::tracker::{ReferenceBudget, StepInfo, StepRejected, TrackerKind};
+use crate::pipeline::tracker::{ReferenceBudget, StepInfo, StepRejected, TrackerKind, is_refused_input};
 use crate::scenario::{MotionSpec, Scenario, ScenarioError};
 use crate::with_capacities;
 use nalgebra::SVector;
@@ -33,12 +33,14 @@ where
     M: MotionModel<f64, 4> + Send,
 {
     fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected> {
-        let report = self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string()))?;
+        let report =
+            self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string(), is_refused_input(&e)))?;
         Ok(StepInfo {
             children: report.children,
             hypotheses: report.hypotheses,
             captured_mass: report.captured_mass,
             budget_reached: false,
+            numerical_drops: report.numerical_drops,
         })
     }
 
@@ -71,12 +73,16 @@ struct ReferenceRunner<M> {
 
 impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
     fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected> {
-        let report = self.tracker.step(time, measurements).map_err(|e| StepRejected(e.to_string()))?;
+        let report = self.tracker.step(time, measurements).map_err(|e| {
+            let refused = matches!(&e, ReferenceError::Step(step) if is_refused_input(step));
+            StepRejected(e.to_string(), refused)
+        })?;
         Ok(StepInfo {
             children: report.children,
             hypotheses: report.hypotheses,
             captured_mass: report.captured_mass,
             budget_reached: report.budget_reached,
+            numerical_drops: tracker_core::report::NumericalDrops::default(),
         })
     }
 

@@ -5,16 +5,18 @@ use crate::scenario::{ScenarioError, check_covariance, error, positive};
 
 /// Measured values inside their ranges: range ≥ 0, azimuth and right ascension in [−360, 360], elevation and
 /// declination in [−90, 90].
+/// Azimuth and right ascension in any convention, wrapped when the scan is stepped
+/// ([`crate::io::angles`]).
+const TURN: (f64, f64) = crate::io::angles::ACCEPTED_TURN;
+
 pub(super) fn check_measurement(field: &str, kind: Measurement3dSpec, z: &[f64]) -> Result<(), ScenarioError> {
     let (names, bounds): (&[&str], &[(f64, f64)]) = match kind {
-        Measurement3dSpec::Radar => {
-            (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), (-360.0, 360.0), (-90.0, 90.0)])
-        }
+        Measurement3dSpec::Radar => (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0)]),
         Measurement3dSpec::RadarRangeRate => (
             &["range", "azimuth", "elevation", "range-rate"],
-            &[(0.0, f64::INFINITY), (-360.0, 360.0), (-90.0, 90.0), (f64::NEG_INFINITY, f64::INFINITY)],
+            &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0), (f64::NEG_INFINITY, f64::INFINITY)],
         ),
-        Measurement3dSpec::Optical => (&["right ascension", "declination"], &[(-360.0, 360.0), (-90.0, 90.0)]),
+        Measurement3dSpec::Optical => (&["right ascension", "declination"], &[TURN, (-90.0, 90.0)]),
     };
     for ((value, name), (low, high)) in z.iter().zip(names).zip(bounds) {
         if !(*low..=*high).contains(value) {

@@ -156,6 +156,15 @@ impl Measurement3dSpec {
         }
     }
 
+    /// Whether the measurement's `component` is an azimuth or a right ascension (wrapped to
+    /// (−180°, 180°] on the way in, [`crate::io::angles`]).
+    pub fn wraps(self, component: usize) -> bool {
+        match self {
+            Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => component == 1,
+            Measurement3dSpec::Optical => component == 0,
+        }
+    }
+
     /// Whether a measurement holds the range.
     pub fn has_range(self) -> bool {
         self != Measurement3dSpec::Optical
