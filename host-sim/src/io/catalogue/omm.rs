@@ -153,8 +153,18 @@ fn object_spans(text: &str) -> Vec<(usize, usize)> {
     spans
 }
 
-fn line_at(text: &str, byte: usize) -> usize {
-    1 + text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count()
+/// The line numbers of a text's bytes: the offsets of its line breaks, found once, then searched.
+struct Lines(Vec<usize>);
+
+impl Lines {
+    fn of(text: &str) -> Self {
+        Lines(text.bytes().enumerate().filter(|&(_, b)| b == b'\n').map(|(i, _)| i).collect())
+    }
+
+    /// The line (from 1) of byte `byte`.
+    fn at(&self, byte: usize) -> usize {
+        1 + self.0.partition_point(|&newline| newline < byte)
+    }
 }
 
 /// Parses OMM records in JSON: an array of objects with CelesTrak's keywords (numbers as JSON numbers or
@@ -168,10 +178,11 @@ pub fn parse_omm_json(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cat
         _ => return Err(err(file, 1, "JSON", "expected an array of OMM objects or one object")),
     };
     let spans = object_spans(text);
+    let lines = Lines::of(text);
     let mut entries = Vec::with_capacity(objects.len());
     for (k, object) in objects.into_iter().enumerate() {
         let (from, to) = spans.get(k).copied().unwrap_or((0, 0));
-        let start = line_at(text, from);
+        let start = lines.at(from);
         let Some(map) = object.as_object() else {
             return Err(err(file, start, format!("element {k}"), "expected an OMM object"));
         };
@@ -186,7 +197,7 @@ pub fn parse_omm_json(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cat
             })
         };
         let span = &text[from..to];
-        let line_of = |key: &str| span.find(&format!("\"{key}\"")).map_or(start, |at| line_at(text, from + at));
+        let line_of = |key: &str| span.find(&format!("\"{key}\"")).map_or(start, |at| lines.at(from + at));
         entries.push(omm_entry(file, start, &get, &line_of)?);
     }
     Ok(entries)
@@ -226,7 +237,8 @@ pub fn parse_omm_csv(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cata
         .into_iter()
         .map(|s| s.trim().to_string())
         .collect();
-    if let Some(key) = header.iter().enumerate().find_map(|(i, k)| header[..i].contains(k).then_some(k)) {
+    let mut seen = std::collections::HashSet::with_capacity(header.len());
+    if let Some(key) = header.iter().find(|k| !seen.insert(k.as_str())) {
         return Err(err(file, h + 1, key.as_str(), "appears twice in the header"));
     }
     let mut entries = vec![];

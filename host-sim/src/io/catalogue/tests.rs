@@ -97,3 +97,66 @@ fn tracker_time_is_minutes_since_the_element_epoch() {
     assert!((minutes - expected).abs() < 1e-9, "{minutes} {expected}");
     assert_eq!(sat.tracker_state(start, 600.0).unwrap(), sat.teme(minutes).unwrap());
 }
+
+/// A catalogue of `n` copies of the element set of `L1`/`L2` (catalogue numbers 1..=n) in `format`.
+fn catalogue_of(format: super::Format, n: usize) -> String {
+    use std::fmt::Write;
+    let mut text = String::new();
+    match format {
+        super::Format::OmmJson => {
+            text.push('[');
+            for id in 1..=n {
+                let comma = if id < n { "," } else { "" };
+                let _ = writeln!(
+                    text,
+                    "{{\"OBJECT_NAME\":\"X{id}\",\"EPOCH\":\"2000-06-27T18:50:19.733568\",\"MEAN_MOTION\":10.82419157,\
+                     \n\"ECCENTRICITY\":0.1859667,\"INCLINATION\":34.2682,\"RA_OF_ASC_NODE\":348.7242,\
+                     \n\"ARG_OF_PERICENTER\":331.7664,\"MEAN_ANOMALY\":19.3264,\"NORAD_CAT_ID\":{id},\"BSTAR\":2.8098e-5,\
+                     \n\"MEAN_MOTION_DOT\":2.3e-7,\"MEAN_MOTION_DDOT\":0}}{comma}"
+                );
+            }
+            text.push(']');
+        }
+        super::Format::OmmCsv => {
+            text.push_str("OBJECT_NAME,EPOCH,MEAN_MOTION,ECCENTRICITY,INCLINATION,RA_OF_ASC_NODE,ARG_OF_PERICENTER,\
+                MEAN_ANOMALY,NORAD_CAT_ID,BSTAR,MEAN_MOTION_DOT,MEAN_MOTION_DDOT\n");
+            for id in 1..=n {
+                let _ = writeln!(
+                    text,
+                    "X{id},2000-06-27T18:50:19.733568,10.82419157,.1859667,34.2682,348.7242,331.7664,19.3264,{id},\
+                     .28098E-4,.23E-6,0"
+                );
+            }
+        }
+        super::Format::Tle => {
+            for id in 1..=n {
+                let _ = writeln!(text, "X{id}\n{L1}\n{L2}");
+            }
+        }
+    }
+    text
+}
+
+/// The shortest of five readings of `text` (s).
+fn reading_time(text: &str, n: usize) -> f64 {
+    (0..5)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            assert_eq!(parse("t", text).unwrap().len(), n);
+            start.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Reading 8n records takes about 8 times as long as n, not 64 (an OMM JSON of 10,000 records took 85
+/// times as long as 1,000 when each record's line was counted from the start of the file).
+#[test]
+fn reading_time_grows_linearly_with_the_records() {
+    let n = 250;
+    for format in [super::Format::OmmJson, super::Format::OmmCsv, super::Format::Tle] {
+        let (small, large) = (catalogue_of(format, n), catalogue_of(format, 8 * n));
+        assert_eq!(super::detect(&small), format);
+        let ratio = reading_time(&large, 8 * n) / reading_time(&small, n);
+        assert!(ratio < 24.0, "{format:?}: 8 times the records took {ratio:.1} times as long");
+    }
+}
