@@ -84,14 +84,21 @@ impl SensorsFile {
             return Err(error("format", format!("expected \"{SENSORS_FORMAT}\", found \"{}\"", self.format)));
         }
         if !(self.scan_interval_s.is_finite() && self.scan_interval_s > 0.0) {
-            return Err(error("scan_interval_s", format!("{} is not finite and > 0", self.scan_interval_s)));
+            return Err(error(
+                "scan_interval_s",
+                format!("{} is not finite and > 0", crate::scenario::Readable(self.scan_interval_s)),
+            ));
         }
         if !(-90.0..=0.0).contains(&self.max_sun_elevation_deg) {
-            return Err(error("max_sun_elevation_deg", format!("{} is not in [-90, 0]", self.max_sun_elevation_deg)));
+            return Err(error(
+                "max_sun_elevation_deg",
+                format!("{} is not in [-90, 0]", crate::scenario::Readable(self.max_sun_elevation_deg)),
+            ));
         }
         if self.sensors.is_empty() || self.sensors.len() > MAX_SENSORS {
             return Err(error("sensors", format!("{} sensors: needs 1 to {MAX_SENSORS}", self.sensors.len())));
         }
+        crate::scenario::v2::check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
             sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
         }
@@ -201,7 +208,10 @@ pub struct Request<'a> {
 pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> {
     let hours = request.duration_hours;
     if !(hours.is_finite() && hours > 0.0 && hours <= MAX_DURATION_HOURS) {
-        return Err(Error::input(format!("--duration-hours {hours}: must be in (0, {MAX_DURATION_HOURS}]")));
+        return Err(Error::input(format!(
+            "--duration-hours {}: must be in (0, {MAX_DURATION_HOURS}]",
+            crate::scenario::Readable(hours)
+        )));
     }
     let start = request.start;
     let bad_start =

@@ -1,7 +1,7 @@
 //! CCSDS OMM mean elements as CelesTrak writes them, in JSON and in CSV.
 
 use super::entry::err;
-use super::entry::{CatalogueEntry, CatalogueError};
+use super::entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS};
 use super::tle::unsigned;
 use crate::sim::time::CalendarTime;
 use sgp4::chrono::{NaiveDate, NaiveDateTime};
@@ -92,8 +92,12 @@ fn omm_entry<'a>(
         Some(other) => return Err(fail("CLASSIFICATION_TYPE", format!("{other:?} is not U, C or S"))),
     };
     let required = |key: &str| number(key, true).map(|v| v.unwrap_or(0.0));
+    let name = text("OBJECT_NAME")?.map(|s| s.trim().to_string());
+    if name.as_ref().is_some_and(|n| n.chars().count() > MAX_NAME_CHARS) {
+        return Err(fail("OBJECT_NAME", format!("longer than {MAX_NAME_CHARS} characters")));
+    }
     let entry = CatalogueEntry {
-        name: text("OBJECT_NAME")?.map(|s| s.trim().to_string()),
+        name,
         norad_id: integer("NORAD_CAT_ID", true, 999_999_999)?.unwrap_or(0),
         international_designator: text("OBJECT_ID")?.map(|s| s.trim().to_string()).filter(|s| !s.is_empty()),
         classification,
