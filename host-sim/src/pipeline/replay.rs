@@ -209,5 +209,6 @@ fn summarise(
             .collect(),
         peak_resident_kib: None,
         sensors: heading.sensors,
+        catalogue_dropped: None,
     }
 }

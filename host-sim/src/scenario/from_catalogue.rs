@@ -200,12 +200,23 @@ pub struct Request<'a> {
     pub seed: u64,
 }
 
-/// The scenario of a catalogue seen by a sensor network.
+/// The scenario of a catalogue seen by a sensor network ([`generate_screened`] without its list of dropped
+/// element sets).
 ///
 /// # Errors
-/// [`Error::Input`] for a bad file or argument, an object SGP4 cannot propagate over the run, or a scan
-/// that would carry more measurements than the tracker takes.
+/// As [`generate_screened`].
 pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> {
+    generate_screened(request).map(|(scenario, figures, _)| (scenario, figures))
+}
+
+/// The scenario of a catalogue seen by a sensor network, and the element sets left out
+/// ([`catalogue::screen`]: inside the Earth, decaying or failing SGP4 during the run, given twice), each
+/// also a warning line on stderr.
+///
+/// # Errors
+/// [`Error::Input`] for a bad file or argument, a catalogue whose every element set is dropped, or a scan
+/// that would carry more measurements than the tracker takes.
+pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated, catalogue::CatalogueDropped), Error> {
     let hours = request.duration_hours;
     if !(hours.is_finite() && hours > 0.0 && hours <= MAX_DURATION_HOURS) {
         return Err(Error::input(format!(
@@ -256,13 +267,14 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
 
     // Truth by SGP4.
     let file = request.catalogue.display().to_string();
-    let satellites: Vec<Satellite> = entries
-        .into_iter()
-        .map(|e| {
-            let (line, id) = (e.line, e.norad_id);
-            Satellite::new(e).map_err(|err| Error::input(format!("{file}:{line}: object {id}: {err}")))
-        })
-        .collect::<Result<_, _>>()?;
+    let prior_time = schedule[0].0.min(0.0) - 1.0;
+    let times: Vec<f64> = std::iter::once(prior_time).chain(schedule.iter().map(|&(t, _)| t)).collect();
+    let screened = catalogue::screen_for_run(&file, entries, epoch, &times);
+    catalogue::screen::print_warnings(&screened.warnings);
+    let satellites: Vec<Satellite> = screened.satellites;
+    if satellites.is_empty() {
+        return Err(Error::input(format!("{file}: every element set is dropped (see the warnings)")));
+    }
     let state = |i: usize, t: f64| -> Result<[f64; 6], Error> {
         let satellite = &satellites[i];
         satellite.tracker_state(epoch, t).map(|(r, v)| [r[0], r[1], r[2], v[0], v[1], v[2]]).map_err(|err| {
@@ -299,7 +311,11 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
                 )),
                 other => Error::input(format!("{}: {other}", request.sensors.display())),
             })?;
-    generate3d::to_scenario_with(&simulation, Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }))
+    let (scenario, figures) = generate3d::to_scenario_with(
+        &simulation,
+        Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }),
+    )?;
+    Ok((scenario, figures, screened.dropped))
 }
 
 /// Writes `scenario` to `out` through a temporary file beside it, renamed once complete: a failed write

@@ -194,3 +194,23 @@ fn a_ten_megabyte_omm_value_is_quoted_as_an_excerpt() {
     let text = base.replacen("\"EPOCH\"", &format!("\"{long}\":1,\"EPOCH\""), 1);
     assert_eq!(parse("t", &text).unwrap().len(), 1, "unknown OMM keywords are ignored");
 }
+
+/// The reading times of the note (issue 33): `cargo test --release -p host-sim --lib -- --ignored
+/// catalogue_reading_benchmark --nocapture` prints the time to parse 1k, 10k and 100k OMM JSON records, 100k
+/// OMM CSV records and a million-line TLE file (shortest of three).
+#[test]
+#[ignore = "a benchmark: run in release with --nocapture"]
+fn catalogue_reading_benchmark() {
+    let cases = [
+        (super::Format::OmmJson, 1_000),
+        (super::Format::OmmJson, 10_000),
+        (super::Format::OmmJson, 100_000),
+        (super::Format::OmmCsv, 100_000),
+        (super::Format::Tle, 333_333),
+    ];
+    for (format, n) in cases {
+        let text = catalogue_of(format, n);
+        let seconds = (0..3).map(|_| reading_time(&text, n)).fold(f64::INFINITY, f64::min);
+        println!("{format:?}: {n} records, {} lines, {} MB: {seconds:.3} s", text.lines().count(), text.len() >> 20);
+    }
+}

@@ -60,6 +60,10 @@ pub struct RunSummary {
     /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensors: Option<usize>,
+    /// `run-catalogue` only: the element sets its scenario left out (inside the Earth, decaying or failing
+    /// SGP4 during the run, given twice). Absent from other runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub catalogue_dropped: Option<crate::io::catalogue::CatalogueDropped>,
 }
 
 /// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.
