@@ -267,14 +267,9 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
 
     // Truth by SGP4.
     let file = request.catalogue.display().to_string();
-    let prior_time = schedule[0].0.min(0.0) - 1.0;
-    let times: Vec<f64> = std::iter::once(prior_time).chain(schedule.iter().map(|&(t, _)| t)).collect();
-    let screened = catalogue::screen_for_run(&file, entries, epoch, &times);
-    catalogue::screen::print_warnings(&screened.warnings);
+    let scan_times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
+    let screened = catalogue::screen::screen_scans(&file, entries, epoch, &scan_times)?;
     let satellites: Vec<Satellite> = screened.satellites;
-    if satellites.is_empty() {
-        return Err(Error::input(format!("{file}: every element set is dropped (see the warnings)")));
-    }
     let state = |i: usize, t: f64| -> Result<[f64; 6], Error> {
         let satellite = &satellites[i];
         satellite.tracker_state(epoch, t).map(|(r, v)| [r[0], r[1], r[2], v[0], v[1], v[2]]).map_err(|err| {

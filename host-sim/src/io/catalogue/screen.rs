@@ -155,6 +155,28 @@ pub fn screen_for_run(file: &str, entries: Vec<CatalogueEntry>, start: NaiveDate
     screened
 }
 
+/// [`screen_for_run`] at the scan times `scans` (s after `start`) and the prior's (1 s before the first
+/// scan or the start, as [`crate::scenario::from_simulation`] places it), the warnings printed
+/// ([`print_warnings`]).
+///
+/// # Errors
+/// [`crate::Error::Input`] when every element set is dropped.
+pub fn screen_scans(
+    file: &str,
+    entries: Vec<CatalogueEntry>,
+    start: NaiveDateTime,
+    scans: &[f64],
+) -> Result<Screened, crate::Error> {
+    let prior_time = scans.first().map_or(0.0, |&t| t.min(0.0)) - 1.0;
+    let times: Vec<f64> = std::iter::once(prior_time).chain(scans.iter().copied()).collect();
+    let screened = screen_for_run(file, entries, start, &times);
+    print_warnings(&screened.warnings);
+    if screened.satellites.is_empty() {
+        return Err(crate::Error::input(format!("{file}: every element set is dropped (see the warnings)")));
+    }
+    Ok(screened)
+}
+
 /// Prints `warnings` on stderr, one `warning:` line each, at most [`MAX_WARNING_LINES`] and then their count.
 pub fn print_warnings(warnings: &[String]) {
     for line in warnings.iter().take(MAX_WARNING_LINES) {
