@@ -26,6 +26,8 @@ fn check_error(text: &str, e: &tdm::TdmError) {
     let message = e.to_string();
     let message = host_sim::scenario::one_line(&message);
     assert!(!message.contains(['\n', '\r']), "multi-line error message: {message}");
+    // Quoted input is cut to an excerpt (issue 33): a message never echoes a long keyword or value whole.
+    assert!(message.len() <= 32 << 10, "a message of {} bytes", message.len());
     assert!(e.line >= 1 && e.line <= text.lines().count() + 1, "line {} of {} lines", e.line, text.lines().count());
 }
 

@@ -23,7 +23,7 @@ pub enum Error {
 impl Error {
     /// Bad input described by `message`.
     pub fn input(message: impl fmt::Display) -> Self {
-        Error::Input(ScenarioError(one_line(&message.to_string())))
+        Error::Input(ScenarioError(one_line(&crate::scenario::cut_quotes(&message.to_string()))))
     }
 
     /// `path` cannot be written.

@@ -480,3 +480,100 @@ fn run_catalogue_tracks_a_catalogue_in_one_command() {
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
     assert!(!bad.exists());
 }
+
+/// The fixture's first three objects, then an orbit inside the Earth (17 rev/day), one far inside (99
+/// rev/day) and the first object again; the second object's elements are 60 days older than the start.
+fn catalogue_with_bad_orbits(dir: &TempDir) -> PathBuf {
+    let fixture = std::fs::read_to_string(CATALOGUE).expect("catalogue");
+    let lines: Vec<&str> = fixture.lines().filter(|l| !l.starts_with('#')).take(9).collect();
+    let old = patched(lines[4], 19, "26019.00000000");
+    let mut text = format!("{}\n{old}\n{}\n", lines[..4].join("\n"), lines[5..9].join("\n"));
+    for (name, id, mean_motion) in [("LOW 17", "90077", "17.00000000"), ("LOW 99", "90078", "99.00000000")] {
+        let (l1, l2) = (with_checksum(&lines[1].replace("90001", id)), lines[2].replace("90001", id));
+        text.push_str(&format!("{name}\n{l1}\n{}\n", patched(&l2, 53, mean_motion)));
+    }
+    text.push_str(&format!("{}\n", lines[..3].join("\n")));
+    let path = dir.join("bad-orbits.tle");
+    std::fs::write(&path, text).expect("write");
+    path
+}
+
+#[test]
+fn orbits_inside_the_earth_and_repeated_element_sets_are_dropped_and_counted() {
+    // Issue 33 item 4: mean motions of 17 and 99 rev/day were accepted (truth radius down to 1,947 km) and
+    // an element set given twice was two objects.
+    let dir = TempDir::new("gen-dropped");
+    let catalogue = catalogue_with_bad_orbits(&dir);
+    let out = dir.join("scenario.json");
+    let output = Command::new(BIN)
+        .args(["--json", "generate", "catalogue", "--sensors", RADARS, "--start", START, "--duration-hours", "0.25"])
+        .arg("--catalogue")
+        .arg(&catalogue)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run host-sim");
+    assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    let err = String::from_utf8_lossy(&output.stderr);
+    let warnings: Vec<&str> = err.lines().filter(|l| l.starts_with("warning: ")).collect();
+    assert_eq!(warnings.len(), 4, "{err}");
+    assert!(
+        warnings[0].contains(":4: object 90002 (OBJECT 1): elements 60") && warnings[0].contains("30 days"),
+        "{err}"
+    );
+    for (w, what) in warnings[1..].iter().zip([
+        "object 90077 (LOW 17): dropped: the orbit enters the Earth",
+        "object 90078 (LOW 99): dropped: the orbit enters the Earth",
+        ":16: object 90001 (OBJECT 0): dropped: the element set of line 1 again",
+    ]) {
+        assert!(w.contains(what), "{what}: {err}");
+    }
+    assert!(err.contains("3 objects") && err.contains("3 element sets dropped"), "{err}");
+    let report: Value = serde_json::from_slice(&output.stdout).expect("JSON on stdout");
+    assert_eq!(report["catalogue_dropped"]["count"], 3, "{report}");
+    let dropped = report["catalogue_dropped"]["objects"].as_array().expect("objects");
+    assert_eq!(dropped.iter().map(|o| o["line"].as_u64().unwrap()).collect::<Vec<_>>(), [10, 13, 16]);
+    assert_eq!(dropped[0]["name"], "LOW 17");
+    assert_eq!(report["objects"], 3);
+    let scenario = read_json(&out);
+    assert_eq!(scenario["truth"]["objects"].as_array().expect("truth").len(), 3);
+    // run-catalogue: the same list in summary.json.
+    let run_out = dir.join("run");
+    let output = Command::new(BIN)
+        .args(["run-catalogue", "--sensors", RADARS, "--start", START, "--duration-hours", "0.1", "--quiet"])
+        .arg("--catalogue")
+        .arg(&catalogue)
+        .arg("--out")
+        .arg(&run_out)
+        .output()
+        .expect("run host-sim");
+    assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    let summary = read_json(&run_out.join("summary.json"));
+    assert_eq!(summary["catalogue_dropped"]["count"], 3, "{summary}");
+    assert_eq!(
+        summary["catalogue_dropped"]["objects"][2]["reason"],
+        "the element set of line 1 again (same catalogue number and epoch)"
+    );
+}
+
+#[test]
+fn a_sensors_file_follows_the_sensor_name_rule() {
+    // Issue 33 item 7: names that export-tdm refused were accepted by generate catalogue.
+    let dir = TempDir::new("gen-names");
+    let text = std::fs::read_to_string(RADARS).expect("sensors");
+    assert!(text.contains("\"radar-south\""));
+    for (name, replacement, expect) in [
+        ("twice.json", "\"radar-north\"", "sensors[1].name: \"radar-north\" names two sensors (sensors[0] too)"),
+        ("newline.json", "\"radar\\nsouth\"", "sensors[1].name: \"radar\\nsouth\" cannot name a sensor"),
+        ("empty.json", "\"\"", "sensors[1].name: \"\" cannot name a sensor"),
+    ] {
+        let sensors = dir.join(name);
+        std::fs::write(&sensors, text.replacen("\"radar-south\"", replacement, 1)).expect("write");
+        let out = dir.join("out.json");
+        let output = generate(CATALOGUE, sensors.to_str().expect("path"), START, "0.1", "1", &out);
+        let err = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{name}: {}", describe(&output));
+        assert!(err.lines().count() == 1 && err.contains(expect), "{name}: {err}");
+        assert!(!out.exists());
+    }
+}

@@ -476,7 +476,7 @@ fn malformed_cases() -> Vec<Case> {
         mutated("string where a number is expected", "sensor.clutter_rate: invalid type: string", |v| {
             v["sensor"]["clutter_rate"] = json!("1.0");
         }),
-        mutated("fraction in an integer field", "tracker.seed: invalid type: floating point", |v| {
+        mutated("fraction in an integer field", "tracker.seed: must be an integer in 0..=18446744073709551615", |v| {
             v["tracker"]["seed"] = json!(7.5);
         }),
         mutated("negative label", "prior.hypotheses[0].objects[1].label: invalid value: integer `-1`", |v| {
@@ -1791,4 +1791,129 @@ fn generate_unknowns_need_a_3d_preset_and_a_fraction_in_range() {
         assert_eq!(stderr(&output).lines().count(), 1, "{}", describe(&output));
         assert!(!path.exists());
     }
+}
+
+/// `run FILE` where FILE holds `text`; the one error line (checked as [`check_malformed`] does).
+fn run_error(dir: &TempDir, name: &str, text: &str, expect: &str) -> String {
+    let file = dir.join(name);
+    std::fs::write(&file, text).expect("write");
+    let output = host_sim(&[
+        "run".as_ref(),
+        file.as_os_str(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        dir.join("out").as_os_str(),
+    ]);
+    if let Err(why) = check_malformed(&output, expect) {
+        panic!("{name}: {why}\n{}", describe(&output));
+    }
+    stderr(&output)
+}
+
+#[test]
+fn ten_megabyte_keys_and_values_are_quoted_as_short_excerpts() {
+    // Issue 33 item 7: a 10 MB unknown key or value was echoed whole, a 10-20 MB stderr line.
+    let dir = TempDir::new("excerpt");
+    let fixture = std::fs::read_to_string(FIXTURE).expect("fixture");
+    let long = "K".repeat(10 << 20);
+    let cases = [
+        ("key.json", fixture.replacen("\"name\"", &format!("\"{long}\": 1, \"name\""), 1), "(10485760 bytes)`"),
+        ("nested-key.json", fixture.replacen("\"gate\"", &format!("\"{long}\": 1, \"gate\""), 1), "(10485760 bytes)`"),
+        ("value.json", fixture.replacen("\"rfisst-scenario/1\"", &format!("\"{long}\""), 1), "(10485760 bytes)"),
+        ("number.json", fixture.replacen("16.0", &format!("\"{long}\""), 1), "(10485760 bytes)"),
+    ];
+    for (name, text, expect) in cases {
+        let err = run_error(&dir, name, &text, expect);
+        assert!(err.len() < 600, "{name}: {} bytes: {}", err.len(), &err[..err.len().min(600)]);
+    }
+}
+
+#[test]
+fn overflowing_seeds_say_what_a_seed_is() {
+    let dir = TempDir::new("seed-range");
+    let fixture = std::fs::read_to_string(FIXTURE).expect("fixture");
+    assert!(fixture.contains("\"seed\": 7"));
+    for (name, seed) in [("float.json", "1e30"), ("beyond.json", "18446744073709551616"), ("negative.json", "-1")] {
+        let text = fixture.replacen("\"seed\": 7", &format!("\"seed\": {seed}"), 1);
+        let err = run_error(&dir, name, &text, "tracker.seed: must be an integer in 0..=18446744073709551615");
+        assert!(!err.contains("invalid type"), "{err}");
+    }
+    let text = fixture.replacen("\"seed\": 7", "\"seed\": 18446744073709551615", 1);
+    let file = dir.join("max.json");
+    std::fs::write(&file, text).expect("write");
+    assert_success(&host_sim(&[
+        "run".as_ref(),
+        file.as_os_str(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        dir.join("max").as_os_str(),
+    ]));
+}
+
+#[test]
+fn huge_numbers_are_printed_in_scientific_form() {
+    // Issue 33 item 7: `--duration-hours 1e308` printed 309 digits.
+    let dir = TempDir::new("readable");
+    let file = dir.join("beta.json");
+    write_json(&file, &fixture_value_with(|v| v["death_probability"] = json!(1e300)));
+    let output =
+        host_sim(&["run".as_ref(), file.as_os_str(), "--quiet".as_ref(), "--out".as_ref(), dir.join("o").as_os_str()]);
+    check_malformed(&output, "death_probability: 1e300 is not in [0, 1]")
+        .unwrap_or_else(|why| panic!("{why}\n{}", describe(&output)));
+    let output = host_sim(&[
+        "generate",
+        "catalogue",
+        "--catalogue",
+        "x.tle",
+        "--sensors",
+        "s.json",
+        "--start",
+        "2026-01-01T00:00:00Z",
+        "--duration-hours",
+        "1e308",
+        "--out",
+        dir.join("c.json").to_str().expect("path"),
+    ]);
+    check_malformed(&output, "--duration-hours 1e308: must be in (0, 744]")
+        .unwrap_or_else(|why| panic!("{why}\n{}", describe(&output)));
+    assert!(stderr(&output).len() < 100, "{}", stderr(&output));
+}
+
+fn fixture_value_with(change: impl FnOnce(&mut Value)) -> Value {
+    let mut value = fixture();
+    change(&mut value);
+    value
+}
+
+#[test]
+fn one_sensor_name_rule_for_run_and_export_tdm() {
+    // Issue 33 item 7: names that export-tdm refused were accepted by run.
+    let dir = TempDir::new("sensor-names");
+    let base = read_json(Path::new(FIXTURE_3D));
+    let mut two = base.clone();
+    let sensor = two["sensors"][0].clone();
+    array(&mut two["sensors"]).push(sensor);
+    let cases: Vec<(&str, Value, &str)> = vec![
+        ("duplicate", two, "sensors[1].name: \"radar-north\" names two sensors (sensors[0] too)"),
+        ("empty", fixture_3d_name(&base, ""), "sensors[0].name: \"\" cannot name a sensor"),
+        ("newline", fixture_3d_name(&base, "radar\nnorth"), "sensors[0].name: \"radar\\nnorth\" cannot name a sensor"),
+        ("blanks", fixture_3d_name(&base, " radar"), "sensors[0].name: \" radar\" cannot name a sensor"),
+    ];
+    for (name, value, expect) in cases {
+        let file = dir.join(&format!("{name}.json"));
+        write_json(&file, &value);
+        for command in ["run", "export-tdm"] {
+            let output = host_sim(&[command.as_ref(), file.as_os_str(), "--out".as_ref(), dir.join("out").as_os_str()]);
+            if let Err(why) = check_malformed(&output, expect) {
+                panic!("{name}, {command}: {why}\n{}", describe(&output));
+            }
+            assert!(!dir.join("out").exists(), "{name}, {command}: output written");
+        }
+    }
+}
+
+fn fixture_3d_name(base: &Value, name: &str) -> Value {
+    let mut value = base.clone();
+    value["sensors"][0]["name"] = json!(name);
+    value
 }

@@ -3,6 +3,7 @@
 
 use super::CliError;
 use crate::error::Error;
+use crate::io::catalogue::CatalogueDropped;
 use crate::scenario::from_simulation::{Generated, Preset3d};
 use crate::scenario::v2::Scenario3d;
 use crate::sim::planar::Preset;
@@ -48,14 +49,15 @@ pub struct CatalogueArgs {
 }
 
 impl CatalogueArgs {
-    /// The scenario of `generate catalogue` (`command` names the command in messages).
-    pub(super) fn generate(self, command: &str, seed: u64) -> Result<(Scenario3d, Generated), Error> {
+    /// The scenario of `generate catalogue` (`command` names the command in messages) and the element sets
+    /// it left out.
+    pub(super) fn generate(self, command: &str, seed: u64) -> Result<(Scenario3d, Generated, CatalogueDropped), Error> {
         let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
         let catalogue_file = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
         let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
         let start = self.start.ok_or_else(|| missing("--start"))?;
         let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
-        crate::scenario::from_catalogue::generate(crate::scenario::from_catalogue::Request {
+        crate::scenario::from_catalogue::generate_screened(crate::scenario::from_catalogue::Request {
             catalogue: &catalogue_file,
             sensors: &sensors,
             start: &start,
@@ -113,8 +115,20 @@ impl clap::ValueEnum for AnyPreset {
     }
 }
 
-/// Runs `generate`.
-pub(super) fn execute(args: Args) -> Result<(), CliError> {
+/// What `generate catalogue --json` prints: the figures of the file written and the element sets left out.
+#[derive(serde::Serialize)]
+struct CatalogueGenerated<'a> {
+    out: &'a std::path::Path,
+    objects: usize,
+    scans: usize,
+    measurements: usize,
+    max_measurements: usize,
+    dropped_outside: usize,
+    catalogue_dropped: &'a CatalogueDropped,
+}
+
+/// Runs `generate` (`json`: `generate catalogue` prints its figures as JSON on stdout).
+pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let Args { preset, seed, out, catalogue, missing_fraction, breakup } = args;
     let unknowns_refused = || -> Result<(), Error> {
         if missing_fraction != 0.0 || breakup != 0 {
@@ -122,6 +136,7 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
         }
         Ok(())
     };
+    let mut dropped = None;
     let figures = match preset {
         AnyPreset::Planar(preset) => {
             catalogue.only_for_catalogue()?;
@@ -148,14 +163,16 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
         }
         AnyPreset::Catalogue => {
             unknowns_refused()?;
-            let (scenario, figures) = catalogue.generate("generate catalogue", seed)?;
+            let (scenario, figures, catalogue_dropped) = catalogue.generate("generate catalogue", seed)?;
             crate::scenario::from_catalogue::save_whole(&scenario, &out)?;
+            dropped = Some(catalogue_dropped);
             figures
         }
     };
+    let left_out = dropped.as_ref().map_or_else(String::new, |d| format!(", {} element sets dropped", d.count));
     eprintln!(
         "wrote {} ({} scans, {} measurements, at most {} per scan, {} objects, {} measurements outside the field \
-         of view dropped)",
+         of view dropped{left_out})",
         out.display(),
         figures.scans,
         figures.measurements,
@@ -163,5 +180,17 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
         figures.objects,
         figures.dropped_outside
     );
+    if let (true, Some(catalogue_dropped)) = (json, &dropped) {
+        let report = CatalogueGenerated {
+            out: &out,
+            objects: figures.objects,
+            scans: figures.scans,
+            measurements: figures.measurements,
+            max_measurements: figures.max_measurements,
+            dropped_outside: figures.dropped_outside,
+            catalogue_dropped,
+        };
+        println!("{}", serde_json::to_string_pretty(&report).map_err(Error::internal)?);
+    }
     Ok(())
 }

@@ -161,7 +161,7 @@ impl std::fmt::Display for CliError {
 pub fn execute(cli: Cli) -> Result<(), CliError> {
     let json = cli.json;
     match cli.command {
-        Command::Generate(args) => generate::execute(args),
+        Command::Generate(args) => generate::execute(args, json),
         Command::Run(args) => run::execute(args, json),
         Command::RunCatalogue(args) => run_catalogue::execute(args, json),
         Command::ExportTdm(args) => export_tdm::execute(args),

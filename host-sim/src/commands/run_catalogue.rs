@@ -26,9 +26,12 @@ pub struct Args {
 
 /// Runs `run-catalogue`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
-    let (scenario, _) = args.catalogue.generate("run-catalogue", args.seed)?;
+    let (scenario, _, dropped) = args.catalogue.generate("run-catalogue", args.seed)?;
     let options = args.common.run_options(args.tracker);
     let scenario = AnyScenario::V2(Box::new(scenario));
-    let (summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
+    let (mut summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
+    // The run's summary.json with the element sets the scenario left out.
+    summary.catalogue_dropped = Some(dropped);
+    crate::pipeline::output::write_json(&args.out.join("summary.json"), &summary)?;
     super::run::finish(&summary, clean, &args.out, json)
 }

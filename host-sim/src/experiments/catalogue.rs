@@ -31,7 +31,7 @@
 
 use crate::error::Error;
 use crate::eval::metrics::gospa;
-use crate::io::catalogue::{self, CatalogueEntry, Satellite};
+use crate::io::catalogue::{self, CatalogueEntry};
 use crate::io::report::{CatalogueReport, CatalogueTracker, RunSummary};
 use crate::pipeline::output::write_json;
 use crate::pipeline::{Profile, TrackerKind};
@@ -150,13 +150,12 @@ fn generated(name: String, norad_id: u64, epoch: sgp4::chrono::NaiveDateTime, or
     }
 }
 
-/// Whether SGP4 propagates `entry` from 1 min before `epoch` to 1 min after the end, every minute.
+/// Whether SGP4 propagates `entry` from 1 min before `epoch` to 1 min after the end, every minute, above
+/// the height `generate catalogue` keeps ([`catalogue::orbit_problem`]).
 fn propagates(entry: &CatalogueEntry, epoch: sgp4::chrono::NaiveDateTime, duration_s: f64) -> bool {
-    let Ok(satellite) = Satellite::new(entry.clone()) else {
-        return false;
-    };
     let steps = (duration_s / 60.0).ceil() as usize + 2;
-    (0..=steps).all(|k| satellite.tracker_state(epoch, -60.0 + 60.0 * k as f64).is_ok())
+    let times: Vec<f64> = (0..=steps).map(|k| -60.0 + 60.0 * k as f64).collect();
+    catalogue::orbit_problem(entry, epoch, &times).is_none()
 }
 
 /// The catalogue of `settings` (deterministic: no seed).
@@ -439,7 +438,11 @@ fn network(name: &'static str, sensors: &SensorsFile, seed: u64, shared: &Shared
         duration_hours: settings.duration_hours,
         seed,
     };
-    let (mut scenario, generated) = catalogue_scenario::generate(request)?;
+    let (mut scenario, generated, dropped) = catalogue_scenario::generate_screened(request)?;
+    if dropped.count > 0 {
+        // The missing objects are indices into the catalogue: every object must be in the scenario.
+        return Err(Error::internal(format!("catalogue: {name}: {} objects dropped from the scenario", dropped.count)));
+    }
     forget(&mut scenario, missing)?;
     if !quiet {
         eprintln!("catalogue: {name}: {} scans, {} measurements; tracking", generated.scans, generated.measurements);
@@ -683,12 +686,12 @@ mod tests {
             assert_eq!(CatalogueEntry { line: 0, ..a.clone() }, CatalogueEntry { line: 0, ..b.clone() });
         }
         // The train: consecutive satellites 20-30 km apart at the start.
-        let train: Vec<Satellite> = catalogue
+        let train: Vec<catalogue::Satellite> = catalogue
             .entries
             .iter()
             .zip(&catalogue.origins)
             .filter(|&(_, &o)| o == Origin::Train)
-            .map(|(e, _)| Satellite::new(e.clone()).expect("sgp4"))
+            .map(|(e, _)| catalogue::Satellite::new(e.clone()).expect("sgp4"))
             .collect();
         let epoch = catalogue.entries[0].epoch;
         for pair in train.windows(2) {

@@ -129,7 +129,10 @@ impl Instant {
     /// t negative, not finite or too large.
     pub fn after(&self, t: f64) -> Result<Self, String> {
         if !(t.is_finite() && (0.0..=MAX_OFFSET).contains(&t)) {
-            return Err(format!("time {t} s is not in [0, {MAX_OFFSET}] s after the epoch"));
+            return Err(format!(
+                "time {} s is not in [0, {MAX_OFFSET}] s after the epoch",
+                crate::scenario::Readable(t)
+            ));
         }
         let whole = t.floor();
         let text = format!("{}", t - whole);

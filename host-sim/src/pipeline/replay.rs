@@ -287,6 +287,7 @@ fn summarise(
         sensors: heading.sensors,
         numerical_drops: NumericalDropsSummary::default(),
         refused_scans: RefusedScans::default(),
+        catalogue_dropped: None,
     }
 }
 

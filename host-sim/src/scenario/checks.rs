@@ -24,8 +24,11 @@ impl fmt::Display for ScenarioError {
 
 impl std::error::Error for ScenarioError {}
 
+/// The one-line error `field: message`, the field (a path may end in an unknown key) and quoted input cut
+/// to excerpts ([`super::excerpt`], [`super::cut_quotes`]).
 pub(crate) fn error(field: impl fmt::Display, message: impl fmt::Display) -> ScenarioError {
-    ScenarioError(one_line(&format!("{field}: {message}")))
+    let field = super::excerpt(&field.to_string(), 2 * super::quote::EXCERPT_CHARS);
+    ScenarioError(one_line(&super::cut_quotes(&format!("{field}: {message}"))))
 }
 
 /// The message with every control character escaped (`\n`, `\r`, `\u{b}`, ...), and every invisible
@@ -89,7 +92,7 @@ pub fn read_limited(path: &Path) -> Result<String, ScenarioError> {
 }
 
 pub(crate) fn finite(field: &str, value: f64) -> Result<(), ScenarioError> {
-    if value.is_finite() { Ok(()) } else { Err(error(field, format!("{value} is not finite"))) }
+    if value.is_finite() { Ok(()) } else { Err(error(field, format!("{} is not finite", super::Readable(value)))) }
 }
 
 pub(crate) fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioError> {
@@ -97,7 +100,11 @@ pub(crate) fn finite_all(field: &str, values: &[f64]) -> Result<(), ScenarioErro
 }
 
 pub(crate) fn positive(field: &str, value: f64) -> Result<(), ScenarioError> {
-    if value.is_finite() && value > 0.0 { Ok(()) } else { Err(error(field, format!("{value} is not finite and > 0"))) }
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(error(field, format!("{} is not finite and > 0", super::Readable(value))))
+    }
 }
 
 pub(crate) fn check_covariance<const D: usize>(
@@ -127,21 +134,24 @@ impl EvaluationSpec {
         positive("evaluation.gospa_cutoff", self.gospa_cutoff)?;
         let p = self.gospa_order;
         if !(p.is_finite() && (1.0..=MAX_GOSPA_ORDER).contains(&p)) {
-            return Err(error("evaluation.gospa_order", format!("{p} is not in [1, {MAX_GOSPA_ORDER}]")));
+            return Err(error(
+                "evaluation.gospa_order",
+                format!("{} is not in [1, {MAX_GOSPA_ORDER}]", super::Readable(p)),
+            ));
         }
         let (low, high) = GOSPA_POWER_RANGE;
         let power = self.gospa_cutoff.powf(p);
         if !(low..=high).contains(&power) {
             return Err(error(
                 "evaluation.gospa_cutoff",
-                format!("{:?}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", self.gospa_cutoff),
+                format!("{}^{p} (cut-off^order) is not in [{low:e}, {high:e}]", super::Readable(self.gospa_cutoff)),
             ));
         }
         // The error bound is a GOSPA cut-off of order 1.
         if !(low..=high).contains(&self.error_bound) {
             return Err(error(
                 "evaluation.error_bound",
-                format!("{:?} is not in [{low:e}, {high:e}]", self.error_bound),
+                format!("{} is not in [{low:e}, {high:e}]", super::Readable(self.error_bound)),
             ));
         }
         if !(self.confirmation_existence > 0.0 && self.confirmation_existence <= 1.0) {

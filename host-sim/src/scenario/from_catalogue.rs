@@ -84,14 +84,21 @@ impl SensorsFile {
             return Err(error("format", format!("expected \"{SENSORS_FORMAT}\", found \"{}\"", self.format)));
         }
         if !(self.scan_interval_s.is_finite() && self.scan_interval_s > 0.0) {
-            return Err(error("scan_interval_s", format!("{} is not finite and > 0", self.scan_interval_s)));
+            return Err(error(
+                "scan_interval_s",
+                format!("{} is not finite and > 0", crate::scenario::Readable(self.scan_interval_s)),
+            ));
         }
         if !(-90.0..=0.0).contains(&self.max_sun_elevation_deg) {
-            return Err(error("max_sun_elevation_deg", format!("{} is not in [-90, 0]", self.max_sun_elevation_deg)));
+            return Err(error(
+                "max_sun_elevation_deg",
+                format!("{} is not in [-90, 0]", crate::scenario::Readable(self.max_sun_elevation_deg)),
+            ));
         }
         if self.sensors.is_empty() || self.sensors.len() > MAX_SENSORS {
             return Err(error("sensors", format!("{} sensors: needs 1 to {MAX_SENSORS}", self.sensors.len())));
         }
+        crate::scenario::v2::check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
             sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
         }
@@ -193,15 +200,29 @@ pub struct Request<'a> {
     pub seed: u64,
 }
 
-/// The scenario of a catalogue seen by a sensor network.
+/// The scenario of a catalogue seen by a sensor network ([`generate_screened`] without its list of dropped
+/// element sets).
 ///
 /// # Errors
-/// [`Error::Input`] for a bad file or argument, an object SGP4 cannot propagate over the run, or a scan
-/// that would carry more measurements than the tracker takes.
+/// As [`generate_screened`].
 pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> {
+    generate_screened(request).map(|(scenario, figures, _)| (scenario, figures))
+}
+
+/// The scenario of a catalogue seen by a sensor network, and the element sets left out
+/// ([`catalogue::screen`]: inside the Earth, decaying or failing SGP4 during the run, given twice), each
+/// also a warning line on stderr.
+///
+/// # Errors
+/// [`Error::Input`] for a bad file or argument, a catalogue whose every element set is dropped, or a scan
+/// that would carry more measurements than the tracker takes.
+pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated, catalogue::CatalogueDropped), Error> {
     let hours = request.duration_hours;
     if !(hours.is_finite() && hours > 0.0 && hours <= MAX_DURATION_HOURS) {
-        return Err(Error::input(format!("--duration-hours {hours}: must be in (0, {MAX_DURATION_HOURS}]")));
+        return Err(Error::input(format!(
+            "--duration-hours {}: must be in (0, {MAX_DURATION_HOURS}]",
+            crate::scenario::Readable(hours)
+        )));
     }
     let start = request.start;
     let bad_start =
@@ -246,13 +267,9 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
 
     // Truth by SGP4.
     let file = request.catalogue.display().to_string();
-    let satellites: Vec<Satellite> = entries
-        .into_iter()
-        .map(|e| {
-            let (line, id) = (e.line, e.norad_id);
-            Satellite::new(e).map_err(|err| Error::input(format!("{file}:{line}: object {id}: {err}")))
-        })
-        .collect::<Result<_, _>>()?;
+    let scan_times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
+    let screened = catalogue::screen::screen_scans(&file, entries, epoch, &scan_times)?;
+    let satellites: Vec<Satellite> = screened.satellites;
     let state = |i: usize, t: f64| -> Result<[f64; 6], Error> {
         let satellite = &satellites[i];
         satellite.tracker_state(epoch, t).map(|(r, v)| [r[0], r[1], r[2], v[0], v[1], v[2]]).map_err(|err| {
@@ -289,7 +306,11 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
                 )),
                 other => Error::input(format!("{}: {other}", request.sensors.display())),
             })?;
-    generate3d::to_scenario_with(&simulation, Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }))
+    let (scenario, figures) = generate3d::to_scenario_with(
+        &simulation,
+        Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }),
+    )?;
+    Ok((scenario, figures, screened.dropped))
 }
 
 /// Writes `scenario` to `out` through a temporary file beside it, renamed once complete: a failed write

@@ -9,6 +9,7 @@ pub mod any;
 pub mod checks;
 pub mod from_catalogue;
 pub mod from_simulation;
+pub mod quote;
 pub mod v2;
 
 use serde::{Deserialize, Serialize};
@@ -17,6 +18,7 @@ use std::path::Path;
 pub use any::{AnyScenario, load_any};
 pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
 pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
+pub use quote::{Readable, cut_quotes, excerpt};
 
 /// The format tag every scenario file carries.
 pub const FORMAT: &str = "rfisst-scenario/1";
@@ -391,6 +393,7 @@ pub struct TrackerSpec {
     #[serde(default)]
     pub numerical_failure: NumericalFailureSpec,
     /// Seed of every random choice.
+    #[serde(deserialize_with = "quote::seed")]
     pub seed: u64,
     /// R-FISST sampler settings.
     #[serde(default)]
@@ -594,7 +597,10 @@ impl Scenario {
         let sensor = &self.sensor;
         let pd = sensor.detection_probability;
         if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
-            return Err(error("sensor.detection_probability", format!("{pd} is not in (0, 1]")));
+            return Err(error(
+                "sensor.detection_probability",
+                format!("{} is not in (0, 1]", crate::scenario::Readable(pd)),
+            ));
         }
         positive("sensor.clutter_rate", sensor.clutter_rate)?;
         match sensor.field_of_view {
@@ -604,7 +610,7 @@ impl Scenario {
                 if !(field_of_view_deg > 0.0 && field_of_view_deg <= 360.0) {
                     return Err(error(
                         "sensor.field_of_view.field_of_view_deg",
-                        format!("{field_of_view_deg} is not in (0, 360]"),
+                        format!("{} is not in (0, 360]", crate::scenario::Readable(field_of_view_deg)),
                     ));
                 }
                 positive("sensor.field_of_view.max_range", max_range)
@@ -625,7 +631,7 @@ impl Scenario {
     fn validate_births_and_tracker(&self) -> Result<(), ScenarioError> {
         let alpha = self.birth.probability;
         if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
-            return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
+            return Err(error("birth.probability", format!("{} is not in [0, 1]", crate::scenario::Readable(alpha))));
         }
         if let Some(measured) = &self.birth.measured {
             measured.validate(self.birth.events)?;
@@ -636,7 +642,7 @@ impl Scenario {
         }
         let beta = self.death_probability;
         if !(beta.is_finite() && (0.0..=1.0).contains(&beta)) {
-            return Err(error("death_probability", format!("{beta} is not in [0, 1]")));
+            return Err(error("death_probability", format!("{} is not in [0, 1]", crate::scenario::Readable(beta))));
         }
         if let Some(gate) = self.tracker.gate {
             positive("tracker.gate", gate)?;
@@ -686,7 +692,10 @@ impl PriorSpec {
         for (h, hypothesis) in self.hypotheses.iter().enumerate() {
             let w = hypothesis.weight;
             if !(w.is_finite() && w >= 0.0) {
-                return Err(error(format!("prior.hypotheses[{h}].weight"), format!("{w} is not finite and >= 0")));
+                return Err(error(
+                    format!("prior.hypotheses[{h}].weight"),
+                    format!("{} is not finite and >= 0", crate::scenario::Readable(w)),
+                ));
             }
             total += w;
             for (o, object) in hypothesis.objects.iter().enumerate() {

@@ -114,17 +114,27 @@ impl CatalogueEntry {
     /// Angles in their ranges, 0 ≤ e < 1, a positive finite mean motion.
     pub(super) fn check_ranges(&self) -> Result<(), (Field, String)> {
         let angle = |field, v: f64, max: f64| {
-            if (0.0..=max).contains(&v) { Ok(()) } else { Err((field, format!("{v} is not in [0, {max}] degrees"))) }
+            if (0.0..=max).contains(&v) {
+                Ok(())
+            } else {
+                Err((field, format!("{} is not in [0, {max}] degrees", crate::scenario::Readable(v))))
+            }
         };
         angle(Field::Inclination, self.inclination, 180.0)?;
         angle(Field::RightAscension, self.right_ascension, 360.0)?;
         angle(Field::ArgumentOfPerigee, self.argument_of_perigee, 360.0)?;
         angle(Field::MeanAnomaly, self.mean_anomaly, 360.0)?;
         if !(0.0..1.0).contains(&self.eccentricity) {
-            return Err((Field::Eccentricity, format!("{} is not in [0, 1)", self.eccentricity)));
+            return Err((
+                Field::Eccentricity,
+                format!("{} is not in [0, 1)", crate::scenario::Readable(self.eccentricity)),
+            ));
         }
         if !(self.mean_motion > 0.0 && self.mean_motion.is_finite()) {
-            return Err((Field::MeanMotion, format!("{} rev/day is not finite and > 0", self.mean_motion)));
+            return Err((
+                Field::MeanMotion,
+                format!("{} rev/day is not finite and > 0", crate::scenario::Readable(self.mean_motion)),
+            ));
         }
         Ok(())
     }
@@ -157,12 +167,9 @@ impl CatalogueEntry {
     }
 }
 
-/// A catalogue error at `line` of `file`, naming the keyword (both cut to one line).
+/// A catalogue error at `line` of `file`, naming the keyword (both cut to one line, quoted input to an
+/// excerpt).
 pub(crate) fn err(file: &str, line: usize, keyword: impl Into<String>, message: impl Into<String>) -> CatalogueError {
-    CatalogueError {
-        file: file.to_string(),
-        line,
-        keyword: crate::scenario::one_line(&keyword.into()),
-        message: crate::scenario::one_line(&message.into()),
-    }
+    let cut = |text: String| crate::scenario::one_line(&crate::scenario::cut_quotes(&text));
+    CatalogueError { file: file.to_string(), line, keyword: cut(keyword.into()), message: cut(message.into()) }
 }

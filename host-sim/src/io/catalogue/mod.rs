@@ -12,12 +12,13 @@
 //! the element set's epoch and returns SGP4's TEME position and velocity (km, km/s) unchanged.
 //!
 //! The entry and its errors are in `entry`, reading a file in `files`, the formats in `tle` and `omm`, SGP4 in
-//! `propagation`; [`sgp4_check`] runs the published verification cases. The public names are re-exported here.
+//! `propagation`, which element sets a run keeps in `screen`; [`sgp4_check`] runs the published verification cases. The public names are re-exported here.
 
 mod entry;
 mod files;
 mod omm;
 mod propagation;
+pub mod screen;
 pub mod sgp4_check;
 #[cfg(test)]
 mod tests;
@@ -27,4 +28,5 @@ pub use entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS};
 pub use files::{Format, detect, load, parse};
 pub use omm::{parse_omm_csv, parse_omm_epoch, parse_omm_json};
 pub use propagation::{ObjectReport, PropagationError, Satellite, State, report};
+pub use screen::{CatalogueDropped, DroppedElementSet, Screened, orbit_problem, screen_for_run};
 pub use tle::{parse_catalogue_number, parse_tle, tle_checksum};

@@ -97,3 +97,128 @@ fn tracker_time_is_minutes_since_the_element_epoch() {
     assert!((minutes - expected).abs() < 1e-9, "{minutes} {expected}");
     assert_eq!(sat.tracker_state(start, 600.0).unwrap(), sat.teme(minutes).unwrap());
 }
+
+/// A catalogue of `n` copies of the element set of `L1`/`L2` (catalogue numbers 1..=n) in `format`.
+fn catalogue_of(format: super::Format, n: usize) -> String {
+    use std::fmt::Write;
+    let mut text = String::new();
+    match format {
+        super::Format::OmmJson => {
+            text.push('[');
+            for id in 1..=n {
+                let comma = if id < n { "," } else { "" };
+                let _ = writeln!(
+                    text,
+                    "{{\"OBJECT_NAME\":\"X{id}\",\"EPOCH\":\"2000-06-27T18:50:19.733568\",\"MEAN_MOTION\":10.82419157,\
+                     \n\"ECCENTRICITY\":0.1859667,\"INCLINATION\":34.2682,\"RA_OF_ASC_NODE\":348.7242,\
+                     \n\"ARG_OF_PERICENTER\":331.7664,\"MEAN_ANOMALY\":19.3264,\"NORAD_CAT_ID\":{id},\"BSTAR\":2.8098e-5,\
+                     \n\"MEAN_MOTION_DOT\":2.3e-7,\"MEAN_MOTION_DDOT\":0}}{comma}"
+                );
+            }
+            text.push(']');
+        }
+        super::Format::OmmCsv => {
+            text.push_str(
+                "OBJECT_NAME,EPOCH,MEAN_MOTION,ECCENTRICITY,INCLINATION,RA_OF_ASC_NODE,ARG_OF_PERICENTER,\
+                MEAN_ANOMALY,NORAD_CAT_ID,BSTAR,MEAN_MOTION_DOT,MEAN_MOTION_DDOT\n",
+            );
+            for id in 1..=n {
+                let _ = writeln!(
+                    text,
+                    "X{id},2000-06-27T18:50:19.733568,10.82419157,.1859667,34.2682,348.7242,331.7664,19.3264,{id},\
+                     .28098E-4,.23E-6,0"
+                );
+            }
+        }
+        super::Format::Tle => {
+            for id in 1..=n {
+                let _ = writeln!(text, "X{id}\n{L1}\n{L2}");
+            }
+        }
+    }
+    text
+}
+
+/// The time (s) to read `text` of `n` records.
+fn reading_time(text: &str, n: usize) -> f64 {
+    let start = std::time::Instant::now();
+    assert_eq!(parse("t", text).unwrap().len(), n);
+    start.elapsed().as_secs_f64()
+}
+
+/// Reading 8n records takes about 8 times as long as n, not 64 (an OMM JSON of 10,000 records took 85
+/// times as long as 1,000 when each record's line was counted from the start of the file). The shortest
+/// of five alternating readings of each size, so that a busy machine slows both alike.
+#[test]
+fn reading_time_grows_linearly_with_the_records() {
+    let n = 400;
+    for format in [super::Format::OmmJson, super::Format::OmmCsv, super::Format::Tle] {
+        let (small, large) = (catalogue_of(format, n), catalogue_of(format, 8 * n));
+        assert_eq!(super::detect(&small), format);
+        let (mut t_small, mut t_large) = (f64::INFINITY, f64::INFINITY);
+        for _ in 0..5 {
+            t_small = t_small.min(reading_time(&small, n));
+            t_large = t_large.min(reading_time(&large, 8 * n));
+        }
+        let ratio = t_large / t_small;
+        assert!(ratio < 30.0, "{format:?}: 8 times the records took {ratio:.1} times as long");
+    }
+}
+
+#[test]
+fn a_tab_in_a_tle_line_is_named() {
+    // Issue 33 item 7: "name line: not followed by a line 1".
+    for (text, keyword) in [
+        (format!("NAME\n{}\n{L2}\n", L1.replacen(' ', "\t", 1)), "line 1"),
+        (format!("NAME\n{L1}\n{}\n", L2.replacen(' ', "\t", 1)), "line 2"),
+        (format!("{}\n{L2}\n", L1.replacen("  ", " \t", 1)), "line 1"),
+    ] {
+        let e = parse("t", &text).unwrap_err();
+        assert_eq!(e.keyword, keyword, "{e}");
+        assert!(e.message.contains("contains a tab"), "{e}");
+    }
+    let e = parse("t", &format!("NAME\nOTHER NAME\n{L1}\n{L2}\n")).unwrap_err();
+    assert_eq!((e.line, e.message.as_str()), (1, "not followed by a line 1: line 2 does not start with \"1 \""));
+}
+
+#[test]
+fn a_ten_megabyte_omm_value_is_quoted_as_an_excerpt() {
+    let long = "Z".repeat(10 << 20);
+    let base = catalogue_of(super::Format::OmmJson, 1);
+    for (key, from) in [("EPOCH", "2000-06-27T18:50:19.733568"), ("OBJECT_NAME", "X1")] {
+        let text = base.replacen(from, &long, 1);
+        let e = parse("t", &text).unwrap_err();
+        assert_eq!(e.keyword, key);
+        assert!(e.to_string().len() < 200, "{}", &e.to_string()[..300]);
+    }
+    let text = base.replacen("\"EPOCH\"", &format!("\"{long}\":1,\"EPOCH\""), 1);
+    assert_eq!(parse("t", &text).unwrap().len(), 1, "unknown OMM keywords are ignored");
+}
+
+/// The reading times of the note (issue 33): `cargo test --release -p host-sim --lib -- --ignored
+/// catalogue_reading_benchmark --nocapture` prints the time to parse 1k, 10k and 100k OMM JSON records, 100k
+/// OMM CSV records and a million-line TLE file (shortest of three).
+#[test]
+#[ignore = "a benchmark: run in release with --nocapture"]
+fn catalogue_reading_benchmark() {
+    let cases = [
+        (super::Format::OmmJson, 1_000),
+        (super::Format::OmmJson, 10_000),
+        (super::Format::OmmJson, 100_000),
+        (super::Format::OmmCsv, 100_000),
+        (super::Format::Tle, 333_333),
+    ];
+    for (format, n) in cases {
+        let text = catalogue_of(format, n);
+        let seconds = (0..3).map(|_| reading_time(&text, n)).fold(f64::INFINITY, f64::min);
+        println!("{format:?}: {n} records, {} lines, {} MB: {seconds:.3} s", text.lines().count(), text.len() >> 20);
+        if format == super::Format::OmmJson {
+            // Of which serde_json's own parse into a value tree.
+            let start = std::time::Instant::now();
+            let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+            let parsed = start.elapsed().as_secs_f64();
+            drop(value);
+            println!("  of which serde_json::Value: {parsed:.3} s");
+        }
+    }
+}

@@ -18,10 +18,12 @@ pub fn parse_tle(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Catalogu
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
+        tabs_refused(file, number, line)?;
         if line.starts_with("1 ") {
             let Some(next) = lines.get(i).map(|l| l.trim_end()) else {
                 return Err(err(file, number, "line 2", "missing after line 1"));
             };
+            tabs_refused(file, number + 1, next)?;
             if !next.starts_with("2 ") {
                 return Err(err(file, number + 1, "line 2", "expected \"2 \" right after line 1"));
             }
@@ -36,7 +38,8 @@ pub fn parse_tle(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Catalogu
             return Err(err(file, number, "line 2", "without a line 1 before it"));
         } else {
             if let Some((name_line, _)) = name {
-                return Err(err(file, name_line, "name line", "not followed by a line 1"));
+                let why = format!("not followed by a line 1: line {number} does not start with \"1 \"");
+                return Err(err(file, name_line, "name line", why));
             }
             let text = line.strip_prefix("0 ").unwrap_or(line).trim();
             if text.chars().count() > MAX_NAME_CHARS {
@@ -49,6 +52,17 @@ pub fn parse_tle(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Catalogu
         return Err(err(file, name_line, "name line", "not followed by a line 1"));
     }
     Ok(entries)
+}
+
+/// A line that starts as a TLE line 1 or 2 ("1" or "2" and a blank) but holds a tab is refused as such (not
+/// taken for a name line).
+fn tabs_refused(file: &str, number: usize, line: &str) -> Result<(), CatalogueError> {
+    let b = line.as_bytes();
+    if b.len() >= 2 && matches!(b[0], b'1' | b'2') && b[1].is_ascii_whitespace() && line.contains('\t') {
+        let which = format!("line {}", b[0] as char);
+        return Err(err(file, number, which, "contains a tab: the columns of a TLE line are blanks, not tabs"));
+    }
+    Ok(())
 }
 
 /// The TLE modulo-10 checksum of the first 68 columns: digits count their value, '-' counts 1.

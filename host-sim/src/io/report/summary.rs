@@ -67,6 +67,10 @@ pub struct RunSummary {
     /// Scans the core refused for their input; the run went on (issue 29).
     #[serde(default)]
     pub refused_scans: super::RefusedScans,
+    /// `run-catalogue` only: the element sets its scenario left out (inside the Earth, decaying or failing
+    /// SGP4 during the run, given twice). Absent from other runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub catalogue_dropped: Option<crate::io::catalogue::CatalogueDropped>,
 }
 
 /// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.

@@ -41,8 +41,10 @@ impl fmt::Display for TdmError {
     }
 }
 
+/// The error at `line`: the keyword and any quoted input cut to an excerpt (an unknown keyword may be 10 MB).
 fn fail<T>(line: usize, keyword: &str, message: impl fmt::Display) -> Result<T, TdmError> {
-    Err(TdmError { line, keyword: keyword.to_string(), message: message.to_string() })
+    let keyword = crate::scenario::excerpt(keyword, crate::scenario::quote::EXCERPT_CHARS);
+    Err(TdmError { line, keyword, message: crate::scenario::cut_quotes(&message.to_string()) })
 }
 
 /// The angle types supported.
@@ -690,17 +692,7 @@ fn file_stem(name: &str) -> String {
 /// Bad input: sensor names that are empty, repeated or not one line (a TDM names its sensor), a scan
 /// before the epoch; [`Error::Output`] when a file cannot be written. Nothing is written on bad input.
 pub fn export(scenario: &Scenario3d, out: &Path) -> Result<Vec<PathBuf>, Error> {
-    for (i, s) in scenario.sensors.iter().enumerate() {
-        if s.name.trim().is_empty() || s.name.trim() != s.name || s.name.chars().any(char::is_control) {
-            return Err(Error::input(format!(
-                "sensors[{i}].name: \"{}\" cannot name a TDM participant (empty, control characters or surrounding spaces)",
-                crate::scenario::one_line(&s.name)
-            )));
-        }
-        if scenario.sensors[..i].iter().any(|o| o.name == s.name) {
-            return Err(Error::input(format!("sensors[{i}].name: \"{}\" names two sensors", s.name)));
-        }
-    }
+    crate::scenario::v2::check_sensor_names(scenario.sensors.iter().map(|s| s.name.as_str()))?;
     let texts: Vec<String> = (0..scenario.sensors.len()).map(|i| write(scenario, i)).collect::<Result<_, _>>()?;
     let mut written = vec![];
     stage(out, |dir| {

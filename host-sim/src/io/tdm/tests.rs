@@ -113,3 +113,20 @@ fn incomplete_or_misordered_measurements_are_refused() {
     let e = scans_of(&parse(&cut).expect("parses"), &scenario).expect_err("refused");
     assert_eq!((e.line, e.keyword.as_str()), (at + 1, "RANGE"), "{}", e.message);
 }
+
+#[test]
+fn a_ten_megabyte_keyword_or_value_is_quoted_as_an_excerpt() {
+    // Issue 33 item 7: the keyword and value were echoed whole.
+    let text = write(&tiny(), 0).expect("write");
+    let long = "X".repeat(10 << 20);
+    let meta = text.find("META_START").expect("meta");
+    for bad in [
+        format!("{}META_START\n{long} = 1\n{}", &text[..meta], &text[meta + "META_START\n".len()..]),
+        text.replacen("TIME_SYSTEM = UTC", &format!("TIME_SYSTEM = {long}"), 1),
+    ] {
+        assert_ne!(bad, text);
+        let e = parse(&bad).unwrap_err();
+        let shown = e.to_string();
+        assert!(shown.len() < 300 && shown.contains("(10485760 bytes)"), "{}", &shown[..shown.len().min(300)]);
+    }
+}

@@ -1,7 +1,7 @@
 //! The checks of a version 2 file's sensors, fields of view, measurements and truth.
 
 use super::*;
-use crate::scenario::{ScenarioError, check_covariance, error, positive};
+use crate::scenario::{Readable, ScenarioError, check_covariance, error, positive};
 
 /// Measured values inside their ranges: range ≥ 0, azimuth and right ascension in [−360, 360], elevation and
 /// declination in [−90, 90].
@@ -20,8 +20,30 @@ pub(super) fn check_measurement(field: &str, kind: Measurement3dSpec, z: &[f64])
     };
     for ((value, name), (low, high)) in z.iter().zip(names).zip(bounds) {
         if !(*low..=*high).contains(value) {
-            return Err(error(field, format!("{name} {value} is not in [{low}, {high}]")));
+            return Err(error(field, format!("{name} {} is not in [{low}, {high}]", Readable(*value))));
         }
+    }
+    Ok(())
+}
+
+/// The one rule for sensor names, of every command that reads sensors (a version 2 scenario, a sensors
+/// file, `export-tdm`, whose TDMs name their sensor in `PARTICIPANT_1`): a name is not empty, has no
+/// control character (a line break) and no surrounding blanks, and names one sensor only. Errors name
+/// `sensors[i].name`.
+pub fn check_sensor_names<'a>(names: impl IntoIterator<Item = &'a str>) -> Result<(), ScenarioError> {
+    let mut seen: Vec<&str> = vec![];
+    for (i, name) in names.into_iter().enumerate() {
+        let field = format!("sensors[{i}].name");
+        if name.trim().is_empty() || name.trim() != name || name.chars().any(char::is_control) {
+            return Err(error(
+                field,
+                format!("\"{name}\" cannot name a sensor (empty, control characters or surrounding blanks)"),
+            ));
+        }
+        if let Some(j) = seen.iter().position(|&other| other == name) {
+            return Err(error(field, format!("\"{name}\" names two sensors (sensors[{j}] too)")));
+        }
+        seen.push(name);
     }
     Ok(())
 }
@@ -31,7 +53,7 @@ fn angle_in(field: &str, value: f64, low: f64, high: f64) -> Result<(), Scenario
     if value.is_finite() && (low..=high).contains(&value) {
         Ok(())
     } else {
-        Err(error(field, format!("{value} is not in [{low}, {high}] degrees")))
+        Err(error(field, format!("{} is not in [{low}, {high}] degrees", Readable(value))))
     }
 }
 
@@ -45,13 +67,13 @@ impl Sensor3dSpec {
         if !(h.is_finite() && h >= MIN_SITE_HEIGHT) {
             return Err(error(
                 format!("{field}.site.height_km"),
-                format!("{h} km: the observer is inside the Earth (below {MIN_SITE_HEIGHT} km)"),
+                format!("{} km: the observer is inside the Earth (below {MIN_SITE_HEIGHT} km)", Readable(h)),
             ));
         }
         if h > MAX_SITE_HEIGHT {
             return Err(error(
                 format!("{field}.site.height_km"),
-                format!("{h} km is above {MAX_SITE_HEIGHT} km: not a ground site"),
+                format!("{} km is above {MAX_SITE_HEIGHT} km: not a ground site", Readable(h)),
             ));
         }
         let wanted = NoiseSpec::fields(kind);
@@ -75,7 +97,7 @@ impl Sensor3dSpec {
         }
         let pd = self.detection_probability;
         if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
-            return Err(error(format!("{field}.detection_probability"), format!("{pd} is not in (0, 1]")));
+            return Err(error(format!("{field}.detection_probability"), format!("{} is not in (0, 1]", Readable(pd))));
         }
         positive(&format!("{field}.clutter_rate"), self.clutter_rate)?;
         self.field_of_view.validate(&format!("{field}.field_of_view"), kind)
@@ -92,7 +114,7 @@ impl FieldOfView3dSpec {
                 if !(half_angle_deg.is_finite() && half_angle_deg > 0.0 && half_angle_deg <= 180.0) {
                     return Err(error(
                         format!("{field}.shape.half_angle_deg"),
-                        format!("{half_angle_deg} is not in (0, 180]: the field of view has no volume"),
+                        format!("{} is not in (0, 180]: the field of view has no volume", Readable(half_angle_deg)),
                     ));
                 }
             }
@@ -101,7 +123,7 @@ impl FieldOfView3dSpec {
                 if !(half_width_deg.is_finite() && half_width_deg > 0.0 && half_width_deg <= 180.0) {
                     return Err(error(
                         format!("{field}.shape.half_width_deg"),
-                        format!("{half_width_deg} is not in (0, 180]: the field of view has no volume"),
+                        format!("{} is not in (0, 180]: the field of view has no volume", Readable(half_width_deg)),
                     ));
                 }
                 angle_in(&format!("{field}.shape.elevation_deg[0]"), low, -90.0, 90.0)?;

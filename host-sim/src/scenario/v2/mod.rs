@@ -17,6 +17,7 @@ use tracker_core::MotionModel;
 use tracker_core::model::AdmissibleRegion;
 
 mod checks;
+pub use checks::check_sensor_names;
 use checks::{check_measurement, covariance6};
 
 /// The format tag of a version 2 file.
@@ -524,6 +525,7 @@ impl Scenario3d {
                 format!("{} sensors exceed the tracker's capacity of {MAX_SENSORS}", self.sensors.len()),
             ));
         }
+        check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
             sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
         }
@@ -574,7 +576,7 @@ impl Scenario3d {
     fn validate_births(&self) -> Result<(), ScenarioError> {
         let alpha = self.birth.probability;
         if !(alpha.is_finite() && (0.0..=1.0).contains(&alpha)) {
-            return Err(error("birth.probability", format!("{alpha} is not in [0, 1]")));
+            return Err(error("birth.probability", format!("{} is not in [0, 1]", crate::scenario::Readable(alpha))));
         }
         if let Some(measured) = &self.birth.measured {
             measured.validate(self.birth.events)?;
@@ -585,7 +587,7 @@ impl Scenario3d {
         }
         let beta = self.death_probability;
         if !(beta.is_finite() && (0.0..=1.0).contains(&beta)) {
-            return Err(error("death_probability", format!("{beta} is not in [0, 1]")));
+            return Err(error("death_probability", format!("{} is not in [0, 1]", crate::scenario::Readable(beta))));
         }
         if let Some(gate) = self.tracker.gate {
             positive("tracker.gate", gate)?;
@@ -609,7 +611,10 @@ impl Scenario3d {
         for (h, hypothesis) in prior.hypotheses.iter().enumerate() {
             let w = hypothesis.weight;
             if !(w.is_finite() && w >= 0.0) {
-                return Err(error(format!("prior.hypotheses[{h}].weight"), format!("{w} is not finite and >= 0")));
+                return Err(error(
+                    format!("prior.hypotheses[{h}].weight"),
+                    format!("{} is not finite and >= 0", crate::scenario::Readable(w)),
+                ));
             }
             total += w;
             for (o, object) in hypothesis.objects.iter().enumerate() {
