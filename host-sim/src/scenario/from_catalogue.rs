@@ -292,20 +292,13 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
     generate3d::to_scenario_with(&simulation, Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }))
 }
 
-/// Writes `scenario` to `out` through a temporary file beside it, renamed once complete: a failed write
-/// leaves no partial file.
+/// Writes `scenario` to `out` through a temporary file beside it, renamed once complete and only onto a
+/// new path or a regular file ([`crate::io::atomic`]): a failed write leaves no partial file.
+///
+/// # Errors
+/// [`Error::Output`] naming `out`.
 pub fn save_whole(scenario: &Scenario3d, out: &Path) -> Result<(), Error> {
-    let mut partial = out.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = std::path::PathBuf::from(partial);
-    if let Err(e) = scenario.save(&partial) {
-        let _ = std::fs::remove_file(&partial);
-        return Err(e);
-    }
-    std::fs::rename(&partial, out).map_err(|e| {
-        let _ = std::fs::remove_file(&partial);
-        Error::output(out, e)
-    })
+    scenario.save(out)
 }
 
 #[cfg(test)]
