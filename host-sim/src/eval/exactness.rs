@@ -166,7 +166,8 @@ fn summarise(scans: Vec<ScanFigures>) -> CompareFigures {
 }
 
 /// Builds the core tracker (capacities H, N, Z, K, B; its children as `config.children` says) and the
-/// reference (memory budget `budget_bytes`) from `config` and `prior` at `time`, and compares them on
+/// reference (memory budget `budget.bytes`, children and work bounds `budget.children`, `budget.work`)
+/// from `config` and `prior` at `time`, and compares them on
 /// `scans` ([`compare_trackers`]).
 ///
 /// # Errors
@@ -185,7 +186,7 @@ pub fn compare_scans<
     config: &Config<f64, M, G, S, B>,
     prior: &[(f64, Vec<PriorObject<f64, S>>)],
     time: f64,
-    budget_bytes: usize,
+    budget: crate::pipeline::ReferenceBudget,
     scans: &[Scan<D>],
 ) -> Result<CompareFigures, String>
 where
@@ -198,6 +199,8 @@ where
         Tracker::<f64, M, G, S, D, H, N, Z, K, B>::new(config.clone(), &hypotheses, time)
             .map_err(|e| format!("tracker configuration: {e}"))?,
     );
-    let mut reference = ReferenceTracker::new(config, prior, time, budget_bytes)?;
+    let mut reference = ReferenceTracker::new(config, prior, time, budget.bytes)?;
+    reference.set_max_children(budget.children);
+    reference.set_max_work(budget.work);
     Ok(compare_trackers(&mut core, &mut reference, scans))
 }

@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::eval::exactness::{CompareFigures, Scan, compare_scans};
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
-use crate::pipeline::tracker::TrackerKind;
+use crate::pipeline::tracker::{ReferenceBudget, TrackerKind};
 use crate::scenario::v2::Scenario3d;
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
@@ -31,20 +31,14 @@ fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<Scan<D>> {
 fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error>
 where
     X: Placeable<f64, D>,
 {
     let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
-    compare_scans::<_, _, 6, D, H, N, Z, K, B>(
-        &config,
-        &prior,
-        scenario.prior.time,
-        budget_bytes,
-        &scans3d::<D>(scenario),
-    )
-    .map_err(Error::input)
+    compare_scans::<_, _, 6, D, H, N, Z, K, B>(&config, &prior, scenario.prior.time, budget, &scans3d::<D>(scenario))
+        .map_err(Error::input)
 }
 
 /// [`compare3d`] for the measurement model `X`.
@@ -52,13 +46,13 @@ fn compare_for<X: Placeable<f64, D>, const D: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Profile,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error> {
-    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget_bytes))
+    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget))
 }
 
 /// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
-/// reference (memory budget `budget_bytes`) on the same scans, placed per sensor by the core's
+/// reference (its budgets `budget`) on the same scans, placed per sensor by the core's
 /// `place_scan` in both ([`compare_scans`]).
 ///
 /// # Errors
@@ -67,13 +61,13 @@ pub fn compare3d(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Option<Profile>,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error> {
     if kind == TrackerKind::Reference {
         return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst"));
     }
     let profile = choose_profile(scenario, profile);
-    with_measurement!(scenario.measurement, compare_for, (scenario, kind, profile, budget_bytes))
+    with_measurement!(scenario.measurement, compare_for, (scenario, kind, profile, budget))
 }
 
 /// The figures `compare` writes for a version 2 file ([`compare3d`] with the profile it chooses).
@@ -87,7 +81,12 @@ pub fn summary(
     reference: crate::pipeline::tracker::ReferenceBudget,
 ) -> Result<crate::io::report::Compare3dSummary, Error> {
     let profile = choose_profile(scenario, profile);
-    let figures = compare3d(scenario, kind, Some(profile), reference.bytes)?;
+    let figures = compare3d(scenario, kind, Some(profile), reference)?;
+    for scan in &figures.scans {
+        if let Some(error) = &scan.reference_error {
+            eprintln!("warning: scan {} (t = {}): the reference rejected it: {error}", scan.scan, scan.time);
+        }
+    }
     Ok(crate::io::report::Compare3dSummary {
         tracker: kind.name().to_string(),
         profile: profile.name().to_string(),
