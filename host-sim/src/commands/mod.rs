@@ -56,7 +56,7 @@ pub struct Common {
     reference_max_children: u64,
     /// Association steps the reference may take per scan (every node of its enumeration and every
     /// measurement-object pair it examines); beyond it the scan is rejected, naming the scan (exit code
-    /// 3). The default, 5e10, is about a minute of one core.
+    /// 3). The default, 1e10, is about 45 s of one core.
     #[arg(long, default_value_t = crate::peers::reference::DEFAULT_MAX_WORK,
           value_parser = clap::value_parser!(u64).range(1..))]
     reference_max_work: u64,

@@ -184,8 +184,9 @@ impl std::error::Error for ReferenceError {}
 pub type LabelledState<const S: usize> = (TrackLabel, Gaussian<f64, S>);
 
 /// The association steps one scan may take unless [`ReferenceTracker::set_max_work`] says otherwise:
-/// 5·10¹⁰, about a minute of one core (docs/scenario-format.md, `compare`).
-pub const DEFAULT_MAX_WORK: u64 = 50_000_000_000;
+/// 10¹⁰, about 45 s of one core (2.2·10⁸ steps a second, measured on one scan of 10⁶ measurements;
+/// docs/robustness.md). The longest reference scans of docs/results.md take 5 s.
+pub const DEFAULT_MAX_WORK: u64 = 10_000_000_000;
 
 /// The birth cells the reference's configuration holds when none is named: as many as `run` gives it.
 pub const BIRTH_CELLS: usize = 1024;
