@@ -3,7 +3,7 @@
 
 use super::tracker::{choose_profile, config3d, measurements_in_radians};
 use crate::error::Error;
-use crate::eval::exactness::{CompareFigures, Scan, compare_scans};
+use crate::eval::exactness::{CompareFigures, Scan, compare_scans_with_budget};
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::{ReferenceBudget, TrackerKind};
@@ -37,8 +37,14 @@ where
     X: Placeable<f64, D>,
 {
     let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
-    compare_scans::<_, _, 6, D, H, N, Z, K, B>(&config, &prior, scenario.prior.time, budget, &scans3d::<D>(scenario))
-        .map_err(Error::input)
+    compare_scans_with_budget::<_, _, 6, D, H, N, Z, K, B>(
+        &config,
+        &prior,
+        scenario.prior.time,
+        budget,
+        &scans3d::<D>(scenario),
+    )
+    .map_err(Error::input)
 }
 
 /// [`compare3d`] for the measurement model `X`.
@@ -52,12 +58,26 @@ fn compare_for<X: Placeable<f64, D>, const D: usize>(
 }
 
 /// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
-/// reference (its budgets `budget`) on the same scans, placed per sensor by the core's
-/// `place_scan` in both ([`compare_scans`]).
+/// reference (memory budget `budget_bytes`, no children bound, the default work bound) on the same scans,
+/// placed per sensor by the core's `place_scan` in both ([`crate::eval::exactness::compare_scans`]).
 ///
 /// # Errors
 /// Bad input: the configuration, or the reference tracker as bounded tracker.
 pub fn compare3d(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    budget_bytes: usize,
+) -> Result<CompareFigures, Error> {
+    let budget = ReferenceBudget { bytes: budget_bytes, children: u64::MAX, ..ReferenceBudget::default() };
+    compare3d_with_budget(scenario, kind, profile, budget)
+}
+
+/// [`compare3d`] with every budget of the reference given (`compare`'s options).
+///
+/// # Errors
+/// As [`compare3d`].
+pub fn compare3d_with_budget(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Option<Profile>,
@@ -81,7 +101,7 @@ pub fn summary(
     reference: crate::pipeline::tracker::ReferenceBudget,
 ) -> Result<crate::io::report::Compare3dSummary, Error> {
     let profile = choose_profile(scenario, profile);
-    let figures = compare3d(scenario, kind, Some(profile), reference)?;
+    let figures = compare3d_with_budget(scenario, kind, Some(profile), reference)?;
     for scan in &figures.scans {
         if let Some(error) = &scan.reference_error {
             eprintln!("warning: scan {} (t = {}): the reference rejected it: {error}", scan.scan, scan.time);
