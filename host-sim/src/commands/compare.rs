@@ -23,14 +23,24 @@ pub struct Args {
 /// Runs `compare`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let scenario = crate::scenario::load_any(&args.file)?;
-    let options = args.common.run_options(args.tracker);
-    match crate::pipeline::compare(&scenario, &options, &args.out)? {
+    let options = args.common.run_options(args.tracker)?;
+    let reference_rejected = match crate::pipeline::compare(&scenario, &options, &args.out)? {
         Compared::Planar(report) => {
+            for scan in &report.per_scan {
+                if let Some(error) = &scan.reference_error {
+                    eprintln!("warning: scan {} (t = {}): the reference rejected it: {error}", scan.scan, scan.time);
+                }
+            }
             terminal::print(json, &report.summary, || terminal::compare(&report, &args.out));
+            report.per_scan.iter().filter(|s| s.reference_error.is_some()).count()
         }
         Compared::Orbital(summary) => {
             terminal::print(json, &summary, || terminal::compare3d(&summary, &args.out));
+            summary.reference_rejected_scans
         }
+    };
+    if reference_rejected > 0 {
+        return Err(CliError::ReferenceRejected(reference_rejected));
     }
     Ok(())
 }

@@ -18,7 +18,7 @@ pub struct Args {
     /// Seed of every random choice.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Output scenario file (JSON).
+    /// Output scenario file (JSON): a new path or a regular file, replaced only once complete.
     #[arg(long)]
     out: PathBuf,
     #[command(flatten)]
@@ -43,7 +43,9 @@ pub struct CatalogueArgs {
     /// generate catalogue: the start, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]` (the scenario's epoch).
     #[arg(long)]
     start: Option<String>,
-    /// generate catalogue: the duration in hours.
+    /// generate catalogue: the duration in hours, at most 744, and at most what makes a scenario `run`
+    /// reads (256 MiB: about 130 bytes per object and scan, roughly 2e6 objects x scans); refused up front
+    /// with the estimated size (exit code 2).
     #[arg(long)]
     duration_hours: Option<f64>,
 }

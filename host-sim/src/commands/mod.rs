@@ -46,13 +46,20 @@ pub struct Common {
     profile: Option<Profile>,
     /// Memory budget of the unbounded reference tracker, in MiB (everything that grows with its
     /// hypotheses, children and measurements); beyond it the reference keeps its best children and
-    /// reports the scan in reference_budget_reached_scans (docs/scenario-format.md).
-    #[arg(long, default_value_t = 4096)]
-    reference_budget_mib: usize,
+    /// reports the scan in reference_budget_reached_scans (docs/scenario-format.md). From 1 MiB to
+    /// 1 TiB (1048576); above the default, at most this machine's memory (MemTotal of /proc/meminfo).
+    #[arg(long, default_value_t = DEFAULT_REFERENCE_BUDGET_MIB, value_parser = clap::value_parser!(u64).range(1..=MAX_REFERENCE_BUDGET_MIB))]
+    reference_budget_mib: u64,
     /// Children the reference may enumerate per scan; beyond it the scan is rejected (the reference
     /// "breaks", as exhaustive enumeration does in paper 003 §V-B).
     #[arg(long, default_value_t = 1_000_000_000)]
     reference_max_children: u64,
+    /// Association steps the reference may take per scan (every node of its enumeration and every
+    /// measurement-object pair it examines); beyond it the scan is rejected, naming the scan (exit code
+    /// 3). The default, 1e10, is about 45 s of one core.
+    #[arg(long, default_value_t = crate::peers::reference::DEFAULT_MAX_WORK,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    reference_max_work: u64,
     /// Hypotheses written per scan to scans.jsonl.
     #[arg(long, default_value_t = 100)]
     max_hypotheses_out: usize,
@@ -61,19 +68,42 @@ pub struct Common {
     quiet: bool,
 }
 
+/// The default `--reference-budget-mib`: 4 GiB.
+pub const DEFAULT_REFERENCE_BUDGET_MIB: u64 = 4096;
+
+/// The largest `--reference-budget-mib`: 1 TiB.
+pub const MAX_REFERENCE_BUDGET_MIB: u64 = 1 << 20;
+
+/// MemTotal of /proc/meminfo in MiB, where there is one.
+fn machine_memory_mib() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    line.split_whitespace().nth(1)?.parse::<u64>().ok().map(|kib| kib / 1024)
+}
+
 impl Common {
     /// The pipeline's options for the tracker `tracker`.
-    fn run_options(self, tracker: TrackerKind) -> RunOptions {
-        RunOptions {
+    ///
+    /// # Errors
+    /// Bad input: a reference budget above the default and this machine's memory (clap has checked 1 MiB
+    /// to 1 TiB).
+    fn run_options(self, tracker: TrackerKind) -> Result<RunOptions, Error> {
+        let mib = self.reference_budget_mib;
+        let above = |memory: u64| mib > memory.max(DEFAULT_REFERENCE_BUDGET_MIB);
+        if let Some(memory) = machine_memory_mib().filter(|&memory| above(memory)) {
+            return Err(Error::input(format!(
+                "--reference-budget-mib {mib}: more than this machine's memory ({memory} MiB, MemTotal of /proc/meminfo)"
+            )));
+        }
+        let bytes = usize::try_from(mib.saturating_mul(1 << 20))
+            .map_err(|_| Error::input(format!("--reference-budget-mib {mib}: more than this machine can address")))?;
+        Ok(RunOptions {
             tracker,
             profile: self.profile,
-            reference: ReferenceBudget {
-                bytes: self.reference_budget_mib.saturating_mul(1 << 20),
-                children: self.reference_max_children,
-            },
+            reference: ReferenceBudget { bytes, children: self.reference_max_children, work: self.reference_max_work },
             max_hypotheses_out: self.max_hypotheses_out,
             quiet: self.quiet,
-        }
+        })
     }
 }
 
@@ -121,6 +151,9 @@ pub enum CliError {
     Failed(Error),
     /// The run finished but the tracker rejected some scans (exit code 3).
     Rejected,
+    /// `compare` finished but the reference rejected some scans, for example past its work bound (exit
+    /// code 3; the message says how many).
+    ReferenceRejected(usize),
 }
 
 impl From<Error> for CliError {
@@ -140,7 +173,7 @@ impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Failed(e) => e.exit_code(),
-            CliError::Rejected => 3,
+            CliError::Rejected | CliError::ReferenceRejected(_) => 3,
         }
     }
 }
@@ -150,6 +183,11 @@ impl std::fmt::Display for CliError {
         match self {
             CliError::Failed(e) => write!(f, "{e}"),
             CliError::Rejected => f.write_str("the tracker rejected some scans (see rejected_scans in summary.json)"),
+            CliError::ReferenceRejected(scans) => write!(
+                f,
+                "the reference rejected {scans} scan(s) (see reference_error in compare.json); its figures there \
+                 are of the scans it kept"
+            ),
         }
     }
 }

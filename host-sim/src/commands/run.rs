@@ -22,7 +22,7 @@ pub struct Args {
 /// Runs `run`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let scenario = crate::scenario::load_any(&args.file)?;
-    let options = args.common.run_options(args.tracker);
+    let options = args.common.run_options(args.tracker)?;
     let (summary, clean) = crate::pipeline::run(&scenario, &options, &args.out)?;
     finish(&summary, clean, &args.out, json)
 }

@@ -26,8 +26,8 @@ pub struct Args {
 
 /// Runs `run-catalogue`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
+    let options = args.common.run_options(args.tracker)?;
     let (scenario, _, dropped) = args.catalogue.generate("run-catalogue", args.seed)?;
-    let options = args.common.run_options(args.tracker);
     let scenario = AnyScenario::V2(Box::new(scenario));
     let (mut summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
     // The run's summary.json with the element sets the scenario left out.

@@ -31,7 +31,7 @@ pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
         return Err(Error::input(format!("{}: --config needs a version 2 scenario", args.config.display())).into());
     };
     let scenario = AnyScenario::V2(Box::new(crate::io::tdm::scenario_from_tdms(&args.tdm, &config)?));
-    let options = args.common.run_options(args.tracker);
+    let options = args.common.run_options(args.tracker)?;
     let (summary, clean) = crate::pipeline::run(&scenario, &options, &args.out)?;
     super::run::finish(&summary, clean, &args.out, json)
 }

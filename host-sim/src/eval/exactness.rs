@@ -166,8 +166,8 @@ fn summarise(scans: Vec<ScanFigures>) -> CompareFigures {
 }
 
 /// Builds the core tracker (capacities H, N, Z, K, B; its children as `config.children` says) and the
-/// reference (memory budget `budget_bytes`) from `config` and `prior` at `time`, and compares them on
-/// `scans` ([`compare_trackers`]).
+/// reference (memory budget `budget_bytes`, no children bound, the default work bound) from `config` and
+/// `prior` at `time`, and compares them on `scans` ([`compare_trackers`]).
 ///
 /// # Errors
 /// A message when either tracker rejects the configuration or the prior.
@@ -192,12 +192,44 @@ where
     M: MotionModel<f64, S> + Clone,
     G: MeasurementModel<f64, S, D> + Clone,
 {
+    let budget = crate::pipeline::ReferenceBudget { bytes: budget_bytes, children: u64::MAX, ..Default::default() };
+    compare_scans_with_budget::<M, G, S, D, H, N, Z, K, B>(config, prior, time, budget, scans)
+}
+
+/// [`compare_scans`] with every budget of the reference given: memory `budget.bytes`, children and work
+/// per scan `budget.children`, `budget.work`.
+///
+/// # Errors
+/// A message when either tracker rejects the configuration or the prior.
+pub fn compare_scans_with_budget<
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    config: &Config<f64, M, G, S, B>,
+    prior: &[(f64, Vec<PriorObject<f64, S>>)],
+    time: f64,
+    budget: crate::pipeline::ReferenceBudget,
+    scans: &[Scan<D>],
+) -> Result<CompareFigures, String>
+where
+    M: MotionModel<f64, S> + Clone,
+    G: MeasurementModel<f64, S, D> + Clone,
+{
     let hypotheses: Vec<PriorHypothesis<'_, f64, S>> =
         prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     let mut core = Box::new(
         Tracker::<f64, M, G, S, D, H, N, Z, K, B>::new(config.clone(), &hypotheses, time)
             .map_err(|e| format!("tracker configuration: {e}"))?,
     );
-    let mut reference = ReferenceTracker::new(config, prior, time, budget_bytes)?;
+    let mut reference = ReferenceTracker::new(config, prior, time, budget.bytes)?;
+    reference.set_max_children(budget.children);
+    reference.set_max_work(budget.work);
     Ok(compare_trackers(&mut core, &mut reference, scans))
 }

@@ -621,7 +621,7 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
     let catalogue = build_catalogue(settings)?;
     let missing = missing(&catalogue, seed, settings.missing_fraction)?;
     let catalogue_file = dir.join("catalogue.omm.json");
-    std::fs::write(&catalogue_file, omm_json(&catalogue.entries)).map_err(|e| Error::output(&catalogue_file, e))?;
+    crate::io::atomic::write(&catalogue_file, omm_json(&catalogue.entries))?;
     if !quiet {
         eprintln!(
             "catalogue: {} objects ({} missing from the prior), {} h from {}",

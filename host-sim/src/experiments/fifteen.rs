@@ -48,8 +48,13 @@ pub(crate) fn fifteen(dir: &Path, seed: u64, quiet: bool) -> Result<FifteenFigur
     // The reference runs while a scan needs at most 2·10⁷ children and its hypotheses fit 1 GiB.
     let mut reference = ReferenceRun {
         runner: Some(
-            build(TrackerKind::Reference, profile, &scenario, ReferenceBudget { bytes: 1 << 30, children: 20_000_000 })
-                .map_err(err)?,
+            build(
+                TrackerKind::Reference,
+                profile,
+                &scenario,
+                ReferenceBudget { bytes: 1 << 30, children: 20_000_000, ..ReferenceBudget::default() },
+            )
+            .map_err(err)?,
         ),
         scans: 0,
         budget_reached: false,

@@ -224,7 +224,7 @@ fn write_csv(dir: &Path, rows: &[Row]) -> Result<(), Error> {
             "{children},{objects},{measurements},{exhaustive},{rfisst},{found},{paper},{paper_found},{pure}\n"
         ));
     }
-    std::fs::write(dir.join("scaling.csv"), csv).map_err(|e| Error::output(&dir.join("scaling.csv"), e))?;
+    crate::io::atomic::write(&dir.join("scaling.csv"), csv)?;
     Ok(())
 }
 

@@ -119,6 +119,6 @@ impl OemTracks {
     /// # Errors
     /// [`Error::Output`] when it cannot be written.
     pub fn write(&self, path: &Path) -> Result<(), Error> {
-        std::fs::write(path, self.text()).map_err(|e| Error::output(path, e))
+        crate::io::atomic::write(path, self.text())
     }
 }

@@ -24,13 +24,13 @@ pub fn progress(scans: usize, quiet: bool, message: &'static str) -> ProgressBar
     bar
 }
 
-/// Writes `value` as pretty JSON and a line break to `path`.
+/// Writes `value` as pretty JSON and a line break to `path` ([`crate::io::atomic`]: never onto anything
+/// but a regular file, never half-written).
 ///
 /// # Errors
 /// [`Error::Output`] when the file cannot be written.
 pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Error> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| Error::output(path, e))?;
-    std::fs::write(path, text + "\n").map_err(|e| Error::output(path, e))
+    crate::io::atomic::write_json(path, value, true)
 }
 
 /// VmHWM of /proc/self/status in KiB, where there is one.

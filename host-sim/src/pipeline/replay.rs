@@ -143,7 +143,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let prior = world.posterior();
     let csv_path = out.join("estimates.csv");
     let csv_error = |e: std::io::Error| Error::output(&csv_path, e);
-    let mut csv = std::io::BufWriter::new(std::fs::File::create(&csv_path).map_err(csv_error)?);
+    let mut csv = crate::io::atomic::AtomicFile::create(&csv_path)?;
     writeln!(csv, "{}", world.csv_header()).map_err(csv_error)?;
     let mut tally = Tally {
         births: BirthTally::new(
@@ -223,7 +223,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     for line in notices.finish() {
         eprintln!("{line}");
     }
-    csv.flush().map_err(csv_error)?;
+    csv.commit()?;
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
     summary.numerical_drops = numerical_drops(&records);

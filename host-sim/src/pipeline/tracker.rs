@@ -62,18 +62,21 @@ impl std::fmt::Display for StepRejected {
     }
 }
 
-/// The unbounded reference's budgets: memory (beyond it the lowest-weight children are dropped) and
-/// children enumerated per scan (beyond it the scan fails: the reference is broken there).
+/// The unbounded reference's budgets: memory (beyond it the lowest-weight children are dropped), children
+/// enumerated per scan and association steps per scan (beyond either the scan fails: the reference is
+/// broken there).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ReferenceBudget {
     /// Bytes of everything that grows with the hypotheses, children and measurements.
     pub bytes: usize,
     /// Children enumerated per scan.
     pub children: u64,
+    /// Association steps per scan ([`crate::peers::reference::ReferenceTracker::set_max_work`]).
+    pub work: u64,
 }
 
 impl Default for ReferenceBudget {
     fn default() -> Self {
-        Self { bytes: 4 << 30, children: 1_000_000_000 }
+        Self { bytes: 4 << 30, children: 1_000_000_000, work: crate::peers::reference::DEFAULT_MAX_WORK }
     }
 }

@@ -21,6 +21,12 @@ impl std::fmt::Display for PlotError {
 
 impl std::error::Error for PlotError {}
 
+impl From<crate::Error> for PlotError {
+    fn from(e: crate::Error) -> Self {
+        PlotError(e.to_string())
+    }
+}
+
 /// Axis scale.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Scale {
@@ -111,12 +117,16 @@ pub(crate) fn write_png_and_svg(stem: &Path, figure: &impl Figure) -> Result<(),
             .map_err(|e| PlotError(format!("plots: cannot create directory {}: {e}", parent.display())))?;
     }
 
+    // Both through crate::io::atomic: rendered beside the target, renamed only onto a regular file.
     let png_path = path_with_extension(stem, "png");
-    render(BitMapBackend::new(&png_path, size).into_drawing_area(), figure)
-        .map_err(|e| PlotError(format!("plots: writing {} failed: {e}", png_path.display())))?;
+    let failed = |path: &Path, e: PlotError| PlotError(format!("plots: writing {} failed: {e}", path.display()));
+    crate::io::atomic::write_via_path(&png_path, |temp| {
+        render(BitMapBackend::new(temp, size).into_drawing_area(), figure).map_err(|e| failed(&png_path, e))
+    })?;
     let svg_path = path_with_extension(stem, "svg");
-    render(SVGBackend::new(&svg_path, size).into_drawing_area(), figure)
-        .map_err(|e| PlotError(format!("plots: writing {} failed: {e}", svg_path.display())))
+    let mut svg = String::new();
+    render(SVGBackend::with_string(&mut svg, size).into_drawing_area(), figure).map_err(|e| failed(&svg_path, e))?;
+    Ok(crate::io::atomic::write(&svg_path, svg)?)
 }
 
 fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, figure: &impl Figure) -> Result<(), PlotError> {

@@ -13,7 +13,7 @@ use crate::Error;
 use crate::io::catalogue::{self, Satellite};
 use crate::scenario::from_simulation::{self as generate3d, Generated, KnownTruth};
 use crate::scenario::v2::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
-use crate::scenario::{ScenarioError, error, read_limited};
+use crate::scenario::{MAX_FILE_BYTES, ScenarioError, error, read_limited};
 use crate::sim::error::SsaError;
 use crate::sim::field_of_view::FieldOfView;
 use crate::sim::field_of_view::LookShape;
@@ -32,6 +32,70 @@ pub const MAX_DURATION_HOURS: f64 = 744.0;
 
 /// The most SGP4 evaluations (objects × scans) one generation may make.
 pub const MAX_PROPAGATIONS: u64 = 20_000_000;
+
+/// Bytes of the written scenario (compact JSON), measured on `generate catalogue` outputs (24 LEO objects,
+/// two radars, 4 h: 131.6 B per truth state on average, 123 at least): per object and scan (a truth
+/// state), per scan (its record and its truth record), per measurement, per object (its prior).
+pub const BYTES_PER_TRUTH_STATE: u64 = 130;
+/// See [`BYTES_PER_TRUTH_STATE`]: a scan's record (44 B) and its truth record (31 B).
+pub const BYTES_PER_SCAN: u64 = 75;
+/// See [`BYTES_PER_TRUTH_STATE`]: one measurement (57 B on average).
+pub const BYTES_PER_MEASUREMENT: u64 = 57;
+/// See [`BYTES_PER_TRUTH_STATE`]: one object's prior (362 B on average).
+pub const BYTES_PER_PRIOR_OBJECT: u64 = 362;
+
+/// The scenario a request would write, in bytes (about: [`BYTES_PER_TRUTH_STATE`]), from its objects,
+/// scans and the clutter measurements expected per scan (detections not counted).
+pub fn estimated_bytes(objects: u64, scans: u64, clutter_per_scan: f64) -> u64 {
+    let measurements = (scans as f64 * clutter_per_scan.max(0.0)).min(u64::MAX as f64) as u64;
+    let per_scan = BYTES_PER_SCAN.saturating_add(objects.saturating_mul(BYTES_PER_TRUTH_STATE));
+    scans
+        .saturating_mul(per_scan)
+        .saturating_add(measurements.saturating_mul(BYTES_PER_MEASUREMENT))
+        .saturating_add(objects.saturating_mul(BYTES_PER_PRIOR_OBJECT))
+}
+
+/// Refuses a request whose scenario would be larger than `run` reads ([`MAX_FILE_BYTES`]), before
+/// anything grows with it: generation holds the scenario in memory (about three times its file size).
+fn check_size(objects: u64, scans: u64, clutter_per_scan: f64) -> Result<(), Error> {
+    let bytes = estimated_bytes(objects, scans, clutter_per_scan);
+    if bytes <= MAX_FILE_BYTES {
+        return Ok(());
+    }
+    Err(Error::input(format!(
+        "{objects} objects x {scans} scans would make a scenario of about {} MiB ({BYTES_PER_TRUTH_STATE} B per \
+         object and scan), more than the {} MiB `run` reads: a shorter run, a longer scan_interval_s or fewer \
+         objects",
+        bytes >> 20,
+        MAX_FILE_BYTES >> 20
+    )))
+}
+
+/// Refuses a generated scenario whose file would be larger than `run` reads (the estimate of
+/// [`check_size`] is close, not exact): its exact size, counted without writing it.
+fn check_written_size(scenario: &Scenario3d) -> Result<(), Error> {
+    struct Count(u64);
+    impl std::io::Write for Count {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0 += bytes.len() as u64;
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut count = Count(1); // the final line break
+    serde_json::to_writer(&mut count, scenario).map_err(|e| Error::internal(format!("scenario size: {e}")))?;
+    if count.0 > MAX_FILE_BYTES {
+        return Err(Error::input(format!(
+            "the generated scenario would be {} MiB, more than the {} MiB `run` reads: a shorter run, a longer \
+             scan_interval_s or fewer objects",
+            count.0 >> 20,
+            MAX_FILE_BYTES >> 20
+        )));
+    }
+    Ok(())
+}
 
 /// One astronomical unit (km).
 pub const ASTRONOMICAL_UNIT_KM: f64 = 149_597_870.7;
@@ -246,17 +310,19 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
         )));
     }
     let dark = sensors_file.max_sun_elevation_deg.to_radians();
-    let mut schedule = vec![];
-    for j in 0..slots {
-        let t = j as f64 * slot;
-        let s = (j % sensors.len() as u64) as usize;
-        let optical = kind == Measurement3dSpec::Optical;
-        let sun = sun_position(epoch_jd + t / 86_400.0);
-        if optical && sun_elevation(&sensors[s].site, time::earth_rotation_angle(epoch_jd, t), sun) >= dark {
-            continue;
-        }
-        schedule.push((t, s));
-    }
+    let (sites, count): (&[SensorSpec], u64) = (&sensors, sensors.len() as u64);
+    let scheduled = || {
+        (0..slots).map(move |j| (j as f64 * slot, (j % count) as usize)).filter(move |&(t, s)| {
+            kind != Measurement3dSpec::Optical || {
+                let sun = sun_position(epoch_jd + t / 86_400.0);
+                sun_elevation(&sites[s].site, time::earth_rotation_angle(epoch_jd, t), sun) < dark
+            }
+        })
+    };
+    // The scenario's size is known from the request: refuse before anything grows with it.
+    let clutter = sensors.iter().map(|s| s.clutter_rate).sum::<f64>() / sensors.len() as f64;
+    check_size(entries.len() as u64, scheduled().count() as u64, clutter)?;
+    let schedule: Vec<(f64, usize)> = scheduled().collect();
     if schedule.is_empty() {
         return Err(Error::input(format!(
             "{}: no scan: the telescopes' sites are never dark (Sun below {}°) during the run",
@@ -310,23 +376,17 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
         &simulation,
         Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }),
     )?;
+    check_written_size(&scenario)?;
     Ok((scenario, figures, screened.dropped))
 }
 
-/// Writes `scenario` to `out` through a temporary file beside it, renamed once complete: a failed write
-/// leaves no partial file.
+/// Writes `scenario` to `out` through a temporary file beside it, renamed once complete and only onto a
+/// new path or a regular file ([`crate::io::atomic`]): a failed write leaves no partial file.
+///
+/// # Errors
+/// [`Error::Output`] naming `out`.
 pub fn save_whole(scenario: &Scenario3d, out: &Path) -> Result<(), Error> {
-    let mut partial = out.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = std::path::PathBuf::from(partial);
-    if let Err(e) = scenario.save(&partial) {
-        let _ = std::fs::remove_file(&partial);
-        return Err(e);
-    }
-    std::fs::rename(&partial, out).map_err(|e| {
-        let _ = std::fs::remove_file(&partial);
-        Error::output(out, e)
-    })
+    scenario.save(out)
 }
 
 #[cfg(test)]

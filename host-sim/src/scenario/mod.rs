@@ -545,8 +545,7 @@ impl Scenario {
     /// # Errors
     /// [`crate::Error::Output`] when the file cannot be written.
     pub fn save(&self, path: &Path) -> Result<(), crate::Error> {
-        let text = serde_json::to_string_pretty(self).map_err(|e| crate::Error::output(path, e))?;
-        std::fs::write(path, text).map_err(|e| crate::Error::output(path, e))
+        crate::io::atomic::write_with(path, |w| serde_json::to_writer_pretty(w, self).map_err(std::io::Error::other))
     }
 
     /// Checks everything the trackers rely on that the JSON types cannot express.

@@ -698,7 +698,7 @@ pub fn export(scenario: &Scenario3d, out: &Path) -> Result<Vec<PathBuf>, Error> 
     stage(out, |dir| {
         for (i, text) in texts.iter().enumerate() {
             let path = dir.join(format!("{i}-{}.tdm", file_stem(&scenario.sensors[i].name)));
-            std::fs::write(&path, text).map_err(|e| Error::output(&path, e))?;
+            crate::io::atomic::write(&path, text)?;
             written.push(out.join(path.file_name().unwrap_or_default()));
         }
         Ok(())
@@ -729,6 +729,8 @@ pub fn stage<T>(out: &Path, work: impl FnOnce(&Path) -> Result<T, Error>) -> Res
             let target = out.join(entry.file_name());
             if target.is_dir() {
                 let _ = std::fs::remove_dir_all(&target);
+            } else if entry.file_type().is_ok_and(|t| t.is_file()) {
+                crate::io::atomic::check_target(&target)?;
             }
             std::fs::rename(entry.path(), &target).map_err(|e| Error::output(&target, e))?;
         }

@@ -35,11 +35,14 @@ pub(super) struct ChildBuffer {
     pub(super) pruned: bool,
     pub(super) count: u64,
     limit: u64,
+    /// Association steps taken this scan ([`ChildBuffer::step`]) and their bound.
+    pub(super) work: u64,
+    max_work: u64,
     pub(super) total: LogSumExp<f64>,
 }
 
 impl ChildBuffer {
-    pub(super) fn new(capacity: usize, widest: usize, limit: u64) -> Self {
+    pub(super) fn new(capacity: usize, widest: usize, limit: u64, max_work: u64) -> Self {
         Self {
             heads: vec![],
             rows: vec![],
@@ -49,6 +52,8 @@ impl ChildBuffer {
             pruned: false,
             count: 0,
             limit,
+            work: 0,
+            max_work,
             total: LogSumExp::new(),
         }
     }
@@ -62,6 +67,17 @@ impl ChildBuffer {
     /// summed in another order than the child's weight.
     fn cannot_beat(&self, bound: f64, tolerance: f64) -> bool {
         self.pruned && bound + tolerance <= self.threshold
+    }
+
+    /// Counts `steps` association steps; `false` when the work bound is passed.
+    fn step(&mut self, steps: u64) -> bool {
+        self.work = self.work.saturating_add(steps);
+        self.work <= self.max_work
+    }
+
+    /// Whether the search stopped for the work bound (not the children limit).
+    pub(super) fn work_exceeded(&self) -> bool {
+        self.work > self.max_work
     }
 
     /// Counts and keeps a child; `false` when the children limit is reached.
@@ -146,8 +162,12 @@ pub(super) struct Search<'a, 'b> {
 impl Search<'_, '_> {
     /// Offers the node's child and every child below it, skipping children that leave a required column
     /// unassigned and, once the buffer was pruned, branches that cannot beat it. `false` as soon as the
-    /// children limit is reached.
+    /// children limit or the work bound is reached: the node and each (row, column) pair it examines is
+    /// one association step.
     pub(super) fn visit(&mut self, row: usize, value: f64, depth: usize) -> bool {
+        if !self.children.step(1) {
+            return false;
+        }
         if self.children.pruned && self.cannot_beat(row, value, None) {
             return true;
         }
@@ -158,6 +178,9 @@ impl Search<'_, '_> {
         for r in (row..self.rows).rev() {
             if self.children.pruned {
                 return self.visit_candidates(row, r + 1, value, depth);
+            }
+            if !self.children.step(self.columns.len() as u64) {
+                return false;
             }
             for column in 0..self.columns.len() {
                 if self.row_of[column] == CLUTTER
@@ -207,6 +230,10 @@ impl Search<'_, '_> {
             }
             let c = &self.columns[column];
             for &r in c.order {
+                if !self.children.step(1) {
+                    self.candidates[depth] = list;
+                    return false;
+                }
                 let entry = c.entries[r as usize];
                 if !(entry > f64::NEG_INFINITY) || self.cannot_beat(row, value + entry, Some(column)) {
                     break;

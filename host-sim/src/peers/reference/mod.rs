@@ -147,6 +147,12 @@ pub enum ReferenceError {
         /// Objects of the parent in view.
         in_view: usize,
     },
+    /// The scan's enumeration took more association steps than its bound
+    /// ([`ReferenceTracker::set_max_work`]).
+    WorkBudgetExceeded {
+        /// The bound.
+        budget: u64,
+    },
 }
 
 impl From<StepError> for ReferenceError {
@@ -163,6 +169,11 @@ impl core::fmt::Display for ReferenceError {
                 f,
                 "M_b alpha + M_d beta must be < 1 for every parent (M_d = {in_view} objects in view of a parent)"
             ),
+            Self::WorkBudgetExceeded { budget } => write!(
+                f,
+                "the reference's enumeration passed its work bound of {budget} association steps in one scan \
+                 (--reference-max-work)"
+            ),
         }
     }
 }
@@ -171,6 +182,11 @@ impl std::error::Error for ReferenceError {}
 
 /// A track of [`ReferenceTracker::posterior`]: its label and Gaussian.
 pub type LabelledState<const S: usize> = (TrackLabel, Gaussian<f64, S>);
+
+/// The association steps one scan may take unless [`ReferenceTracker::set_max_work`] says otherwise:
+/// 10¹⁰, about 45 s of one core (2.2·10⁸ steps a second, measured on one scan of 10⁶ measurements;
+/// docs/robustness.md). The longest reference scans of docs/results.md take 5 s.
+pub const DEFAULT_MAX_WORK: u64 = 10_000_000_000;
 
 /// The birth cells the reference's configuration holds when none is named: as many as `run` gives it.
 pub const BIRTH_CELLS: usize = 1024;
@@ -194,6 +210,7 @@ pub struct ReferenceTracker<
     next_label: u32,
     shares: Shares,
     max_children: u64,
+    max_work: u64,
     budget_scans: Vec<usize>,
     scans: usize,
     /// Birth cells made from measurements, as the core's (docs/maths.md §5.8).
@@ -300,6 +317,7 @@ where
             next_label,
             shares: Shares::of(budget_bytes),
             max_children: u64::MAX,
+            max_work: DEFAULT_MAX_WORK,
             budget_scans: vec![],
             scans: 0,
             pool: BirthPool::new(),
@@ -311,6 +329,14 @@ where
     /// as exhaustive enumeration is in paper 003 §V-B).
     pub fn set_max_children(&mut self, max_children: u64) {
         self.max_children = max_children;
+    }
+
+    /// Bounds the association steps per scan (default [`DEFAULT_MAX_WORK`]): every node of the
+    /// enumeration and every (row, column) pair it examines is a step. Beyond it the scan fails with
+    /// [`ReferenceError::WorkBudgetExceeded`] and the tracker is unchanged: a scan whose enumeration would
+    /// not finish in a sensible time (one scan of 10⁶ measurements) stops instead.
+    pub fn set_max_work(&mut self, max_work: u64) {
+        self.max_work = max_work;
     }
 
     /// Scans (1-based) at which the memory budget forced dropping parents or children.
@@ -364,8 +390,12 @@ where
         // The pruned search's candidate lists: at most every (row, column) pair at each depth.
         let candidates = size_of::<(u32, u32)>().saturating_mul(tables.rows * tables.widest * (tables.widest + 1));
         let children_bytes = self.shares.working.saturating_sub(tables.bytes).saturating_sub(candidates);
-        let mut children =
-            ChildBuffer::new(children_bytes / (CHILD_BYTES + 4 * tables.widest), tables.widest, self.max_children);
+        let mut children = ChildBuffer::new(
+            children_bytes / (CHILD_BYTES + 4 * tables.widest),
+            tables.widest,
+            self.max_children,
+            self.max_work,
+        );
         for &parent in &tables.parents {
             self.enumerate_parent(&tables, parent, &mut children)?;
         }

@@ -208,6 +208,9 @@ where
                 candidates: vec![],
             };
             if !search.visit(0, baseline, 0) {
+                if children.work_exceeded() {
+                    return Err(ReferenceError::WorkBudgetExceeded { budget: self.max_work });
+                }
                 return Err(StepError::ChildBudgetExceeded { budget: self.max_children }.into());
             }
         }

@@ -3,10 +3,10 @@
 
 use super::tracker::{choose_profile, config3d, measurements_in_radians};
 use crate::error::Error;
-use crate::eval::exactness::{CompareFigures, Scan, compare_scans};
+use crate::eval::exactness::{CompareFigures, Scan, compare_scans_with_budget};
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
-use crate::pipeline::tracker::TrackerKind;
+use crate::pipeline::tracker::{ReferenceBudget, TrackerKind};
 use crate::scenario::v2::Scenario3d;
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
@@ -31,17 +31,17 @@ fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<Scan<D>> {
 fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error>
 where
     X: Placeable<f64, D>,
 {
     let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
-    compare_scans::<_, _, 6, D, H, N, Z, K, B>(
+    compare_scans_with_budget::<_, _, 6, D, H, N, Z, K, B>(
         &config,
         &prior,
         scenario.prior.time,
-        budget_bytes,
+        budget,
         &scans3d::<D>(scenario),
     )
     .map_err(Error::input)
@@ -52,14 +52,14 @@ fn compare_for<X: Placeable<f64, D>, const D: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Profile,
-    budget_bytes: usize,
+    budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error> {
-    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget_bytes))
+    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget))
 }
 
 /// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded
-/// reference (memory budget `budget_bytes`) on the same scans, placed per sensor by the core's
-/// `place_scan` in both ([`compare_scans`]).
+/// reference (memory budget `budget_bytes`, no children bound, the default work bound) on the same scans,
+/// placed per sensor by the core's `place_scan` in both ([`crate::eval::exactness::compare_scans`]).
 ///
 /// # Errors
 /// Bad input: the configuration, or the reference tracker as bounded tracker.
@@ -69,11 +69,25 @@ pub fn compare3d(
     profile: Option<Profile>,
     budget_bytes: usize,
 ) -> Result<CompareFigures, Error> {
+    let budget = ReferenceBudget { bytes: budget_bytes, children: u64::MAX, ..ReferenceBudget::default() };
+    compare3d_with_budget(scenario, kind, profile, budget)
+}
+
+/// [`compare3d`] with every budget of the reference given (`compare`'s options).
+///
+/// # Errors
+/// As [`compare3d`].
+pub fn compare3d_with_budget(
+    scenario: &Scenario3d,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    budget: ReferenceBudget,
+) -> Result<CompareFigures, Error> {
     if kind == TrackerKind::Reference {
         return Err(Error::input("--tracker: the bounded tracker must be homht or rfisst"));
     }
     let profile = choose_profile(scenario, profile);
-    with_measurement!(scenario.measurement, compare_for, (scenario, kind, profile, budget_bytes))
+    with_measurement!(scenario.measurement, compare_for, (scenario, kind, profile, budget))
 }
 
 /// The figures `compare` writes for a version 2 file ([`compare3d`] with the profile it chooses).
@@ -87,7 +101,12 @@ pub fn summary(
     reference: crate::pipeline::tracker::ReferenceBudget,
 ) -> Result<crate::io::report::Compare3dSummary, Error> {
     let profile = choose_profile(scenario, profile);
-    let figures = compare3d(scenario, kind, Some(profile), reference.bytes)?;
+    let figures = compare3d_with_budget(scenario, kind, Some(profile), reference)?;
+    for scan in &figures.scans {
+        if let Some(error) = &scan.reference_error {
+            eprintln!("warning: scan {} (t = {}): the reference rejected it: {error}", scan.scan, scan.time);
+        }
+    }
     Ok(crate::io::report::Compare3dSummary {
         tracker: kind.name().to_string(),
         profile: profile.name().to_string(),

@@ -59,7 +59,8 @@ pub struct PlanarWorld<'a> {
     /// The posterior after the last step, whole (for scans.jsonl).
     snapshot: Snapshot,
     scans_path: PathBuf,
-    scans_file: std::io::BufWriter<std::fs::File>,
+    /// scans.jsonl, renamed into place when the run finishes ([`crate::io::atomic`]).
+    scans_file: Option<crate::io::atomic::AtomicFile>,
     /// Scans whose posterior is plotted, and (scan, MAP tracks and weights, within the bound) there.
     snapshot_scans: Vec<usize>,
     snapshots: Vec<(usize, Snapshot, Vec<bool>)>,
@@ -76,7 +77,7 @@ impl<'a> PlanarWorld<'a> {
     pub fn new(scenario: &'a Scenario, kind: TrackerKind, options: &Options, out: &Path) -> Result<Self, Error> {
         let runner = build(kind, options.profile, scenario, options.reference)?;
         let scans_path = out.join("scans.jsonl");
-        let file = std::fs::File::create(&scans_path).map_err(|e| Error::output(&scans_path, e))?;
+        let file = crate::io::atomic::AtomicFile::create(&scans_path)?;
         let n = scenario.scans.len();
         Ok(Self {
             scenario,
@@ -86,7 +87,7 @@ impl<'a> PlanarWorld<'a> {
             fov: setup::region(&scenario.sensor.field_of_view),
             snapshot: Snapshot::default(),
             scans_path,
-            scans_file: std::io::BufWriter::new(file),
+            scans_file: Some(file),
             snapshot_scans: plots::SNAPSHOT_FRACTIONS.iter().map(|&f| plots::scan_at(f, n)).collect(),
             snapshots: vec![],
             numerical_drops: 0,
@@ -185,8 +186,9 @@ impl World<2> for PlanarWorld<'_> {
         let mut line = scan_line(k, self.scenario.scans[k].time, &self.snapshot, self.options.max_hypotheses_out);
         line.numerical_drops = self.numerical_drops;
         let path = &self.scans_path;
-        serde_json::to_writer(&mut self.scans_file, &line).map_err(|e| Error::output(path, e))?;
-        writeln!(self.scans_file).map_err(|e| Error::output(path, e))?;
+        let file = self.scans_file.as_mut().ok_or_else(|| Error::internal("scans.jsonl already written"))?;
+        serde_json::to_writer(&mut *file, &line).map_err(|e| Error::output(path, e))?;
+        writeln!(file).map_err(|e| Error::output(path, e))?;
         if self.snapshot_scans.contains(&k) {
             // Without truth, no estimate is marked (an empty list).
             let within: Vec<bool> = within.iter().copied().collect::<Option<_>>().unwrap_or_default();
@@ -198,7 +200,8 @@ impl World<2> for PlanarWorld<'_> {
     }
 
     fn finish(&mut self, records: &[ScanRecord]) -> Result<(), Error> {
-        self.scans_file.flush().map_err(|e| Error::output(&self.scans_path, e))?;
+        let file = self.scans_file.take().ok_or_else(|| Error::internal("scans.jsonl already written"))?;
+        file.commit()?;
         plots::write_run_plots(self.scenario, records, &self.snapshots, &self.out)?;
         self.snapshots.clear();
         Ok(())

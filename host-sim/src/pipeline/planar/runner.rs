@@ -107,6 +107,7 @@ where
     let mut tracker = ReferenceTracker::new(&config, &setup::prior(scenario), scenario.prior.time, budget.bytes)
         .map_err(ScenarioError)?;
     tracker.set_max_children(budget.children);
+    tracker.set_max_work(budget.work);
     Ok(Box::new(ReferenceRunner { tracker }))
 }
 

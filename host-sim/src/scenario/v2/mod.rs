@@ -463,8 +463,7 @@ impl Scenario3d {
     /// # Errors
     /// [`crate::Error::Output`] when the file cannot be written.
     pub fn save(&self, path: &Path) -> Result<(), crate::Error> {
-        let text = serde_json::to_string(self).map_err(|e| crate::Error::output(path, e))?;
-        std::fs::write(path, text + "\n").map_err(|e| crate::Error::output(path, e))
+        crate::io::atomic::write_json(path, self, false)
     }
 
     /// The epoch as a Julian date (UTC = UT1).
