@@ -86,8 +86,9 @@ pub fn prior_from_oem(oem: &Oem, epoch: &Instant, capacity: usize, profile: &str
             );
         };
         let matrix = nalgebra::SMatrix::<f64, 6, 6>::from_fn(|i, j| covariance.matrix[i][j]);
-        if let Err(e) = crate::scenario::check_covariance("covariance", matrix) {
-            return fail(covariance.line, "COVARIANCE", e.0);
+        if let Err(e) = crate::scenario::check_covariance("", matrix) {
+            let reason = e.0.trim_start_matches(": ");
+            return fail(covariance.line, "COVARIANCE", format!("the covariance at {}: {reason}", last.epoch));
         }
         objects.push(PriorObject3dSpec { label, mean: last.state, covariance: covariance.matrix });
     }
