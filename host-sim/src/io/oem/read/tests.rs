@@ -166,3 +166,19 @@ fn priors_the_tracker_cannot_take_are_refused() {
     };
     assert_refused(negative, Some(&last_epoch_line), "COVARIANCE", "is not positive definite");
 }
+
+#[test]
+fn another_tools_form_is_read_and_labelled_in_file_order() {
+    let text = include_str!("../../../../../fuzz/seeds/oem/external-9-values.oem");
+    let oem = parse(text).expect("parses");
+    assert_eq!(oem.segments.len(), 1);
+    let segment = &oem.segments[0];
+    assert_eq!((segment.object_name.as_str(), segment.object_id.0.as_str()), ("ISS (ZARYA)", "1998-067A"));
+    assert_eq!(segment.last.epoch.to_string(), "2026-03-20T00:02:00.25");
+    assert_eq!(segment.last.state, [-4570.1, -1025.5, 5330.2, 4.35, -5.56, 2.60], "accelerations dropped");
+    let covariance = segment.covariance.as_ref().expect("covariance");
+    assert_eq!((covariance.matrix[1][0], covariance.matrix[0][1], covariance.matrix[5][5]), (0.1, 0.1, 1e-6));
+    let prior = prior_from_oem(&oem, &Instant::epoch_of(&tiny()), 64, "embedded").expect("prior");
+    assert_eq!(prior.prior.time, 120.25);
+    assert_eq!((prior.prior.hypotheses[0].objects[0].label, prior.renumbered), (1, true));
+}
