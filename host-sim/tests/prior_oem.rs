@@ -195,7 +195,7 @@ fn bad_oems_are_one_line_naming_the_file_line_and_keyword_exit_2() {
         let row = at + good[at..].find("COV_REF_FRAME = TEME\n").expect("frame") + "COV_REF_FRAME = TEME\n".len();
         good[row..row + good[row..].find('\n').expect("row end")].to_string()
     };
-    let first_last = first_segment(&good).lines().filter(|l| l.starts_with("2026-")).last().expect("state").to_string();
+    let first_last = first_segment(&good).lines().rfind(|l| l.starts_with("2026-")).expect("state").to_string();
     let last_epoch_line = good[..good.rfind(&last_cov_row).expect("row")]
         .lines()
         .collect::<Vec<_>>()
