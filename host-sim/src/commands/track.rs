@@ -1,10 +1,15 @@
-//! `host-sim track`: CCSDS TDMs tracked with a version 2 scenario's settings.
+//! `host-sim track`: CCSDS TDMs tracked with a version 2 scenario's settings, optionally continuing an
+//! earlier run from its OEM (`--prior-oem`, [`crate::pipeline::orbital::prior_oem`]).
 
 use super::{CliError, Common};
 use crate::error::Error;
+use crate::io::ccsds::Instant;
 use crate::pipeline::TrackerKind;
+use crate::pipeline::orbital::prior_oem;
+use crate::pipeline::profile::ORBITAL;
+use crate::scenario::v2::Scenario3d;
 use crate::scenario::{AnyScenario, load_any};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The arguments of `track`.
 #[derive(clap::Args)]
@@ -15,6 +20,10 @@ pub struct Args {
     /// Scenario file (version 2) giving everything but the scans.
     #[arg(long)]
     config: PathBuf,
+    /// An earlier run's OEM (`tracks.oem`): its segments' last states and covariances are the prior (instead
+    /// of the configuration's), at its last epoch; scans at or before that epoch are skipped.
+    #[arg(long)]
+    prior_oem: Option<PathBuf>,
     /// Tracker to run.
     #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
     tracker: TrackerKind,
@@ -30,8 +39,34 @@ pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let AnyScenario::V2(config) = load_any(&args.config)? else {
         return Err(Error::input(format!("{}: --config needs a version 2 scenario", args.config.display())).into());
     };
-    let scenario = AnyScenario::V2(Box::new(crate::io::tdm::scenario_from_tdms(&args.tdm, &config)?));
+    let scenario = match &args.prior_oem {
+        None => crate::io::tdm::scenario_from_tdms(&args.tdm, &config)?,
+        Some(file) => continued(&args, *config, file)?,
+    };
     let options = args.common.run_options(args.tracker)?;
-    let (summary, clean) = crate::pipeline::run(&scenario, &options, &args.out)?;
+    let (summary, clean) = crate::pipeline::run(&AnyScenario::V2(Box::new(scenario)), &options, &args.out)?;
     super::run::finish(&summary, clean, &args.out, json)
+}
+
+/// The scenario of a run continued from the OEM `file`: its prior, and the TDMs' scans after its epoch. The
+/// scans skipped are counted on stderr.
+fn continued(args: &Args, mut config: Scenario3d, file: &Path) -> Result<Scenario3d, Error> {
+    let oem = crate::io::oem::read::read(file)?;
+    // N of the profile asked for; without one, of the largest profile (`choose_profile` takes it when the
+    // prior does not fit the embedded one).
+    let profile = args.common.profile.unwrap_or(crate::pipeline::Profile::Host);
+    let capacity = ORBITAL.of(profile).objects;
+    let prior = prior_oem::prior_from_oem(&oem, &Instant::epoch_of(&config), capacity, profile.name())
+        .map_err(|e| e.in_file(file))?;
+    config.prior = prior.prior;
+    let (scenario, skipped) = crate::io::tdm::scenario_after_prior(&args.tdm, &config, true)?;
+    eprintln!(
+        "note: --prior-oem {}: {} objects at {}{}; {skipped} scans at or before it skipped, {} tracked",
+        file.display(),
+        scenario.max_prior_objects(),
+        prior.epoch,
+        if prior.renumbered { " (labelled 1, 2, ... in file order)" } else { "" },
+        scenario.scans.len(),
+    );
+    Ok(scenario)
 }

@@ -1,12 +1,16 @@
 //! Exact UTC times for the CCSDS files (TDM, OEM): an [`Instant`] is whole seconds since 1970-01-01 and a
 //! decimal fraction kept as digits, so that a scan time (f64 seconds since the scenario epoch) written as
-//! `YYYY-MM-DDThh:mm:ss.fff…` and read back is the same f64, bit for bit.
+//! `YYYY-MM-DDThh:mm:ss.fff…` and read back is the same f64, bit for bit, and a time read from a file is
+//! written back with the digits it was read with.
 //!
-//! How: the writer splits t ≥ 0 into s = ⌊t⌋ and f = t − s (both exact in f64), writes f's shortest
-//! round-trip decimal digits and adds them to the epoch's decimal digits exactly; the reader subtracts the
-//! epoch's digits exactly, parses the fraction (the same shortest digits, so the same f) and adds s: the
-//! real sum s + f is t itself, which is representable, so the rounded sum is t. UTC is taken as uniform
-//! (no leap seconds: a second of 60 is refused); dates from year 1000 to 9999.
+//! How: the writer ([`Instant::after`]) adds the shortest round-trip decimal form of t (Rust's `{}` of an
+//! f64: `2169.6898`, never an exponent) to the epoch's digits, exactly, in decimal; the reader
+//! ([`Instant::since`]) subtracts the epoch's digits exactly and parses the difference once (correctly
+//! rounded). So `since(after(t)) = t` for every t, and `after(since(x)) = x` for every instant x whose offset
+//! from the epoch is the shortest form of its f64, which holds whenever the offset has at most 15
+//! significant digits (1 ns resolution within 10⁶ s ≈ 11.5 days of the epoch, 1 µs within 10⁹ s ≈ 31
+//! years): no `12:36:09.6897999999…` for a scan read as `12:36:09.6898`. UTC is taken as uniform (no leap
+//! seconds: a second of 60 is refused); dates from year 1000 to 9999.
 
 use crate::scenario::v2::Scenario3d;
 use crate::sim::time::CalendarTime;
@@ -123,7 +127,7 @@ impl Instant {
             .unwrap_or_else(|| Instant::from_julian_date(scenario.epoch_jd()))
     }
 
-    /// `self + t` for t in [0, 1e11] s, exact.
+    /// `self + t` for t in [0, 1e11] s: the epoch plus the shortest decimal form of t, exactly.
     ///
     /// # Errors
     /// t negative, not finite or too large.
@@ -134,9 +138,10 @@ impl Instant {
                 crate::scenario::Readable(t)
             ));
         }
-        let whole = t.floor();
-        let text = format!("{}", t - whole);
-        let digits = text.split_once('.').map_or("", |(_, d)| d);
+        // `+ 0.0` turns −0 into 0; Display of an f64 is its shortest round-trip decimal, without exponent.
+        let text = format!("{}", t + 0.0);
+        let (whole, digits) = text.split_once('.').unwrap_or((&text, ""));
+        let whole: i64 = whole.parse().map_err(|_| format!("time {t} s has no whole seconds"))?;
         let (a, b) = (self.fraction.as_bytes(), digits.as_bytes());
         let n = a.len().max(b.len());
         let mut sum = vec![0u8; n];
@@ -147,11 +152,11 @@ impl Instant {
             carry = d / 10;
         }
         let fraction = trimmed(String::from_utf8(sum).unwrap_or_default());
-        Ok(Instant { seconds: self.seconds + whole as i64 + i64::from(carry), fraction })
+        Ok(Instant { seconds: self.seconds + whole + i64::from(carry), fraction })
     }
 
-    /// Seconds from `epoch` to `self` (the inverse of [`Instant::after`]), or `None` when `self` is before
-    /// the epoch.
+    /// Seconds from `epoch` to `self` (the inverse of [`Instant::after`]): the exact decimal difference,
+    /// rounded once to the nearest f64; `None` when `self` is before the epoch.
     pub fn since(&self, epoch: &Instant) -> Option<f64> {
         let (a, b) = (self.fraction.as_bytes(), epoch.fraction.as_bytes());
         let n = a.len().max(b.len());
@@ -168,8 +173,7 @@ impl Instant {
             return None;
         }
         let digits = String::from_utf8(difference).unwrap_or_default();
-        let fraction: f64 = format!("0.{digits}0").parse().unwrap_or(f64::NAN);
-        Some(whole as f64 + fraction)
+        format!("{whole}.{digits}0").parse().ok()
     }
 }
 
@@ -239,5 +243,48 @@ mod tests {
         }
         assert_eq!(Instant::parse("1999-12-31T23:59:59").unwrap().since(&epochs[0]), None);
         assert!(epochs[0].after(-1.0).is_err());
+    }
+
+    /// Issue 29 item 6: a time read from a file (a TDM line, a scenario's seconds) is written back with the
+    /// digits it was read with, not `12:36:09.6897999999…` (the epoch plus ⌊t⌋ plus the f64 t − ⌊t⌋).
+    #[test]
+    fn times_read_are_written_back_with_their_digits() {
+        let epochs =
+            [Instant::parse("2024-03-01T12:00:00").unwrap(), Instant::parse("2010-06-30T23:59:59.25").unwrap()];
+        for epoch in &epochs {
+            // Offsets of up to 15 significant digits: ms over 30 years, µs over 3 years, ns over 11 days.
+            for offset in ["2169.6898", "0.001", "86399.999999", "999999.123456789", "946080000.123", "94608000.123456"]
+            {
+                let t: f64 = offset.parse().unwrap();
+                let written = epoch.after(t).unwrap();
+                assert_eq!(written.since(epoch).map(f64::to_bits), Some(t.to_bits()), "{offset}");
+                let text = written.to_string();
+                assert!(!text.contains("99999999") && !text.contains("00000000"), "{epoch} + {offset} = {text}");
+                if epoch.fraction.is_empty() {
+                    assert_eq!(text.split_once('.').map(|(_, f)| f), offset.split_once('.').map(|(_, f)| f));
+                }
+            }
+        }
+        // Instants as a TDM gives them: read (seconds since the epoch), then written, are the same text
+        // (offsets of at most 15 significant digits).
+        let cases = [
+            (
+                "2024-03-01T12:00:00",
+                ["2024-03-01T12:36:09.6898", "2024-03-12T09:46:39.123456789", "2027-01-01T00:00:00.5"],
+            ),
+            (
+                "2010-06-30T23:59:59.25",
+                ["2010-07-01T00:36:09.6898", "2010-07-05T00:00:00.000001", "2024-03-13T13:46:39.125"],
+            ),
+        ];
+        for (epoch, texts) in cases {
+            let epoch = Instant::parse(epoch).unwrap();
+            for text in texts {
+                let t = Instant::parse(text).unwrap().since(&epoch).unwrap();
+                assert_eq!(epoch.after(t).unwrap().to_string(), text, "{epoch}");
+            }
+        }
+        let noon = &epochs[0];
+        assert_eq!(noon.after(2169.6898).unwrap().to_string(), "2024-03-01T12:36:09.6898");
     }
 }

@@ -8,7 +8,10 @@
 //! a gap): the first such scan, then the first one at least [`OEM_STEP_S`] after the last line, and always
 //! the last one (a 24-hour catalogue run at every scan wrote 560 MB), each with its covariance (lower
 //! triangle, km², km²/s, km²/s²). Values are written in their shortest round-trip decimal form, the same
-//! f64 as `estimates.csv`; times as in [`crate::io::ccsds`].
+//! f64 as `estimates.csv`; times as in [`crate::io::ccsds`]: a scan time is written with the digits it was
+//! read with (a TDM's, a scenario's). [`read`] reads an OEM back, for `host-sim track --prior-oem`.
+
+pub mod read;
 
 use crate::error::Error;
 use crate::io::ccsds::{self, Instant};

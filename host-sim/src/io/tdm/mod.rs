@@ -581,6 +581,15 @@ fn with_file(file: &Path, e: TdmError) -> Error {
 /// Bad input (exit code 2) naming the file, line and keyword: a TDM problem ([`parse`], [`scans_of`]), two
 /// scans at the same time, a scan not after the prior, or a scan the scenario checks refuse.
 pub fn scenario_from_tdms(files: &[PathBuf], config: &Scenario3d) -> Result<Scenario3d, Error> {
+    scenario_after_prior(files, config, false).map(|(scenario, _)| scenario)
+}
+
+/// [`scenario_from_tdms`], with the scans at or before the prior's time left out when `skip` (a run
+/// continued from an earlier run's OEM, `track --prior-oem`); returns the scenario and how many were left out.
+///
+/// # Errors
+/// As [`scenario_from_tdms`].
+pub fn scenario_after_prior(files: &[PathBuf], config: &Scenario3d, skip: bool) -> Result<(Scenario3d, usize), Error> {
     let mut all: Vec<SourcedScan> = vec![];
     for file in files {
         let text = crate::scenario::read_limited(file)?;
@@ -589,6 +598,8 @@ pub fn scenario_from_tdms(files: &[PathBuf], config: &Scenario3d) -> Result<Scen
         all.extend(scans.into_iter().map(|(scan, line)| SourcedScan { scan, file: file.clone(), line }));
     }
     all.sort_by(|a, b| a.scan.time.total_cmp(&b.scan.time));
+    let skipped = if skip { all.partition_point(|s| s.scan.time <= config.prior.time) } else { 0 };
+    all.drain(..skipped);
     let at = |s: &SourcedScan| format!("{}:{}", s.file.display(), s.line);
     for pair in all.windows(2) {
         if pair[0].scan.time == pair[1].scan.time {
@@ -613,7 +624,7 @@ pub fn scenario_from_tdms(files: &[PathBuf], config: &Scenario3d) -> Result<Scen
         });
         return Err(Error::input(located.unwrap_or(text)));
     }
-    Ok(scenario)
+    Ok((scenario, skipped))
 }
 
 /// The TDM of one sensor of `scenario`.

@@ -14,6 +14,7 @@
 pub mod compare;
 pub mod geometry;
 pub mod plots;
+pub mod prior_oem;
 pub mod tracker;
 
 pub use compare::compare3d;
