@@ -433,7 +433,7 @@ fn tdm_with_a_time_before_the_epoch_is_refused() {
 #[test]
 fn tdm_with_an_unsupported_time_system_is_refused() {
     let line = line_of("TIME_SYSTEM")(&sample_tdm());
-    assert_bad_tdm(|t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = TAI"), line, "TIME_SYSTEM");
+    assert_bad_tdm(|t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = UT1"), line, "TIME_SYSTEM");
 }
 
 #[test]
@@ -448,4 +448,200 @@ fn tdm_with_an_unsupported_angle_type_is_refused() {
 fn tdm_naming_an_unknown_sensor_is_refused() {
     let line = line_of("PARTICIPANT_1")(&sample_tdm());
     assert_bad_tdm(|t| t.replace("PARTICIPANT_1 = radar-north", "PARTICIPANT_1 = radar-west"), line, "PARTICIPANT_1");
+}
+
+/// Every exported TDM under `from` copied to `to` with each line rewritten by `edit` (`None` keeps it).
+fn edited_copies(from: &Path, to: &Path, mut edit: impl FnMut(&str) -> Option<String>) -> Vec<PathBuf> {
+    std::fs::create_dir_all(to).expect("copy dir");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(from).expect("tdm dir").map(|e| e.expect("entry").path()).collect();
+    files.sort();
+    files
+        .iter()
+        .map(|file| {
+            let text: Vec<String> =
+                read(file).lines().map(|line| edit(line).unwrap_or_else(|| line.to_string())).collect();
+            let copy = to.join(file.file_name().expect("file name"));
+            std::fs::write(&copy, text.join("\n") + "\n").expect("write TDM copy");
+            copy
+        })
+        .collect()
+}
+
+/// `(keyword, time, value)` of a data line, `("COMMENT EMPTY_SCAN", time, "")` of an empty scan's line.
+fn data_of(line: &str) -> Option<(&str, &str, &str)> {
+    if let Some(time) = line.strip_prefix("COMMENT EMPTY_SCAN ") {
+        return Some(("COMMENT EMPTY_SCAN", time, ""));
+    }
+    let (key, rest) = line.split_once(" = ")?;
+    if !["RANGE", "ANGLE_1", "ANGLE_2", "DOPPLER_INSTANTANEOUS"].contains(&key) {
+        return None;
+    }
+    let (time, value) = rest.split_once(' ')?;
+    Some((key, time, value))
+}
+
+/// Every number of two `estimates.csv` texts within `tolerance` of each other, every other field equal.
+fn assert_estimates_close(got: &str, want: &str, tolerance: f64) -> f64 {
+    assert_eq!(got.lines().count(), want.lines().count(), "rows");
+    let mut worst = 0.0_f64;
+    for (a, b) in got.lines().zip(want.lines()) {
+        for (x, y) in a.split(',').zip(b.split(',')) {
+            match (x.parse::<f64>(), y.parse::<f64>()) {
+                (Ok(x), Ok(y)) => worst = worst.max((x - y).abs()),
+                _ => assert_eq!(x, y, "{a} / {b}"),
+            }
+        }
+    }
+    assert!(worst <= tolerance, "largest difference {worst} > {tolerance}");
+    worst
+}
+
+fn exported(dir: &TempDir, scenario: &Value) -> (PathBuf, PathBuf) {
+    let config = dir.join("scenario.json");
+    save(scenario, &config);
+    let tdm = dir.join("tdm");
+    ok(host_sim(&["export-tdm", p(&config), "--out", p(&tdm)]));
+    (config, tdm)
+}
+
+fn tdm_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).expect("tdm dir").map(|e| e.expect("entry").path()).collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn tdm_in_tai_or_gps_and_with_corrections_to_apply_track_back_to_the_plain_estimates() {
+    use host_sim::sim::fk5::tai_minus_utc;
+    let dir = TempDir::new("reduction");
+    let (config, tdm) = exported(&dir, &generate(&dir, "tiny-3d"));
+    let plain_out = dir.join("plain-out");
+    ok(track(&tdm_files(&tdm), &config, "homht", &plain_out));
+    let expected = read(&plain_out.join("estimates.csv"));
+    // TAI and GPS: every time moved by the offset of its date, exactly; bit-identical estimates.
+    for (system, gps) in [("TAI", false), ("GPS", true)] {
+        let copies = edited_copies(&tdm, &dir.join(system), |line| {
+            if line == "TIME_SYSTEM = UTC" {
+                return Some(format!("TIME_SYSTEM = {system}"));
+            }
+            let (key, time, value) = data_of(line)?;
+            let utc = Instant::parse(time).expect("time");
+            let offset = tai_minus_utc(utc.julian_date()).expect("leap seconds") - if gps { 19.0 } else { 0.0 };
+            let moved = utc.shifted_millis((offset * 1000.0) as i64);
+            Some(if value.is_empty() { format!("{key} {moved}") } else { format!("{key} = {moved} {value}") })
+        });
+        let out = dir.join(&format!("{system}-out"));
+        ok(track(&copies, &config, "homht", &out));
+        assert_eq!(read(&out.join("estimates.csv")), expected, "{system}");
+    }
+    // A 19 km range correction still to be added (CORRECTIONS_APPLIED = NO): the values written 19 km short.
+    let corrected = edited_copies(&tdm, &dir.join("corrected"), |line| {
+        if line == "TIME_SYSTEM = UTC" {
+            return Some("TIME_SYSTEM = UTC\nCORRECTION_RANGE = 19\nCORRECTIONS_APPLIED = NO".into());
+        }
+        match data_of(line)? {
+            ("RANGE", time, value) => Some(format!("RANGE = {time} {}", value.parse::<f64>().expect("range") - 19.0)),
+            _ => None,
+        }
+    });
+    let out = dir.join("corrected-out");
+    ok(track(&corrected, &config, "homht", &out));
+    let worst = assert_estimates_close(&read(&out.join("estimates.csv")), &expected, 1e-6);
+    eprintln!("CORRECTION_RANGE 19 km, CORRECTIONS_APPLIED = NO: largest estimate difference {worst:e}");
+    // Already applied: the values are read as they are.
+    let applied = edited_copies(&tdm, &dir.join("applied"), |line| {
+        (line == "TIME_SYSTEM = UTC")
+            .then(|| "TIME_SYSTEM = UTC\nCORRECTION_RANGE = 19\nCORRECTIONS_APPLIED = YES".into())
+    });
+    let out = dir.join("applied-out");
+    ok(track(&applied, &config, "homht", &out));
+    assert_eq!(read(&out.join("estimates.csv")), expected);
+}
+
+#[test]
+fn right_ascensions_in_eme2000_track_back_to_the_teme_estimates() {
+    use host_sim::sim::fk5::{Reduction, apply, tt_of_utc};
+    let dir = TempDir::new("eme2000");
+    let mut s = generate(&dir, "optical-geo");
+    // Four scans of three measurements each keep the debug-build run short.
+    let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
+        .iter()
+        .map(|scan| {
+            let mut scan = scan.clone();
+            scan["measurements"] = Value::Array(scan["measurements"].as_array().expect("measurements")[..3].to_vec());
+            scan
+        })
+        .collect();
+    s["scans"] = Value::Array(scans);
+    s.as_object_mut().expect("object").remove("truth");
+    let (config, tdm) = exported(&dir, &s);
+    let plain_out = dir.join("plain-out");
+    ok(track(&tdm_files(&tdm), &config, "rfisst", &plain_out));
+    let mut right_ascension: Option<f64> = None;
+    let mut largest_turn = 0.0_f64;
+    let copies = edited_copies(&tdm, &dir.join("eme2000"), |line| {
+        if line == "REFERENCE_FRAME = TEME" {
+            return Some("REFERENCE_FRAME = EME2000".into());
+        }
+        match data_of(line)? {
+            ("ANGLE_1", _, value) => {
+                right_ascension = Some(value.parse().expect("angle"));
+                Some(String::new())
+            }
+            ("ANGLE_2", time, value) => {
+                let (alpha, delta) = (
+                    right_ascension.take().expect("ANGLE_1 first").to_radians(),
+                    value.parse::<f64>().expect("angle").to_radians(),
+                );
+                let jd = Instant::parse(time).expect("time").julian_date();
+                let m = Reduction::at(tt_of_utc(jd).expect("leap seconds")).teme_to_j2000();
+                let u = apply(&m, [delta.cos() * alpha.cos(), delta.cos() * alpha.sin(), delta.sin()]);
+                let (a, d) = (u[1].atan2(u[0]), u[2].atan2(u[0].hypot(u[1])));
+                largest_turn = largest_turn.max((a - alpha).abs());
+                Some(format!("ANGLE_1 = {time} {}\nANGLE_2 = {time} {}", a.to_degrees(), d.to_degrees()))
+            }
+            _ => None,
+        }
+    });
+    // The empty lines left where ANGLE_1 was are blank lines, which a TDM may hold.
+    assert!(largest_turn.to_degrees() > 0.1, "precession since 2000: {} deg", largest_turn.to_degrees());
+    let out = dir.join("eme2000-out");
+    ok(track(&copies, &config, "rfisst", &out));
+    let worst =
+        assert_estimates_close(&read(&out.join("estimates.csv")), &read(&plain_out.join("estimates.csv")), 1e-6);
+    eprintln!(
+        "EME2000 right ascensions turned {:.3} deg: largest estimate difference {worst:e}",
+        largest_turn.to_degrees()
+    );
+}
+
+#[test]
+fn tdm_frames_time_systems_and_corrections_that_cannot_be_read_are_refused() {
+    let text = sample_tdm();
+    let line = line_of("TIME_SYSTEM")(&text);
+    assert_bad_tdm(
+        |t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = UTC\nREFERENCE_FRAME = MOD"),
+        line + 1,
+        "REFERENCE_FRAME",
+    );
+    assert_bad_tdm(
+        |t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = UTC\nCORRECTION_RANGE = 0.5"),
+        line + 1,
+        "CORRECTION_RANGE",
+    );
+    assert_bad_tdm(
+        |t| t.replace("TIME_SYSTEM = UTC", "TIME_SYSTEM = UTC\nCORRECTIONS_APPLIED = MAYBE"),
+        line + 1,
+        "CORRECTIONS_APPLIED",
+    );
+    assert_bad_tdm(
+        |t| {
+            t.replace(
+                "TIME_SYSTEM = UTC",
+                "TIME_SYSTEM = UTC\nCORRECTION_ABERRATION_YEARLY = 0.001\nCORRECTIONS_APPLIED = NO",
+            )
+        },
+        line + 1,
+        "CORRECTION_ABERRATION",
+    );
 }

@@ -155,6 +155,24 @@ impl Instant {
         Ok(Instant { seconds: self.seconds + whole + i64::from(carry), fraction })
     }
 
+    /// The Julian date (UTC) of the instant (to about 20 µs: for leap-second and frame lookups).
+    pub fn julian_date(&self) -> f64 {
+        let fraction: f64 = format!("0.{}0", self.fraction).parse().unwrap_or(0.0);
+        2_440_587.5 + (self.seconds as f64 + fraction) / 86_400.0
+    }
+
+    /// `self` moved by `millis` milliseconds, exactly (a time system's offset from UTC).
+    pub fn shifted_millis(&self, millis: i64) -> Instant {
+        let mut digits = self.fraction.clone();
+        while digits.len() < 3 {
+            digits.push('0');
+        }
+        let (head, rest) = digits.split_at(3);
+        let total = self.seconds * 1000 + head.parse::<i64>().unwrap_or(0) + millis;
+        let fraction = trimmed(format!("{:03}{rest}", total.rem_euclid(1000)));
+        Instant { seconds: total.div_euclid(1000), fraction }
+    }
+
     /// Seconds from `epoch` to `self` (the inverse of [`Instant::after`]): the exact decimal difference,
     /// rounded once to the nearest f64; `None` when `self` is before the epoch.
     pub fn since(&self, epoch: &Instant) -> Option<f64> {

@@ -15,6 +15,10 @@
 //!
 //! Bad input is a [`TdmError`]: the line, the keyword and what is wrong.
 
+mod reduction;
+
+pub use reduction::Reduction;
+
 use crate::error::Error;
 use crate::io::ccsds::{self, Instant};
 use crate::scenario::v2::{Measurement3dSpec, Scan3dSpec, Scenario3d};
@@ -114,7 +118,9 @@ pub struct Segment {
     pub participant: (String, usize),
     /// `ANGLE_TYPE` and its line.
     pub angle_type: Option<(AngleType, usize)>,
-    /// The data lines and empty scans, in file order.
+    /// Time system, reference frame and corrections ([`Reduction`]).
+    pub reduction: Reduction,
+    /// The data lines and empty scans, in file order (times in UTC, corrections applied).
     pub records: Vec<Record>,
 }
 
@@ -160,17 +166,10 @@ const META_IGNORED: &[&str] = &[
     "DOPPLER_COUNT_SCALE",
     "DOPPLER_COUNT_ROLLOVER",
     "DATA_QUALITY",
-    "CORRECTION_ANGLE_1",
-    "CORRECTION_ANGLE_2",
-    "CORRECTION_DOPPLER",
     "CORRECTION_MAG",
-    "CORRECTION_RANGE",
     "CORRECTION_RCS",
     "CORRECTION_RECEIVE",
     "CORRECTION_TRANSMIT",
-    "CORRECTION_ABERRATION_YEARLY",
-    "CORRECTION_ABERRATION_DIURNAL",
-    "CORRECTIONS_APPLIED",
 ];
 
 /// Data keywords of CCSDS 503.0-B-2 that are valid but not supported here.
@@ -260,20 +259,23 @@ struct MetaBlock {
     time_system: Option<usize>,
     participant: Option<(String, usize)>,
     angle_type: Option<(AngleType, usize)>,
+    reduction: Reduction,
 }
 
 impl MetaBlock {
     fn starting_at(line: usize) -> Self {
-        Self { line, time_system: None, participant: None, angle_type: None }
+        Self { line, time_system: None, participant: None, angle_type: None, reduction: Reduction::default() }
     }
 
     /// A metadata line other than `META_STOP`: a supported value of a known keyword.
     fn read(&mut self, line: usize, key: &str, value: &str) -> Result<(), TdmError> {
-        match key {
-            "TIME_SYSTEM" if value == "UTC" => self.time_system = Some(line),
-            "TIME_SYSTEM" => {
-                return fail(line, key, format!("time system \"{value}\" is not supported (UTC only)"));
+        if self.reduction.read(line, key, value)? {
+            if key == "TIME_SYSTEM" {
+                self.time_system = Some(line);
             }
+            return Ok(());
+        }
+        match key {
             "PARTICIPANT_1" if value.is_empty() => return fail(line, key, "empty"),
             "PARTICIPANT_1" => self.participant = Some((value.to_string(), line)),
             "ANGLE_TYPE" => {
@@ -288,10 +290,7 @@ impl MetaBlock {
             "RANGE_UNITS" if value != "km" => {
                 return fail(line, key, format!("range units \"{value}\" are not supported (km only)"));
             }
-            "REFERENCE_FRAME" if value != "TEME" && value != "EME2000" => {
-                return fail(line, key, format!("reference frame \"{value}\" is not supported (TEME)"));
-            }
-            "RANGE_UNITS" | "REFERENCE_FRAME" => {}
+            "RANGE_UNITS" => {}
             _ if META_IGNORED.contains(&key)
                 || is_numbered(key, "PARTICIPANT_", 2..=5)
                 || is_numbered(key, "TRANSMIT_DELAY_", 1..=5)
@@ -330,6 +329,7 @@ fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), T
     if key == "COMMENT" {
         if let Some(time) = value.strip_prefix(EMPTY_SCAN) {
             let time = parse_time(line, "COMMENT EMPTY_SCAN", time.trim())?;
+            let time = segment.reduction.utc(line, "COMMENT EMPTY_SCAN", time)?;
             segment.records.push(Record { line, time, value: None });
         }
         return Ok(());
@@ -346,7 +346,7 @@ fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), T
     let (Some(time), Some(number), None) = (parts.next(), parts.next(), parts.next()) else {
         return fail(line, key, "expected `KEYWORD = time value`");
     };
-    let time = parse_time(line, key, time)?;
+    let time = segment.reduction.utc(line, key, parse_time(line, key, time)?)?;
     let number: f64 = match number.parse() {
         // Azimuth and right ascension: wrapped once, exactly, to (−180°, 180°] (crate::io::angles).
         Ok(v) if f64::is_finite(v) && kind == DataKind::Angle1 => match crate::io::angles::wrap_decimal(number) {
@@ -356,6 +356,7 @@ fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), T
         Ok(v) if f64::is_finite(v) => v,
         _ => return fail(line, key, format!("\"{number}\" is not a finite number")),
     };
+    let number = segment.reduction.corrected(kind, number);
     segment.records.push(Record { line, time, value: Some((kind, number)) });
     Ok(())
 }
@@ -406,11 +407,22 @@ pub fn parse(text: &str) -> Result<Tdm, TdmError> {
                 let Some(participant) = meta.participant.take() else {
                     return fail(line, "PARTICIPANT_1", "required in the metadata, missing");
                 };
+                meta.reduction.finish()?;
+                if let (Some((AngleType::RaDec, _)), Some((crate::sim::fk5::Frame::EarthFixed, frame_line))) =
+                    (meta.angle_type, meta.reduction.frame)
+                {
+                    return fail(
+                        frame_line,
+                        "REFERENCE_FRAME",
+                        "right ascension and declination in an Earth-fixed frame",
+                    );
+                }
                 tdm.segments.push(Segment {
                     meta_line: meta.line,
                     meta_stop_line: line,
                     participant,
                     angle_type: meta.angle_type,
+                    reduction: meta.reduction,
                     records: vec![],
                 });
                 state = State::BetweenMetaAndData;
@@ -529,6 +541,13 @@ pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize
         if next != 0 {
             let line = segment.records.last().map_or(segment.meta_stop_line, |r| r.line);
             return fail(line, components[next].keyword(), "the last measurement is incomplete");
+        }
+        if wanted == AngleType::RaDec && segment.reduction.from_eme2000() {
+            for (scan, line, time) in &mut scans[first_of_segment..] {
+                for z in &mut scan.measurements {
+                    reduction::ra_dec_to_teme(*line, time, z)?;
+                }
+            }
         }
         let with_data: std::collections::HashMap<&Instant, usize> =
             scans[first_of_segment..].iter().map(|(_, line, t)| (t, *line)).collect();

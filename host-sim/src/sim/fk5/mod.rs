@@ -40,6 +40,8 @@ pub enum Frame {
     /// Mean equator and equinox of J2000 (CCSDS `EME2000`; `GCRF` and `ICRF` are read as it, within their
     /// ≲ 0.1″ frame bias).
     Eme2000,
+    /// An Earth-fixed frame (`ITRF…`, `ECEF`): a station's own, for its azimuth and elevation.
+    EarthFixed,
 }
 
 impl Frame {
@@ -48,6 +50,9 @@ impl Frame {
         match value {
             "TEME" => Some(Frame::Teme),
             "EME2000" | "J2000" | "GCRF" | "ICRF" => Some(Frame::Eme2000),
+            "ITRF" | "ITRF93" | "ITRF97" | "ITRF2000" | "ITRF2005" | "ITRF2008" | "ITRF2014" | "ITRF2020" | "ECEF" => {
+                Some(Frame::EarthFixed)
+            }
             _ => None,
         }
     }

@@ -83,7 +83,8 @@ fn leap_seconds_and_time_systems() {
 fn frames_and_time_systems_by_their_ccsds_names() {
     assert_eq!(Frame::from_ccsds("EME2000"), Some(Frame::Eme2000));
     assert_eq!(Frame::from_ccsds("TEME"), Some(Frame::Teme));
-    assert_eq!(Frame::from_ccsds("ITRF"), None);
+    assert_eq!(Frame::from_ccsds("ITRF2014"), Some(Frame::EarthFixed));
+    assert_eq!(Frame::from_ccsds("MOD"), None);
     assert_eq!(TimeSystem::from_ccsds("GPS"), Some(TimeSystem::Gps));
     assert_eq!(TimeSystem::from_ccsds("UT1"), None);
 }
