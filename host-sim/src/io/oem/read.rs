@@ -2,19 +2,21 @@
 //! object, its last ephemeris state and the covariance at that state's epoch; every other line is checked
 //! and dropped, so memory grows with the segments, not the ephemeris lines.
 //!
-//! Accepted: `CCSDS_OEM_VERS` 1.0, 2.0 or 3.0; per segment `CENTER_NAME = EARTH`, `REF_FRAME = TEME` (the
-//! tracker's frame; [`SUPPORTED_FRAMES`]), `TIME_SYSTEM = UTC`, ephemeris lines `epoch x y z vx vy vz
+//! Accepted: `CCSDS_OEM_VERS` 1.0, 2.0 or 3.0; per segment `CENTER_NAME = EARTH`, `REF_FRAME` TEME (the
+//! tracker's frame) or EME2000/J2000/GCRF/ICRF (turned into TEME where the prior is built;
+//! [`SUPPORTED_FRAMES`]), `TIME_SYSTEM` UTC, TAI, GPS or TT (moved to UTC likewise), ephemeris lines `epoch x y z vx vy vz
 //! [ax ay az]` (km, km/s, km/s²) in increasing time, an optional covariance section (lower triangle, one
 //! row per line, `COV_REF_FRAME` the segment's frame when given). Bad input is an [`OemError`]: the line,
 //! the keyword and what is wrong, with any value quoted shortened to [`EXCERPT_CHARS`] characters.
 
 use crate::error::Error;
 use crate::io::ccsds::Instant;
+use crate::sim::fk5::{Frame, TimeSystem};
 use std::fmt;
 use std::path::Path;
 
 /// Reference frames a prior can be read in: the tracker's own (its states are TEME).
-pub const SUPPORTED_FRAMES: &[&str] = &["TEME"];
+pub const SUPPORTED_FRAMES: &[&str] = &["TEME", "EME2000", "J2000", "GCRF", "ICRF"];
 
 /// The most characters of a value quoted in a message.
 pub const EXCERPT_CHARS: usize = 40;
@@ -89,6 +91,10 @@ pub struct OemSegment {
     pub last: OemState,
     /// The covariance whose `EPOCH` is the last state's (the last such block), if any.
     pub covariance: Option<OemCovariance>,
+    /// `REF_FRAME` and its line.
+    pub frame: (Frame, usize),
+    /// `TIME_SYSTEM` and its line.
+    pub time_system: (TimeSystem, usize),
 }
 
 /// A parsed OEM: its segments in file order.
@@ -172,8 +178,12 @@ impl Meta {
                     ),
                 );
             }
-            "TIME_SYSTEM" if value != "UTC" => {
-                return fail(line, key, format!("time system \"{}\" is not supported (UTC only)", excerpt(value)));
+            "TIME_SYSTEM" if TimeSystem::from_ccsds(value).is_none() => {
+                return fail(
+                    line,
+                    key,
+                    format!("time system \"{}\" is not supported (UTC, TAI, GPS or TT)", excerpt(value)),
+                );
             }
             "START_TIME" | "STOP_TIME" => {
                 parse_time(line, key, value)?;
@@ -293,12 +303,16 @@ impl Reading {
             return fail(line, "EPHEMERIS", "the segment has no ephemeris line");
         };
         let value = |key: &str| self.meta.value(key).map(|(_, v, l)| (v.clone(), *l)).unwrap_or_default();
+        let (frame, frame_line) = value("REF_FRAME");
+        let (time_system, time_line) = value("TIME_SYSTEM");
         Ok(OemSegment {
             meta_line: self.meta.line,
             object_name: value("OBJECT_NAME").0,
             object_id: value("OBJECT_ID"),
             last,
             covariance: self.covariance,
+            frame: (Frame::from_ccsds(&frame).unwrap_or(Frame::Teme), frame_line),
+            time_system: (TimeSystem::from_ccsds(&time_system).unwrap_or(TimeSystem::Utc), time_line),
         })
     }
 }

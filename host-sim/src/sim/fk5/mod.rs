@@ -218,7 +218,7 @@ pub fn state_eme2000_to_teme(state: [f64; 6], jd_utc: f64) -> Result<[f64; 6], T
     Ok([x, y, z, u, v, w])
 }
 
-/// A 6 × 6 covariance of EME2000 as a TEME one: blockdiag(M, M) C blockdiag(M, M)ᵀ.
+/// A 6 × 6 covariance of EME2000 as a TEME one: blockdiag(M, M) C blockdiag(M, M)ᵀ, symmetrised.
 ///
 /// # Errors
 /// [`TimeScaleError`] when the date's leap seconds are not in the table.
@@ -227,7 +227,10 @@ pub fn covariance_eme2000_to_teme(covariance: [[f64; 6]; 6], jd_utc: f64) -> Res
     let block = |i: usize, j: usize| if i / 3 == j / 3 { m[i % 3][j % 3] } else { 0.0 };
     let left: [[f64; 6]; 6] =
         std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| block(i, k) * covariance[k][j]).sum()));
-    Ok(std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| left[i][k] * block(j, k)).sum())))
+    let turned: [[f64; 6]; 6] =
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| left[i][k] * block(j, k)).sum()));
+    // Symmetric to the bit, as a covariance read from a lower triangle is.
+    Ok(std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (turned[i][j] + turned[j][i]))))
 }
 
 /// The time scales of tracking data.
