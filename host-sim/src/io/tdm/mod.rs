@@ -8,6 +8,9 @@
 //!   optical: `ANGLE_TYPE = RADEC`, `ANGLE_1` (right ascension, deg), `ANGLE_2` (declination, deg);
 //!   `ANGLE_1` (azimuth or right ascension) in any convention within [−360°, 720°], wrapped exactly to
 //!   (−180°, 180°] as it is read ([`crate::io::angles`]);
+//! - `TIME_SYSTEM`, `REFERENCE_FRAME` and the `CORRECTION_*` keywords are applied on the way in
+//!   ([`Reduction`]: times moved to UTC, EME2000 right ascensions turned into TEME, corrections added when
+//!   `CORRECTIONS_APPLIED = NO`);
 //! - a measurement is its components' lines in that order, all with the scan's time; every distinct time
 //!   is one scan; a scan without measurements is a data-section line `COMMENT EMPTY_SCAN <time>`;
 //! - values are written in their shortest round-trip decimal form (the scenario's own degrees: no unit
@@ -365,7 +368,7 @@ fn data_line(tdm: &mut Tdm, line: usize, key: &str, value: &str) -> Result<(), T
 ///
 /// # Errors
 /// The first problem: an unknown keyword, a keyword out of place, a missing `META` block or required
-/// keyword, a time system other than UTC, an angle type other than AZEL or RADEC, range units other than
+/// keyword, a time system, frame or correction that cannot be read ([`Reduction`]), an angle type other than AZEL or RADEC, range units other than
 /// km, a malformed time or value.
 pub fn parse(text: &str) -> Result<Tdm, TdmError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
