@@ -63,24 +63,25 @@ impl Reduction {
     /// other than YES or NO.
     pub fn read(&mut self, line: usize, key: &str, value: &str) -> Result<bool, TdmError> {
         match key {
-            "TIME_SYSTEM" => {
-                self.time_system = TimeSystem::from_ccsds(value).ok_or_else(|| TdmError {
-                    line,
-                    keyword: key.into(),
-                    message: format!("time system \"{value}\" is not supported (UTC, TAI, GPS or TT)"),
-                })?;
-            }
-            "REFERENCE_FRAME" => {
-                let frame = Frame::from_ccsds(value).ok_or_else(|| TdmError {
-                    line,
-                    keyword: key.into(),
-                    message: format!(
-                        "reference frame \"{value}\" is not supported (TEME, EME2000/J2000/GCRF/ICRF, or ITRF/ECEF for \
-                         azimuth and elevation)"
-                    ),
-                })?;
-                self.frame = Some((frame, line));
-            }
+            "TIME_SYSTEM" => match TimeSystem::from_ccsds(value) {
+                Some(system) => self.time_system = system,
+                None => {
+                    return fail(line, key, format!("time system \"{value}\" is not supported (UTC, TAI, GPS or TT)"));
+                }
+            },
+            "REFERENCE_FRAME" => match Frame::from_ccsds(value) {
+                Some(frame) => self.frame = Some((frame, line)),
+                None => {
+                    return fail(
+                        line,
+                        key,
+                        format!(
+                            "reference frame \"{value}\" is not supported (TEME, EME2000/J2000/GCRF/ICRF, or ITRF/ECEF \
+                             for azimuth and elevation)"
+                        ),
+                    );
+                }
+            },
             "CORRECTIONS_APPLIED" => {
                 self.applied = Some(match value {
                     "YES" => (true, line),
