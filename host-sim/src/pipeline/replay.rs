@@ -34,6 +34,25 @@ struct Tally {
     peak_hypotheses: usize,
 }
 
+impl Tally {
+    /// The tally before the first scan.
+    fn new(heading: &crate::pipeline::world::Heading, prior: &Posterior) -> Self {
+        let evaluation = heading.evaluation;
+        Tally {
+            births: BirthTally::new(
+                heading.births.iter().copied(),
+                evaluation.confirmation_existence,
+                evaluation.error_bound,
+            ),
+            switches: LabelSwitches::new(),
+            in_view_misses: 0,
+            in_view_red_stars: 0,
+            out_of_view_red_stars: 0,
+            peak_hypotheses: if heading.peak_counts_prior { prior.hypotheses } else { 0 },
+        }
+    }
+}
+
 /// Scans of one kind (refused, with numerical drops) that get their own stderr line; the rest are counted
 /// in one line at the end of the run.
 pub const NOTICE_LINES: usize = 10;
@@ -146,18 +165,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let csv_error = |e: std::io::Error| Error::output(&csv_path, e);
     let mut csv = crate::io::atomic::AtomicFile::create(&csv_path)?;
     writeln!(csv, "{}", world.csv_header()).map_err(csv_error)?;
-    let mut tally = Tally {
-        births: BirthTally::new(
-            heading.births.iter().copied(),
-            evaluation.confirmation_existence,
-            evaluation.error_bound,
-        ),
-        switches: LabelSwitches::new(),
-        in_view_misses: 0,
-        in_view_red_stars: 0,
-        out_of_view_red_stars: 0,
-        peak_hypotheses: if heading.peak_counts_prior { prior.hypotheses } else { 0 },
-    };
+    let mut tally = Tally::new(&heading, &prior);
     let n = world.scans();
     let mut records = Vec::with_capacity(n);
     let bar = progress(n, quiet, heading.tracker);
