@@ -1,8 +1,10 @@
 //! Scoring runs against the truth: the [`metrics`] (OSPA, GOSPA, label switches, ...), the scoring of a
 //! run's MAP estimates ([`score`]), births and their confirmation ([`births`]), and the exactness of a
-//! bounded tracker against the unbounded reference ([`exactness`]).
+//! bounded tracker against the unbounded reference ([`exactness`]), and judging a run without truth
+//! ([`consistency`]).
 
 pub mod births;
+pub mod consistency;
 pub mod exactness;
 pub mod metrics;
 pub mod score;

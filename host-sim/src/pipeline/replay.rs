@@ -14,6 +14,7 @@
 
 use crate::error::Error;
 use crate::eval::births::{BirthTally, MapTrack};
+use crate::eval::consistency::Judge;
 use crate::eval::metrics::LabelSwitches;
 use crate::eval::score::{Scored, score};
 use crate::io::report::{NumericalDrop, NumericalDropsSummary, RefusedScan, RefusedScans, RejectedScan, RunSummary};
@@ -31,6 +32,25 @@ struct Tally {
     in_view_red_stars: usize,
     out_of_view_red_stars: usize,
     peak_hypotheses: usize,
+}
+
+impl Tally {
+    /// The tally before the first scan.
+    fn new(heading: &crate::pipeline::world::Heading, prior: &Posterior) -> Self {
+        let evaluation = heading.evaluation;
+        Tally {
+            births: BirthTally::new(
+                heading.births.iter().copied(),
+                evaluation.confirmation_existence,
+                evaluation.error_bound,
+            ),
+            switches: LabelSwitches::new(),
+            in_view_misses: 0,
+            in_view_red_stars: 0,
+            out_of_view_red_stars: 0,
+            peak_hypotheses: if heading.peak_counts_prior { prior.hypotheses } else { 0 },
+        }
+    }
 }
 
 /// Scans of one kind (refused, with numerical drops) that get their own stderr line; the rest are counted
@@ -145,24 +165,15 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let csv_error = |e: std::io::Error| Error::output(&csv_path, e);
     let mut csv = crate::io::atomic::AtomicFile::create(&csv_path)?;
     writeln!(csv, "{}", world.csv_header()).map_err(csv_error)?;
-    let mut tally = Tally {
-        births: BirthTally::new(
-            heading.births.iter().copied(),
-            evaluation.confirmation_existence,
-            evaluation.error_bound,
-        ),
-        switches: LabelSwitches::new(),
-        in_view_misses: 0,
-        in_view_red_stars: 0,
-        out_of_view_red_stars: 0,
-        peak_hypotheses: if heading.peak_counts_prior { prior.hypotheses } else { 0 },
-    };
+    let mut tally = Tally::new(&heading, &prior);
     let n = world.scans();
     let mut records = Vec::with_capacity(n);
     let bar = progress(n, quiet, heading.tracker);
     let mut notices = Notices::default();
+    let mut judge = Judge::new(prior.map.iter().map(|t| t.label));
     for k in 0..n {
         let time = world.time(k);
+        let associations = world.associate(k);
         let start = Instant::now();
         let outcome = world.step(k);
         let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -184,12 +195,16 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
                 (None, Some(e), true)
             }
         };
+        if let (Some(scan), Some(_)) = (&associations, info) {
+            judge.scan(scan);
+        }
         let numerical_drops = info.map(|i| i.numerical_drops).unwrap_or_default();
         if let Some(line) = notices.dropped(k, time, &numerical_drops) {
             bar.suspend(|| eprintln!("{line}"));
         }
         let posterior = world.posterior();
         tally.peak_hypotheses = tally.peak_hypotheses.max(posterior.hypotheses);
+        judge.labels(posterior.map.iter().map(|t| t.label));
         let truth = world.truth(k);
         let true_cardinality = truth.as_ref().map(Vec::len);
         let scored = truth.map(|truth| score_scan(&*world, k, &truth, &posterior, &mut tally, &evaluation));
@@ -228,6 +243,9 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let mut summary = summarise(&heading, &records, &prior, &tally);
     summary.numerical_drops = numerical_drops(&records);
     summary.refused_scans = refused_scans(&*world, &records);
+    if world.judged() {
+        judged(&mut summary, &judge);
+    }
     // The process's peak resident memory so far (Linux), to check the reference's budget.
     summary.peak_resident_kib = peak_resident_kib();
     write_json(&out.join("summary.json"), &summary)?;
@@ -288,7 +306,33 @@ fn summarise(
         numerical_drops: NumericalDropsSummary::default(),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,
+        residuals: None,
+        tracks_started: None,
+        tracks_ended: None,
+        measurements_per_track: None,
+        consistency_warnings: None,
     }
+}
+
+/// The keys that judge a run without truth ([`crate::eval::consistency`]), and a stderr `warning:` line per
+/// sensor whose mean NIS lies outside its band.
+fn judged(summary: &mut RunSummary, judge: &Judge) {
+    let judgement = judge.finish();
+    for name in &judgement.consistency_warnings {
+        let r = &judgement.residuals[name];
+        let why = match (r.mean_nis, r.nis_band) {
+            (Some(mean), Some([low, high])) => {
+                format!("mean NIS {mean:.3} outside its 95 % band [{low:.3}, {high:.3}]")
+            }
+            _ => format!("none of its {} measurements lies within a MAP track's gate", r.measurements),
+        };
+        eprintln!("warning: sensor {name}: {why} (consistency_warnings in summary.json)");
+    }
+    summary.residuals = Some(judgement.residuals);
+    summary.tracks_started = Some(judgement.tracks_started);
+    summary.tracks_ended = Some(judgement.tracks_ended);
+    summary.measurements_per_track = Some(judgement.measurements_per_track);
+    summary.consistency_warnings = Some(judgement.consistency_warnings);
 }
 
 /// `numerical_drops` of the summary: per scan with drops, the first dropped track and the count.

@@ -100,6 +100,16 @@ pub trait World<const P: usize> {
     fn sensor_name(&self, _k: usize) -> Option<String> {
         None
     }
+    /// Whether the world judges its runs without truth ([`World::associate`]; summary.json's `residuals`,
+    /// `tracks_started`, `tracks_ended`, `measurements_per_track`, `consistency_warnings`).
+    fn judged(&self) -> bool {
+        false
+    }
+    /// Before scan `k` is stepped: its measurements' associations with the MAP tracks
+    /// ([`crate::eval::consistency`]), in worlds that judge their runs.
+    fn associate(&self, _k: usize) -> Option<crate::eval::consistency::ScanAssociations> {
+        None
+    }
     /// Whether `state` lies in the field of view of scan `k`'s sensor.
     fn in_view(&self, k: usize, state: &[f64]) -> bool;
     /// The header of `estimates.csv`.

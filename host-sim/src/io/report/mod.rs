@@ -13,6 +13,7 @@ mod compare;
 mod dropped;
 mod experiments;
 mod perf;
+mod residuals;
 mod sampler_check;
 mod scans;
 mod soak;
@@ -30,6 +31,7 @@ pub use perf::{
     PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsCase, PerfGibbsShape, PerfMachine, PerfMurty,
     PerfMurtyCase, PerfMurtyShape, PerfReport, PerfSsa,
 };
+pub use residuals::SensorResiduals;
 pub use sampler_check::{SamplerCheckReport, SamplerScores, SamplerSettings};
 pub use scans::{LabelExistence, ScanHypothesis, ScanLine};
 pub use soak::{SoakError, SoakReport, SoakSetup, SoakTracking, SoakTruth};

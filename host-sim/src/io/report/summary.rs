@@ -71,6 +71,22 @@ pub struct RunSummary {
     /// SGP4 during the run, given twice). Absent from other runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub catalogue_dropped: Option<crate::io::catalogue::CatalogueDropped>,
+    /// Orbital runs only: per sensor, the residuals and NIS of the MAP tracks' associated measurements
+    /// ([`crate::eval::consistency`], issue 29). Absent from other runs, like the four keys below.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residuals: Option<std::collections::BTreeMap<String, super::SensorResiduals>>,
+    /// MAP labels appearing over the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracks_started: Option<usize>,
+    /// MAP labels disappearing over the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracks_ended: Option<usize>,
+    /// Associated measurements per MAP label seen over the run (the prior's included).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measurements_per_track: Option<f64>,
+    /// Sensors whose `mean_nis` lies outside its `nis_band`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub consistency_warnings: Option<Vec<String>>,
 }
 
 /// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.

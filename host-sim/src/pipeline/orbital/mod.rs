@@ -11,6 +11,7 @@
 //! The measurement kind of a version 2 file meets the core's measurement models in one place,
 //! [`with_measurement!`](crate::with_measurement).
 
+pub mod associate;
 pub mod compare;
 pub mod geometry;
 pub mod plots;
@@ -25,6 +26,7 @@ pub use tracker::{
 };
 
 use crate::error::Error;
+use crate::eval::consistency::{Associated, ScanAssociations};
 use crate::io::report::RunSummary;
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
@@ -160,6 +162,33 @@ impl World<3> for OrbitalWorld<'_> {
 
     fn sensor_name(&self, k: usize) -> Option<String> {
         self.scenario.sensors.get(self.scenario.scans[k].sensor).map(|s| s.name.clone())
+    }
+
+    fn judged(&self) -> bool {
+        true
+    }
+
+    fn associate(&self, k: usize) -> Option<ScanAssociations> {
+        let scan = &self.scenario.scans[k];
+        let kind = self.scenario.measurement;
+        let zs = measurements_in_radians(kind, &scan.measurements);
+        let (dimension, associations) = self.runner.associate(scan.sensor, scan.time, &zs);
+        let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
+        let associated = associations
+            .into_iter()
+            .flatten()
+            .map(|(label, residual, nis)| Associated {
+                label,
+                residual: residual.iter().enumerate().map(|(i, &v)| in_file_units(i, v)).collect(),
+                nis,
+            })
+            .collect();
+        Some(ScanAssociations {
+            sensor: self.sensor_name(k)?,
+            dimension,
+            measurements: scan.measurements.len(),
+            associated,
+        })
     }
 
     fn in_view(&self, k: usize, state: &[f64]) -> bool {

@@ -41,6 +41,14 @@ pub trait Runner3d: Send {
     fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError>;
     /// The posterior now.
     fn posterior(&self) -> Posterior6;
+    /// Per measurement of a scan about to be stepped, its association with a MAP track, and the
+    /// measurement dimension ([`super::associate::associate`]).
+    fn associate(
+        &self,
+        sensor: usize,
+        time: f64,
+        measurements: &[Vec<f64>],
+    ) -> (usize, Vec<Option<super::associate::Association>>);
 }
 
 type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
@@ -65,6 +73,15 @@ where
             budget_reached: false,
             numerical_drops: report.numerical_drops,
         })
+    }
+
+    fn associate(
+        &self,
+        sensor: usize,
+        time: f64,
+        measurements: &[Vec<f64>],
+    ) -> (usize, Vec<Option<super::associate::Association>>) {
+        super::associate::associate(&self.tracker, sensor, time, measurements)
     }
 
     fn posterior(&self) -> Posterior6 {
