@@ -101,22 +101,26 @@ fn tracking_the_tdm_export_of_tiny_3d_gives_its_estimates_without_the_truth_colu
     assert_eq!(strip(read(&track.join("estimates.csv"))), expected);
 }
 
-#[test]
-fn tracking_the_tdm_export_of_an_optical_scenario_gives_the_run_estimates_bit_for_bit() {
-    let dir = TempDir::new("optical");
-    let mut s = generate(&dir, "optical-geo");
-    // Four scans of three measurements each keep the debug-build run short.
+/// optical-geo cut to four scans of three measurements each (a short debug-build run), without truth.
+fn short_optical_geo(dir: &TempDir) -> Value {
+    let mut s = generate(dir, "optical-geo");
     let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
         .iter()
         .map(|scan| {
             let mut scan = scan.clone();
-            let zs: Vec<Value> = scan["measurements"].as_array().expect("measurements")[..3].to_vec();
-            scan["measurements"] = Value::Array(zs);
+            scan["measurements"] = Value::Array(scan["measurements"].as_array().expect("measurements")[..3].to_vec());
             scan
         })
         .collect();
     s["scans"] = Value::Array(scans);
     s.as_object_mut().expect("object").remove("truth");
+    s
+}
+
+#[test]
+fn tracking_the_tdm_export_of_an_optical_scenario_gives_the_run_estimates_bit_for_bit() {
+    let dir = TempDir::new("optical");
+    let s = short_optical_geo(&dir);
     let scenario = dir.join("geo.json");
     save(&s, &scenario);
     let (run, track) = run_and_track(&dir, &scenario, "rfisst");
@@ -185,21 +189,7 @@ fn azimuth_and_right_ascension_in_0_360_track_bit_for_bit_as_in_180_180() {
     // a turn higher, in [360, 540].
     for (preset, tracker) in [("tiny-3d", "homht"), ("optical-geo", "rfisst")] {
         let dir = TempDir::new("angles");
-        let mut s = generate(&dir, preset);
-        if preset == "optical-geo" {
-            // Four scans of three measurements each keep the debug-build run short.
-            let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
-                .iter()
-                .map(|scan| {
-                    let mut scan = scan.clone();
-                    let zs: Vec<Value> = scan["measurements"].as_array().expect("measurements")[..3].to_vec();
-                    scan["measurements"] = Value::Array(zs);
-                    scan
-                })
-                .collect();
-            s["scans"] = Value::Array(scans);
-            s.as_object_mut().expect("object").remove("truth");
-        }
+        let s = if preset == "optical-geo" { short_optical_geo(&dir) } else { generate(&dir, preset) };
         let scenario = dir.join("scenario.json");
         save(&s, &scenario);
         let tdm = dir.join("tdm");
@@ -562,18 +552,7 @@ fn tdm_in_tai_or_gps_and_with_corrections_to_apply_track_back_to_the_plain_estim
 fn right_ascensions_in_eme2000_track_back_to_the_teme_estimates() {
     use host_sim::sim::fk5::{Reduction, apply, tt_of_utc};
     let dir = TempDir::new("eme2000");
-    let mut s = generate(&dir, "optical-geo");
-    // Four scans of three measurements each keep the debug-build run short.
-    let scans: Vec<Value> = s["scans"].as_array().expect("scans")[..4]
-        .iter()
-        .map(|scan| {
-            let mut scan = scan.clone();
-            scan["measurements"] = Value::Array(scan["measurements"].as_array().expect("measurements")[..3].to_vec());
-            scan
-        })
-        .collect();
-    s["scans"] = Value::Array(scans);
-    s.as_object_mut().expect("object").remove("truth");
+    let s = short_optical_geo(&dir);
     let (config, tdm) = exported(&dir, &s);
     let plain_out = dir.join("plain-out");
     ok(track(&tdm_files(&tdm), &config, "rfisst", &plain_out));
