@@ -158,15 +158,7 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
     /// that is not a valid look-angle field of view for `X`, or a clutter volume that is not finite.
     pub fn new(rotation: EarthRotation<T>, sensors: &[SiteSensor<T, D>]) -> Result<Self, &'static str> {
         const { assert!(C > 0, "a sensor network needs room for one sensor") };
-        let Some(first) = sensors.first() else {
-            return Err("sensor network: no sensors");
-        };
-        if sensors.len() > C {
-            return Err("sensor network: more sensors than its capacity C");
-        }
-        if !(rotation.angle_at_epoch.is_finite_value() && rotation.rate.is_finite_value()) {
-            return Err("sensor network: Earth rotation angle and rate must be finite");
-        }
+        let first = first_of_network(&rotation, sensors, C)?;
         let mut network = Self {
             rotation,
             sensors: [*first; C],
@@ -260,6 +252,25 @@ pub(super) fn observer_and_frame<T: Real>(
             Ok((state, inertial_frame()))
         }
     }
+}
+
+/// The checks every network's constructor starts with: at least one sensor, at most `capacity`, a finite
+/// Earth rotation; returns the first sensor.
+pub(super) fn first_of_network<'a, T: Real, S>(
+    rotation: &EarthRotation<T>,
+    sensors: &'a [S],
+    capacity: usize,
+) -> Result<&'a S, &'static str> {
+    let Some(first) = sensors.first() else {
+        return Err("sensor network: no sensors");
+    };
+    if sensors.len() > capacity {
+        return Err("sensor network: more sensors than its capacity C");
+    }
+    if !(rotation.angle_at_epoch.is_finite_value() && rotation.rate.is_finite_value()) {
+        return Err("sensor network: Earth rotation angle and rate must be finite");
+    }
+    Ok(first)
 }
 
 /// Whether an inertial position lies inside the WGS-84 ellipsoid (x² + y²) / a² + z² / b² < 1.

@@ -28,7 +28,7 @@
 //! region (with an isotropic angular σ, the larger of σ_A cos E and σ_E). Range-only kinds give no birth
 //! density: their objects are born from another sensor's measurements.
 
-use super::network::{angular_volume, check_platform, inertial_frame, observer_and_frame};
+use super::network::{angular_volume, check_platform, first_of_network, inertial_frame, observer_and_frame};
 use super::{
     AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, Placeable, RadarRangeAzEl,
     RadarRangeRate,
@@ -514,15 +514,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
     /// coordinates.
     pub fn new(rotation: EarthRotation<T>, sensors: &[MixedSensor<T>]) -> Result<Self, &'static str> {
         const { assert!(C > 0, "a sensor network needs room for one sensor") };
-        let Some(first) = sensors.first() else {
-            return Err("sensor network: no sensors");
-        };
-        if sensors.len() > C {
-            return Err("sensor network: more sensors than its capacity C");
-        }
-        if !(rotation.angle_at_epoch.is_finite_value() && rotation.rate.is_finite_value()) {
-            return Err("sensor network: Earth rotation angle and rate must be finite");
-        }
+        let first = first_of_network(&rotation, sensors, C)?;
         let mut network = Self {
             rotation,
             sensors: [*first; C],
