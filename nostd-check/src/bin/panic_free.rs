@@ -198,6 +198,20 @@ fn linear(argc: i32) -> u64 {
     digest
 }
 
+/// Two-body + J2 motion with opaque J2 and process noise (the 3-D trackers' motion model).
+fn motion<T: Real>(x: T) -> TwoBodyJ2<T> {
+    let c = T::of_f64;
+    TwoBodyJ2::<T> {
+        mu: c(398_600.441_8),
+        j2: c(1.082_626_68e-3) * x,
+        radius: c(6378.137),
+        min_radius: c(6300.0),
+        noise: ProcessNoise::Isotropic(c(1e-12) * x),
+        max_step: c(20.0),
+        max_substeps: 2000,
+    }
+}
+
 /// `RadarTracker<T>`: a network of two ground radars and a spacecraft radar, `new`, then `step_scan` and
 /// `digest` over opaque scans, sensors and observers.
 fn radar<T: Real>(argc: i32) -> u64 {
@@ -223,15 +237,7 @@ fn radar<T: Real>(argc: i32) -> u64 {
         return 3;
     };
     let config: RadarConfig<T> = black_box(Config {
-        motion: TwoBodyJ2::<T> {
-            mu: c(398_600.441_8),
-            j2: c(1.082_626_68e-3) * x,
-            radius: c(6378.137),
-            min_radius: c(6300.0),
-            noise: ProcessNoise::Isotropic(c(1e-12) * x),
-            max_step: c(20.0),
-            max_substeps: 2000,
-        },
+        motion: motion(x),
         measurement: network,
         sensor: detection,
         birth: BirthModel::none(),
@@ -307,15 +313,7 @@ fn network<T: Real>(argc: i32) -> u64 {
         return 3;
     };
     let config: NetworkConfig<T> = black_box(Config {
-        motion: TwoBodyJ2::<T> {
-            mu: c(398_600.441_8),
-            j2: c(1.082_626_68e-3) * x,
-            radius: c(6378.137),
-            min_radius: c(6300.0),
-            noise: ProcessNoise::Isotropic(c(1e-12) * x),
-            max_step: c(20.0),
-            max_substeps: 2000,
-        },
+        motion: motion(x),
         measurement: network,
         sensor: sensors[0].sensor.detection,
         birth: BirthModel::none(),
