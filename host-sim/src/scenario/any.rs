@@ -21,8 +21,16 @@ pub enum AnyScenario {
 /// # Errors
 /// A one-line [`ScenarioError`] naming the problem.
 pub fn load_any(path: &Path) -> Result<AnyScenario, ScenarioError> {
-    let text = read_limited(path)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    parse_any(&read_limited(path)?)
+}
+
+/// Reads a scenario of either version from JSON text, as [`load_any`] reads a file (the Python package
+/// builds a tracker from a dict this way).
+///
+/// # Errors
+/// A one-line [`ScenarioError`] naming the problem.
+pub fn parse_any(text: &str) -> Result<AnyScenario, ScenarioError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     #[derive(Deserialize)]
     struct Probe {
         #[serde(default)]

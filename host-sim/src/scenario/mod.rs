@@ -15,7 +15,7 @@ pub mod v2;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-pub use any::{AnyScenario, load_any};
+pub use any::{AnyScenario, load_any, parse_any};
 pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
 pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
 pub use quote::{Readable, cut_quotes, excerpt};
