@@ -213,7 +213,7 @@ class RFISSTTracker(Tracker):
             },
             "birth": {"probability": float(self.birth_probability), "cells": cells},
             "death_probability": float(self.death_probability),
-            "tracker": {"gate": float(self.gate), "seed": int(self.seed)},
+            "tracker": {"gate": float(self.gate), "max_children_per_scan": 1_000_000, "seed": int(self.seed)},
             "prior": {"time": 0.0, "hypotheses": [{"weight": 1.0, "objects": objects}]},
             "scans": [],
         }
