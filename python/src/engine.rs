@@ -23,19 +23,48 @@ use tracker_core::{
 /// value on the stack (megabytes; more with the host profile), as `host-sim` runs them on a 512 MiB stack.
 const STACK_BYTES: usize = 512 << 20;
 
-/// Runs `f` on a thread with a [`STACK_BYTES`] stack (reserved, not committed, until used).
-///
-/// # Errors
-/// A message when the thread cannot be started or `f` panicked.
-pub fn on_large_stack<R: Send>(f: impl FnOnce() -> R + Send) -> Result<R, String> {
-    std::thread::scope(|scope| {
-        let worker = std::thread::Builder::new()
+type Job = Box<dyn FnOnce() + Send>;
+
+/// A thread with a [`STACK_BYTES`] stack (reserved, not committed, until used) that runs one job at a time;
+/// one per tracker, kept for its life (starting a thread per scan would cost about 0.2 ms).
+pub struct LargeStack {
+    jobs: std::sync::mpsc::Sender<Job>,
+}
+
+impl LargeStack {
+    /// Starts the thread.
+    ///
+    /// # Errors
+    /// A message when the thread cannot be started.
+    pub fn new() -> Result<Self, String> {
+        let (jobs, queue) = std::sync::mpsc::channel::<Job>();
+        std::thread::Builder::new()
             .name("rfisst".into())
             .stack_size(STACK_BYTES)
-            .spawn_scoped(scope, f)
+            .spawn(move || {
+                // Ends when the tracker (the sender) is dropped. A job that panics drops its reply channel,
+                // which its caller reports; the thread goes on.
+                for job in queue {
+                    let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(job));
+                }
+            })
             .map_err(|e| format!("cannot start the tracker's thread: {e}"))?;
-        worker.join().map_err(|_| "the tracker panicked (a bug: please report it)".to_string())
-    })
+        Ok(Self { jobs })
+    }
+
+    /// Runs `f` on the thread and returns its result.
+    ///
+    /// # Errors
+    /// A message when the thread has stopped or `f` panicked.
+    pub fn run<R: Send + 'static>(&self, f: impl FnOnce() -> R + Send + 'static) -> Result<R, String> {
+        let (reply, result) = std::sync::mpsc::sync_channel(1);
+        self.jobs
+            .send(Box::new(move || {
+                let _ = reply.send(f());
+            }))
+            .map_err(|_| "the tracker's thread has stopped".to_string())?;
+        result.recv().map_err(|_| "the tracker panicked (a bug: please report it)".to_string())
+    }
 }
 
 /// One track of the posterior.

@@ -2,7 +2,7 @@
 //! stepped with numpy arrays and read back as numpy arrays. Every bad input is a typed exception
 //! ([`crate::errors`]), checked before it reaches the core where the core would not check it itself.
 
-use crate::engine::{Engine, Posterior, build_orbital, build_planar, on_large_stack};
+use crate::engine::{Engine, LargeStack, Posterior, build_orbital, build_planar};
 use crate::errors::{Class, error, step_error};
 use host_sim::pipeline::orbital::measurements_in_radians;
 use host_sim::pipeline::{Profile, TrackerKind};
@@ -24,10 +24,16 @@ enum World {
     Orbital { measurement: Measurement3dSpec, sensors: Vec<String> },
 }
 
+/// What every call raises once the tracker has panicked on its thread (a bug).
+const LOST: &str = "the tracker was lost to an earlier internal error (a bug: please report it)";
+
 /// An R-FISST tracker (tracker-core) built from a scenario in the format `host-sim` reads.
 #[pyclass(module = "rfisst._rfisst")]
 pub struct Tracker {
-    engine: Box<dyn Engine>,
+    /// The core tracker; `None` only after it panicked on its thread (a bug), when every call raises.
+    engine: Option<Box<dyn Engine>>,
+    /// The thread the tracker is built and stepped on.
+    stack: LargeStack,
     world: World,
     kind: TrackerKind,
     profile: Profile,
@@ -66,21 +72,35 @@ impl Tracker {
         let kind = kind_of(py, tracker)?;
         let asked = profile_of(py, profile)?;
         let refused = |e: String| error(py, Class::Scenario, "Configuration", e);
-        match scenario {
-            AnyScenario::V1(scenario) => {
-                let profile = asked.unwrap_or_default();
-                let engine =
-                    on_large_stack(|| build_planar(&scenario, kind, profile)).and_then(|r| r).map_err(refused)?;
-                Ok(Self { engine, world: World::Planar, kind, profile, name: scenario.name.clone() })
-            }
-            AnyScenario::V2(scenario) => {
-                let (engine, profile) =
-                    on_large_stack(|| build_orbital(&scenario, kind, asked)).and_then(|r| r).map_err(refused)?;
-                let sensors = scenario.sensors.iter().map(|s| s.name.clone()).collect();
-                let world = World::Orbital { measurement: scenario.measurement, sensors };
-                Ok(Self { engine, world, kind, profile, name: scenario.name.clone() })
-            }
-        }
+        let stack = LargeStack::new().map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+        let name = match &scenario {
+            AnyScenario::V1(s) => s.name.clone(),
+            AnyScenario::V2(s) => s.name.clone(),
+        };
+        let world = match &scenario {
+            AnyScenario::V1(_) => World::Planar,
+            AnyScenario::V2(s) => World::Orbital {
+                measurement: s.measurement,
+                sensors: s.sensors.iter().map(|s| s.name.clone()).collect(),
+            },
+        };
+        let built = py
+            .detach(|| {
+                stack.run(move || match scenario {
+                    AnyScenario::V1(scenario) => {
+                        let profile = asked.unwrap_or_default();
+                        build_planar(&scenario, kind, profile).map(|engine| (engine, profile))
+                    }
+                    AnyScenario::V2(scenario) => build_orbital(&scenario, kind, asked),
+                })
+            })
+            .map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+        let (engine, profile) = built.map_err(refused)?;
+        Ok(Self { engine: Some(engine), stack, world, kind, profile, name })
+    }
+
+    fn engine(&self) -> PyResult<&dyn Engine> {
+        self.engine.as_deref().ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err(LOST))
     }
 
     fn measurement_dim(&self) -> usize {
@@ -250,10 +270,16 @@ impl Tracker {
     ) -> PyResult<Bound<'py, PyDict>> {
         let sensor = self.sensor_index(py, sensor)?;
         let rows = self.measurement_rows(py, measurements)?;
-        let engine = &mut self.engine;
-        let outcome = py
-            .detach(|| on_large_stack(|| engine.step(sensor, time, &rows)))
-            .map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+        let mut engine = self.engine.take().ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err(LOST))?;
+        let stack = &self.stack;
+        let ran = py.detach(|| {
+            stack.run(move || {
+                let outcome = engine.step(sensor, time, &rows);
+                (engine, outcome)
+            })
+        });
+        let (engine, outcome) = ran.map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+        self.engine = Some(engine);
         let report = outcome.map_err(|e| step_error(py, &e))?;
         report_dict(py, &report)
     }
@@ -261,7 +287,7 @@ impl Tracker {
     /// The MAP hypothesis's tracks: labels (n,), means (n, S), covariances (n, S, S) and the existence
     /// probability of each label (n,).
     fn map_tracks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let posterior = self.engine.posterior();
+        let posterior = self.engine()?.posterior();
         let map = posterior.hypotheses.first().map(|h| h.tracks.clone()).unwrap_or_default();
         let label_existence = |i: usize| {
             let label = posterior.tracks[i].label;
@@ -272,7 +298,7 @@ impl Tracker {
 
     /// Every distinct track the hypotheses hold, in the store's order, each with its own existence.
     fn tracks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let posterior = self.engine.posterior();
+        let posterior = self.engine()?.posterior();
         let all: Vec<usize> = (0..posterior.tracks.len()).collect();
         self.tracks_dict(py, &posterior, &all, |i| posterior.tracks[i].existence)
     }
@@ -280,7 +306,7 @@ impl Tracker {
     /// The hypotheses, best first: weights (h,), log_weights (h,), and per hypothesis its labels and the
     /// indices of its tracks in `tracks()`.
     fn hypotheses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let posterior = self.engine.posterior();
+        let posterior = self.engine()?.posterior();
         let weights: Array1<f64> = posterior.hypotheses.iter().map(|h| h.weight).collect();
         let log_weights: Array1<f64> = posterior.hypotheses.iter().map(|h| h.log_weight).collect();
         let labels = PyList::empty(py);
@@ -300,9 +326,9 @@ impl Tracker {
     }
 
     /// Σ_h w_h N_h: the expected number of objects.
-    fn expected_cardinality(&self) -> f64 {
-        let posterior = self.engine.posterior();
-        posterior.hypotheses.iter().map(|h| h.weight * h.tracks.len() as f64).fold(0.0, |a, e| a + e)
+    fn expected_cardinality(&self) -> PyResult<f64> {
+        let posterior = self.engine()?.posterior();
+        Ok(posterior.hypotheses.iter().map(|h| h.weight * h.tracks.len() as f64).fold(0.0, |a, e| a + e))
     }
 
     /// 1 (planar) or 2 (3-D): the scenario format's version.
@@ -364,8 +390,8 @@ impl Tracker {
 
     /// Time of the last accepted scan (or of the prior), in seconds.
     #[getter]
-    fn time(&self) -> f64 {
-        self.engine.time()
+    fn time(&self) -> PyResult<f64> {
+        Ok(self.engine()?.time())
     }
 
     fn __repr__(&self) -> String {
