@@ -124,6 +124,11 @@ class RFISSTTracker(Tracker):
     birth_density: Any = Property(
         default=None, doc="GaussianState or list of GaussianStates (x, vx, y, vy): where objects are born")
     birth_probability: float = Property(default=0.01, doc="alpha: probability of a birth per cell and scan")
+    birth_events: str = Property(
+        default="first-order",
+        doc="'first-order' (at most one birth per scan, R-FISST's model) or 'independent' (each cell gives "
+        "birth independently: several births per scan with several cells)",
+    )
     death_probability: float = Property(default=0.005, doc="beta: probability of a death per object and scan")
     prior: Sequence = Property(default=(), doc="GaussianStates (x, vx, y, vy) of the objects known at the start")
     start_time: datetime.datetime = Property(
@@ -211,7 +216,7 @@ class RFISSTTracker(Tracker):
                     "max": [float(x_max), float(y_max)],
                 },
             },
-            "birth": {"probability": float(self.birth_probability), "cells": cells},
+            "birth": {"probability": float(self.birth_probability), "events": self.birth_events, "cells": cells},
             "death_probability": float(self.death_probability),
             "tracker": {"gate": float(self.gate), "max_children_per_scan": 1_000_000, "seed": int(self.seed)},
             "prior": {"time": 0.0, "hypotheses": [{"weight": 1.0, "objects": objects}]},
@@ -234,7 +239,8 @@ class RFISSTTracker(Tracker):
 
     def _measurements(self, detections) -> tuple[np.ndarray, Any]:
         """The scan's measurements (n, D) and its sensor (None, or the detections' common sensor)."""
-        rows = [np.asarray(d.state_vector, dtype=float).reshape(-1) for d in detections]
+        # Sorted: a set's order changes from run to run, and the tracker's result depends on the order.
+        rows = sorted((np.asarray(d.state_vector, dtype=float).reshape(-1) for d in detections), key=tuple)
         sensors = {d.metadata.get("sensor") for d in detections if d.metadata}
         sensors.discard(None)
         if len(sensors) > 1:

@@ -191,3 +191,20 @@ def test_ssa_scenario_through_the_plugin(host_sim) -> None:
         assert np.allclose(final[f"rfisst-{label}"], mean, rtol=0, atol=1e-3)
     with pytest.raises(ValueError, match="start_time"):
         plugin_class()(detector=scans, scenario=str(path))
+
+
+def test_gospa_at_most_stone_soups_gnn_and_jpda() -> None:
+    """On Stone Soup's simulation (5 seeds, the same detections for every tracker), R-FISST's GOSPA
+    (Stone Soup's GOSPAMetric, p = 1, c = 10, in the field of view) averaged over the seeds is at most that
+    of Stone Soup's GNN and JPDA trackers set up as in its tutorials."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import stonesoup_gospa
+
+    runs = [stonesoup_gospa.compare(seed, first_order=False) for seed in range(1, 6)]
+    mean = {name: float(np.mean([r[name][0] for r in runs])) for name in runs[0]}
+    print("mean GOSPA over 5 seeds:", mean)
+    assert mean["R-FISST"] <= mean["GNN"], mean
+    assert mean["R-FISST"] <= mean["JPDA"], mean
