@@ -55,10 +55,8 @@ fn gaussian(mean: [f64; 4], variance: f64) -> Gaussian<f64, 4> {
 /// The example's configuration, written with tracker-core's types.
 fn config() -> tracker_core::SsaConfig<f64> {
     let mut cells = heapless::Vec::new();
-    let cell = Gaussian {
-        mean: SVector::zeros(),
-        covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, 0.5, 0.5])),
-    };
+    let cell =
+        Gaussian { mean: SVector::zeros(), covariance: SMatrix::from_diagonal(&SVector::from([1.0, 1.0, 0.5, 0.5])) };
     cells.push(cell).expect("one cell");
     Config {
         motion: TwoBody { mu: 1.0, acceleration_noise: 1e-6, max_step: 0.01, max_substeps: 1000, min_radius: 0.0 },
@@ -186,13 +184,13 @@ fn c_example_matches_rust() {
     let before = tracker.digest();
     let error = tracker.step(0.6, &[SVector::from([0.5, f64::NAN])]).expect_err("NaN measurement");
     assert_eq!(tracker.digest(), before);
-    expected.push(format!(
-        "rejected: the tracker rejected the scan (the tracker is unchanged) ({error}); unchanged yes"
-    ));
+    expected
+        .push(format!("rejected: the tracker rejected the scan (the tracker is unchanged) ({error}); unchanged yes"));
     expected.push(
         "rejected: a size or count argument is wrong (dimension: the tracker's measurement dimension is 2)".into(),
     );
-    let json_tracker = Box::new(host_sim::pipeline::digest::planar::tracker::<f64>(&scenario).expect("host-sim tracker"));
+    let json_tracker =
+        Box::new(host_sim::pipeline::digest::planar::tracker::<f64>(&scenario).expect("host-sim tracker"));
     expected.extend(posterior(&json_tracker, "json prior"));
 
     assert_lines(&lines, &expected);
