@@ -166,17 +166,21 @@ unsafe fn init_as<Tr: handle::Build>(
     prior: &[RfisstPriorHypothesis],
     prior_time: f64,
 ) -> Result<(), Failure> {
-    let slot = storage.cast::<Slot<Tr>>();
-    let built = match Tr::build(config) {
-        Ok(tracker) => tracker,
+    let config = match Tr::config(config) {
+        Ok(config) => config,
         Err(failure) => {
             // SAFETY: as this function's.
             unsafe { fail(storage, kind, &failure) };
             return Err(failure);
         }
     };
-    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment).
-    unsafe { slot.write(Slot { header: Header::new(FAILED, kind), tracker: built }) };
+    let slot = storage.cast::<Slot<Tr>>();
+    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment). Field by field, so that
+    // the tracker is built in the storage rather than on the stack and copied.
+    unsafe {
+        core::ptr::addr_of_mut!((*slot).header).write(Header::new(FAILED, kind));
+        core::ptr::addr_of_mut!((*slot).tracker).write(Tr::empty(config));
+    }
     // SAFETY: just initialised.
     let slot = unsafe { &mut *slot };
     match Ops::reset(&mut slot.tracker, prior, prior_time) {

@@ -332,43 +332,69 @@ fn c_slice<'a>(
     Ok(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// Builds one default tracker from a C configuration (not yet holding a prior).
+/// Builds one default tracker from a C configuration (not yet holding a prior), in two steps so that the
+/// large tracker can be written straight into the caller's storage: [`Build::config`] converts and
+/// checks the C values (small), [`Build::empty`] is `Tracker::empty`.
 pub trait Build: Ops + Sized {
-    /// `Tracker::empty` of the converted configuration.
-    fn build(config: &RfisstConfig) -> Result<Self, Failure>;
+    /// The core configuration.
+    type Config;
+    /// Converts the C configuration.
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure>;
+    /// `Tracker::empty(config)`.
+    fn empty(config: Self::Config) -> Self;
 }
 
 impl<T: Real> Build for SsaTracker<T> {
-    fn build(config: &RfisstConfig) -> Result<Self, Failure> {
-        Ok(SsaTracker::empty(convert::planar(config)?))
+    type Config = tracker_core::SsaConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
+        convert::planar(config)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        SsaTracker::empty(config)
     }
 }
 
 impl<T: Real> Build for RadarTracker<T> {
-    fn build(config: &RfisstConfig) -> Result<Self, Failure> {
+    type Config = tracker_core::RadarConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors = convert::single_kind_sensors::<T, 3, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_RADAR)?;
         let network = RadarNetwork::<T>::new(convert::rotation(config), &sensors)
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        Ok(RadarTracker::empty(convert::config3d(config, network)?))
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        RadarTracker::empty(config)
     }
 }
 
 impl<T: Real> Build for OpticalTracker<T> {
-    fn build(config: &RfisstConfig) -> Result<Self, Failure> {
+    type Config = tracker_core::OpticalConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors =
             convert::single_kind_sensors::<T, 2, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_OPTICAL)?;
         let network = OpticalNetwork::<T>::new(convert::rotation(config), &sensors)
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        Ok(OpticalTracker::empty(convert::config3d(config, network)?))
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        OpticalTracker::empty(config)
     }
 }
 
 impl<T: Real> Build for NetworkTracker<T> {
-    fn build(config: &RfisstConfig) -> Result<Self, Failure> {
+    type Config = tracker_core::NetworkConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors = convert::mixed_sensors::<T, { ssa_caps::NETWORK_SENSORS }>(config)?;
         let network = Network::<T>::new(convert::rotation(config), &sensors)
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        Ok(NetworkTracker::empty(convert::config3d(config, network)?))
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        NetworkTracker::empty(config)
     }
 }
 
