@@ -84,7 +84,10 @@ pub unsafe extern "C" fn rfisst_tracker_init(
     if tracker.is_null() {
         return RfisstStatus::RfisstNullPointer;
     }
-    // SAFETY: non-null; the caller promises it is writable (and aligned, as any pointer it gives).
+    if !tracker.is_aligned() {
+        return RfisstStatus::RfisstMisaligned;
+    }
+    // SAFETY: non-null and aligned; the caller promises it is writable (and aligned, as any pointer it gives).
     unsafe { tracker.write(core::ptr::null_mut()) };
     let Some(kind) = RfisstKind::of(kind) else { return RfisstStatus::RfisstUnknownKind };
     if let Err(status) = check_storage(storage, size, kind) {

@@ -343,7 +343,10 @@ pub unsafe extern "C" fn rfisst_tracker_init_json(
     if tracker.is_null() {
         return RfisstStatus::RfisstNullPointer;
     }
-    // SAFETY: non-null; the caller promises it is writable.
+    if !tracker.is_aligned() {
+        return RfisstStatus::RfisstMisaligned;
+    }
+    // SAFETY: non-null and aligned; the caller promises it is writable.
     unsafe { tracker.write(core::ptr::null_mut()) };
     let Some(kind) = RfisstKind::of(kind) else { return RfisstStatus::RfisstUnknownKind };
     if storage.is_null() || json.is_null() {
