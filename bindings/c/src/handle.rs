@@ -1,0 +1,453 @@
+//! The opaque handle: caller-provided storage holding a [`Header`] (a magic number, the kind, the last
+//! error's text) followed by one of the default trackers ([`Slot`]). [`Ops`] is what the C functions do
+//! with any tracker, implemented once for every `Tracker`; [`with_kind`] turns a kind code into the
+//! concrete tracker type. No allocation: a step converts its measurements on the stack.
+
+#[cfg(not(feature = "std"))]
+use crate::config::RFISST_MAX_PRIOR_OBJECTS;
+use crate::config::{RfisstConfig, RfisstPriorHypothesis, RfisstPriorObject, RfisstStepReport, RfisstTrack, sensor};
+use crate::convert;
+use crate::status::{Failure, RfisstStatus};
+use core::fmt::Write as _;
+use nalgebra::SVector;
+use tracker_core::model::{MeasurementModel, MotionModel};
+use tracker_core::{
+    Network, NetworkTracker, OpticalNetwork, OpticalTracker, PriorHypothesis, PriorObject, RadarNetwork, RadarTracker,
+    Real, ScanGeometry, SsaTracker, StepError, TrackLabel, Tracker, ssa_caps,
+};
+
+/// The default trackers, by code (`RfisstKind` in C).
+#[repr(u32)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RfisstKind {
+    /// `SsaTracker<f32>`: planar two-body, position measurements.
+    RfisstSsaF32 = 0,
+    /// `SsaTracker<f64>`.
+    RfisstSsaF64 = 1,
+    /// `RadarTracker<f32>`: two-body + J2, up to 4 radars (range, azimuth, elevation).
+    RfisstRadarF32 = 2,
+    /// `RadarTracker<f64>`.
+    RfisstRadarF64 = 3,
+    /// `OpticalTracker<f32>`: two-body + J2, up to 4 telescopes (right ascension, declination).
+    RfisstOpticalF32 = 4,
+    /// `OpticalTracker<f64>`.
+    RfisstOpticalF64 = 5,
+    /// `NetworkTracker<f32>`: two-body + J2, up to 8 sensors of mixed kinds (measurements padded to 4).
+    RfisstNetworkF32 = 6,
+    /// `NetworkTracker<f64>`.
+    RfisstNetworkF64 = 7,
+}
+
+impl RfisstKind {
+    /// Every kind, in code order.
+    pub const ALL: [RfisstKind; 8] = [
+        RfisstKind::RfisstSsaF32,
+        RfisstKind::RfisstSsaF64,
+        RfisstKind::RfisstRadarF32,
+        RfisstKind::RfisstRadarF64,
+        RfisstKind::RfisstOpticalF32,
+        RfisstKind::RfisstOpticalF64,
+        RfisstKind::RfisstNetworkF32,
+        RfisstKind::RfisstNetworkF64,
+    ];
+
+    /// The kind of a code.
+    pub fn of(code: u32) -> Option<Self> {
+        Self::ALL.get(code as usize).copied()
+    }
+
+    /// Whether it is the planar tracker.
+    pub fn is_planar(self) -> bool {
+        matches!(self, RfisstKind::RfisstSsaF32 | RfisstKind::RfisstSsaF64)
+    }
+
+    /// Its name, as the docs spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            RfisstKind::RfisstSsaF32 => "SsaTracker<f32>",
+            RfisstKind::RfisstSsaF64 => "SsaTracker<f64>",
+            RfisstKind::RfisstRadarF32 => "RadarTracker<f32>",
+            RfisstKind::RfisstRadarF64 => "RadarTracker<f64>",
+            RfisstKind::RfisstOpticalF32 => "OpticalTracker<f32>",
+            RfisstKind::RfisstOpticalF64 => "OpticalTracker<f64>",
+            RfisstKind::RfisstNetworkF32 => "NetworkTracker<f32>",
+            RfisstKind::RfisstNetworkF64 => "NetworkTracker<f64>",
+        }
+    }
+}
+
+/// Bytes of the last error's text, its NUL included.
+pub(crate) const ERROR_CAPACITY: usize = 200;
+/// The header's magic number once a tracker is ready.
+pub(crate) const READY: u32 = 0x5246_4953; // "RFIS"
+/// The header's magic number after a failed initialisation (the text says why).
+pub(crate) const FAILED: u32 = 0x4641_494c; // "FAIL"
+
+/// The start of every handle's storage.
+#[repr(C)]
+pub struct Header {
+    /// [`READY`] or [`FAILED`].
+    pub magic: u32,
+    /// The kind's code.
+    pub kind: u32,
+    /// The last error's text, NUL-terminated ("" when none yet).
+    pub error: [u8; ERROR_CAPACITY],
+}
+
+impl Header {
+    /// A header of `kind` with no error.
+    pub const fn new(magic: u32, kind: RfisstKind) -> Self {
+        Self { magic, kind: kind as u32, error: [0; ERROR_CAPACITY] }
+    }
+
+    /// Records `what` (a [`Failure`] or any text) as the last error, truncated at a character boundary
+    /// to fit.
+    pub fn record(&mut self, what: &dyn core::fmt::Display) {
+        let mut text = Text { bytes: &mut self.error, len: 0 };
+        // `Text` never fails: it truncates.
+        let _ = write!(text, "{what}");
+        let end = text.len.min(ERROR_CAPACITY - 1);
+        if let Some(nul) = self.error.get_mut(end) {
+            *nul = 0;
+        }
+    }
+}
+
+/// A writer into a fixed buffer that keeps one byte for the NUL and truncates at character boundaries.
+struct Text<'a> {
+    bytes: &'a mut [u8; ERROR_CAPACITY],
+    len: usize,
+}
+
+impl core::fmt::Write for Text<'_> {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        for c in s.chars() {
+            let mut buffer = [0u8; 4];
+            let encoded = c.encode_utf8(&mut buffer).as_bytes();
+            let end = self.len + encoded.len();
+            if end > ERROR_CAPACITY - 1 {
+                return Ok(());
+            }
+            if let Some(slot) = self.bytes.get_mut(self.len..end) {
+                slot.copy_from_slice(encoded);
+            }
+            self.len = end;
+        }
+        Ok(())
+    }
+}
+
+/// A handle's storage: the header, then the tracker.
+#[repr(C)]
+pub struct Slot<Tr> {
+    /// Magic, kind, last error.
+    pub header: Header,
+    /// The tracker.
+    pub tracker: Tr,
+}
+
+/// What the C functions do with a tracker, whatever its type.
+pub trait Ops {
+    /// Components of one measurement.
+    fn dimension(&self) -> usize;
+    /// Checks the configuration and loads the C prior at `time`; on failure the tracker is unchanged.
+    fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure>;
+    /// Steps one scan of `count` measurements of `dimension` doubles each, row after row.
+    fn step(
+        &mut self,
+        time: f64,
+        sensor: usize,
+        observer: Option<[f64; 6]>,
+        measurements: &[f64],
+    ) -> Result<RfisstStepReport, Failure>;
+    /// Hypotheses held.
+    fn hypothesis_count(&self) -> usize;
+    /// Weight and cardinality of hypothesis `index` (0: the MAP).
+    fn hypothesis(&self, index: usize) -> Option<(f64, usize)>;
+    /// Writes hypothesis `index`'s tracks to `out`; `Err(needed)` when `out` is too short.
+    fn tracks(&self, index: usize, out: &mut [RfisstTrack]) -> Result<usize, Failure>;
+    /// Σ w_h N_h.
+    fn expected_cardinality(&self) -> f64;
+    /// The core's digest.
+    fn digest(&self) -> u64;
+    /// Time of the last scan (or the prior).
+    fn time(&self) -> f64;
+    /// Scans processed since the prior.
+    fn scans(&self) -> u64;
+}
+
+impl<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Ops for Tracker<T, M, G, S, D, H, N, Z, K, B>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D> + Clone,
+{
+    fn dimension(&self) -> usize {
+        D
+    }
+
+    fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        let mut objects: Objects<T, S> = Objects::new();
+        let mut ranges: heapless::Vec<(T, usize, usize), H> = heapless::Vec::new();
+        for (index, hypothesis) in prior.iter().enumerate() {
+            let start = objects.len();
+            for object in c_slice(hypothesis.objects, hypothesis.object_count, index)? {
+                let state = convert::gaussian(&object.state);
+                push_object(&mut objects, PriorObject { label: TrackLabel(object.label), state })?;
+            }
+            ranges
+                .push((T::of_f64(hypothesis.weight), start, objects.len()))
+                .map_err(|_| Failure::Config(tracker_core::ConfigError::PriorTooManyHypotheses))?;
+        }
+        let mut hypotheses: heapless::Vec<PriorHypothesis<'_, T, S>, H> = heapless::Vec::new();
+        for &(weight, start, end) in &ranges {
+            let objects = objects.get(start..end).unwrap_or(&[]);
+            // Same capacity as `ranges`: cannot overflow.
+            let _ = hypotheses.push(PriorHypothesis { weight, objects });
+        }
+        Tracker::reset(self, &hypotheses, time).map_err(Failure::Config)
+    }
+
+    fn step(
+        &mut self,
+        time: f64,
+        sensor: usize,
+        observer: Option<[f64; 6]>,
+        measurements: &[f64],
+    ) -> Result<RfisstStepReport, Failure> {
+        let count = measurements.len() / D;
+        let mut zs: heapless::Vec<SVector<T, D>, Z> = heapless::Vec::new();
+        for row in measurements.chunks_exact(D) {
+            let z = SVector::<T, D>::from_fn(|i, _| T::of_f64(row.get(i).copied().unwrap_or(f64::NAN)));
+            zs.push(z).map_err(|_| Failure::Step(StepError::TooManyMeasurements { received: count, capacity: Z }))?;
+        }
+        let geometry = ScanGeometry { sensor, time, observer: observer.map(|o| o.map(T::of_f64)) };
+        let report = self.step_scan(&geometry, &zs)?;
+        Ok(RfisstStepReport {
+            scan: report.scan,
+            measurements: report.measurements,
+            hypotheses: report.hypotheses,
+            tracks: report.tracks,
+            children: report.children,
+            captured_mass: report.captured_mass.as_f64(),
+            sampler_steps: report.sampler_steps,
+            numerical_drops: report.numerical_drops.count,
+            expected_cardinality: report.expected_cardinality.as_f64(),
+        })
+    }
+
+    fn hypothesis_count(&self) -> usize {
+        self.hypotheses().len()
+    }
+
+    fn hypothesis(&self, index: usize) -> Option<(f64, usize)> {
+        self.hypotheses().nth(index).map(|h| (h.weight().as_f64(), h.len()))
+    }
+
+    fn tracks(&self, index: usize, out: &mut [RfisstTrack]) -> Result<usize, Failure> {
+        let hypothesis =
+            self.hypotheses().nth(index).ok_or(Failure::Plain(RfisstStatus::RfisstOutOfRange, "no such hypothesis"))?;
+        let needed = hypothesis.len();
+        if needed > out.len() {
+            return Err(Failure::Indexed(RfisstStatus::RfisstBufferTooSmall, "tracks: the hypothesis holds", needed));
+        }
+        for (slot, t) in out.iter_mut().zip(hypothesis.tracks()) {
+            *slot = convert::track(t);
+        }
+        Ok(needed)
+    }
+
+    fn expected_cardinality(&self) -> f64 {
+        Tracker::expected_cardinality(self).as_f64()
+    }
+
+    fn digest(&self) -> u64 {
+        Tracker::digest(self)
+    }
+
+    fn time(&self) -> f64 {
+        Tracker::time(self)
+    }
+
+    fn scans(&self) -> u64 {
+        Tracker::scans(self)
+    }
+}
+
+/// The converted prior objects: bounded without `std`, growable with it.
+#[cfg(not(feature = "std"))]
+type Objects<T, const S: usize> = heapless::Vec<PriorObject<T, S>, RFISST_MAX_PRIOR_OBJECTS>;
+#[cfg(feature = "std")]
+type Objects<T, const S: usize> = std::vec::Vec<PriorObject<T, S>>;
+
+#[cfg(not(feature = "std"))]
+fn push_object<T: Real, const S: usize>(objects: &mut Objects<T, S>, object: PriorObject<T, S>) -> Result<(), Failure> {
+    objects.push(object).map_err(|_| {
+        Failure::Indexed(
+            RfisstStatus::RfisstInvalidConfig,
+            "prior: objects over all hypotheses above",
+            RFISST_MAX_PRIOR_OBJECTS,
+        )
+    })
+}
+
+#[cfg(feature = "std")]
+fn push_object<T: Real, const S: usize>(objects: &mut Objects<T, S>, object: PriorObject<T, S>) -> Result<(), Failure> {
+    objects.push(object);
+    Ok(())
+}
+
+/// The C array `(pointer, count)` as a slice: null is allowed for an empty array only.
+fn c_slice<'a>(
+    pointer: *const RfisstPriorObject,
+    count: usize,
+    hypothesis: usize,
+) -> Result<&'a [RfisstPriorObject], Failure> {
+    if count == 0 {
+        return Ok(&[]);
+    }
+    if pointer.is_null() {
+        return Err(Failure::Indexed(RfisstStatus::RfisstNullPointer, "prior: null objects in hypothesis", hypothesis));
+    }
+    if !pointer.is_aligned() {
+        return Err(Failure::Indexed(
+            RfisstStatus::RfisstMisaligned,
+            "prior: misaligned objects in hypothesis",
+            hypothesis,
+        ));
+    }
+    // SAFETY: the caller promises `count` readable objects at `pointer` (checked non-null and aligned), which
+    // stay unchanged during the call.
+    Ok(unsafe { core::slice::from_raw_parts(pointer, count) })
+}
+
+/// Builds one default tracker from a C configuration (not yet holding a prior), in two steps so that the
+/// large tracker can be written straight into the caller's storage: [`Build::config`] converts and
+/// checks the C values (small), [`Build::empty`] is `Tracker::empty`.
+pub trait Build: Ops + Sized {
+    /// The core configuration.
+    type Config;
+    /// Converts the C configuration.
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure>;
+    /// `Tracker::empty(config)`.
+    fn empty(config: Self::Config) -> Self;
+}
+
+impl<T: Real> Build for SsaTracker<T> {
+    type Config = tracker_core::SsaConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
+        convert::planar(config)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        SsaTracker::empty(config)
+    }
+}
+
+impl<T: Real> Build for RadarTracker<T> {
+    type Config = tracker_core::RadarConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
+        let sensors = convert::single_kind_sensors::<T, 3, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_RADAR)?;
+        let network = RadarNetwork::<T>::new(convert::rotation(config), &sensors)
+            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        RadarTracker::empty(config)
+    }
+}
+
+impl<T: Real> Build for OpticalTracker<T> {
+    type Config = tracker_core::OpticalConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
+        let sensors =
+            convert::single_kind_sensors::<T, 2, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_OPTICAL)?;
+        let network = OpticalNetwork::<T>::new(convert::rotation(config), &sensors)
+            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        OpticalTracker::empty(config)
+    }
+}
+
+impl<T: Real> Build for NetworkTracker<T> {
+    type Config = tracker_core::NetworkConfig<T>;
+    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
+        let sensors = convert::mixed_sensors::<T, { ssa_caps::NETWORK_SENSORS }>(config)?;
+        let network = Network::<T>::new(convert::rotation(config), &sensors)
+            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
+        convert::config3d(config, network)
+    }
+    #[inline(always)]
+    fn empty(config: Self::Config) -> Self {
+        NetworkTracker::empty(config)
+    }
+}
+
+/// Calls `$body` with `$Tr` the concrete tracker type of `$kind` (an [`RfisstKind`]).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! with_kind {
+    ($kind:expr, $Tr:ident => $body:expr) => {{
+        use $crate::handle::RfisstKind as K;
+        match $kind {
+            K::RfisstSsaF32 => {
+                type $Tr = tracker_core::SsaTracker<f32>;
+                $body
+            }
+            K::RfisstSsaF64 => {
+                type $Tr = tracker_core::SsaTracker<f64>;
+                $body
+            }
+            K::RfisstRadarF32 => {
+                type $Tr = tracker_core::RadarTracker<f32>;
+                $body
+            }
+            K::RfisstRadarF64 => {
+                type $Tr = tracker_core::RadarTracker<f64>;
+                $body
+            }
+            K::RfisstOpticalF32 => {
+                type $Tr = tracker_core::OpticalTracker<f32>;
+                $body
+            }
+            K::RfisstOpticalF64 => {
+                type $Tr = tracker_core::OpticalTracker<f64>;
+                $body
+            }
+            K::RfisstNetworkF32 => {
+                type $Tr = tracker_core::NetworkTracker<f32>;
+                $body
+            }
+            K::RfisstNetworkF64 => {
+                type $Tr = tracker_core::NetworkTracker<f64>;
+                $body
+            }
+        }
+    }};
+}
+pub use with_kind;
+
+/// Bytes of a handle of `kind`.
+pub fn size(kind: RfisstKind) -> usize {
+    with_kind!(kind, Tr => core::mem::size_of::<Slot<Tr>>())
+}
+
+/// Alignment of a handle of `kind`.
+pub fn align(kind: RfisstKind) -> usize {
+    with_kind!(kind, Tr => core::mem::align_of::<Slot<Tr>>())
+}
