@@ -15,6 +15,8 @@ pub mod associate;
 pub mod compare;
 pub mod corrections;
 pub mod geometry;
+#[cfg(test)]
+mod physics_tests;
 pub mod plots;
 pub mod prior_oem;
 pub mod tracker;
