@@ -109,3 +109,44 @@ fn refraction_removed_matches_the_unrefracted_run() {
     assert_eq!(warnings(&removed), Vec::<String>::new());
     assert_eq!(warnings(&ignored), vec!["radar-north".to_string()]);
 }
+
+#[test]
+fn track_takes_light_time_and_refraction_from_the_tdm() {
+    let mut sim = tiny(0.1);
+    let physics = SensorPhysics {
+        light_time: LightTime::TwoWayReceive,
+        refraction: Some(Atmosphere::STANDARD),
+        ..SensorPhysics::default()
+    };
+    apply(&mut sim, &[physics]).expect("physics");
+    let mut stated = scenario(&sim);
+    stated.sensors[0].light_time = Some(LightTimeSpec::TwoWayReceive);
+    stated.sensors[0].refraction = Some(RefractionSpec::STANDARD);
+    let dir = std::env::temp_dir().join(format!("host-sim-physics-{}-tdm", std::process::id()));
+    let files = crate::io::tdm::export(&stated, &dir).expect("export");
+    let text = std::fs::read_to_string(&files[0]).expect("read");
+    assert!(text.contains("PATH = 1,2,1\n") && !text.contains("COMMENT LIGHT_TIME NONE"), "{text}");
+    assert!(!text.contains("COMMENT REFRACTION NONE"));
+    // The configuration states neither: the TDM's two-way path and AZEL angles turn both on.
+    let config = scenario(&sim);
+    let tracked = crate::io::tdm::scenario_from_tdms(&files, &config).expect("tracked");
+    assert_eq!(tracked.sensors[0].light_time, Some(LightTimeSpec::TwoWayReceive));
+    assert_eq!(tracked.sensors[0].refraction, Some(RefractionSpec::STANDARD));
+    // Stated explicitly, the configuration wins.
+    let mut off = config.clone();
+    off.sensors[0].light_time = Some(LightTimeSpec::Off);
+    off.sensors[0].refraction = Some(RefractionSpec::None);
+    let kept = crate::io::tdm::scenario_from_tdms(&files, &off).expect("tracked");
+    assert_eq!((kept.sensors[0].light_time, kept.sensors[0].refraction), (off.sensors[0].light_time, off.sensors[0].refraction));
+    // A plain export says it has neither, and tracks back as before.
+    let plain = scenario(&tiny(0.1));
+    let plain_files = crate::io::tdm::export(&plain, &dir.join("plain")).expect("export");
+    let back = crate::io::tdm::scenario_from_tdms(&plain_files, &plain).expect("tracked");
+    assert_eq!((back.sensors[0].light_time, back.sensors[0].refraction), (Some(LightTimeSpec::Off), Some(RefractionSpec::None)));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut truth = tracked.clone();
+    truth.truth = stated.truth.clone();
+    let modelled = summary(truth, "tdm-on");
+    let reference = summary(stated, "tdm-stated");
+    assert!((gospa(&modelled) - gospa(&reference)).abs() < 1e-9, "{} {}", gospa(&modelled), gospa(&reference));
+}
