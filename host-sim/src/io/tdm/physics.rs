@@ -149,3 +149,47 @@ pub fn adopt(
     sensor.refraction.get_or_insert(now.1);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stated(lines: &[(&str, &str)]) -> Result<Statement, TdmError> {
+        let mut statement = Statement::default();
+        for (i, (key, value)) in lines.iter().enumerate() {
+            assert!(statement.read(i + 1, key, value)?, "{key} is the statement's");
+        }
+        Ok(statement)
+    }
+
+    #[test]
+    fn path_and_time_tag_give_the_light_time() {
+        let cases = [
+            (vec![], LightTimeSpec::Off),
+            (vec![("PATH", "1,2,1")], LightTimeSpec::TwoWayReceive),
+            (vec![("PATH", "1, 2, 1"), ("TIMETAG_REF", "TRANSMIT")], LightTimeSpec::TwoWayTransmit),
+            (vec![("PATH", "2,1"), ("TIMETAG_REF", "RECEIVE")], LightTimeSpec::OneWayReceive),
+            (vec![("PATH", "2,1"), ("TIMETAG_REF", "TRANSMIT")], LightTimeSpec::Off),
+            (vec![("PATH", "1,2"), ("TIMETAG_REF", "TRANSMIT")], LightTimeSpec::OneWayTransmit),
+            (vec![("PATH", "1,2")], LightTimeSpec::Off),
+            (vec![("PATH", "1,2,1"), ("COMMENT", NO_LIGHT_TIME)], LightTimeSpec::Off),
+        ];
+        for (lines, wanted) in cases {
+            assert_eq!(stated(&lines).expect("read").light_time(), wanted, "{lines:?}");
+        }
+        let none = stated(&[("COMMENT", NO_REFRACTION)]).expect("read");
+        assert_eq!(none.refraction(true), RefractionSpec::None);
+        assert_eq!(Statement::default().refraction(true), RefractionSpec::STANDARD);
+        assert_eq!(Statement::default().refraction(false), RefractionSpec::None);
+        assert!(!Statement::default().read(1, "COMMENT", "another remark").expect("not an error"));
+    }
+
+    #[test]
+    fn unsupported_paths_and_time_tags_are_refused() {
+        let path = stated(&[("PATH", "1,2,3")]).unwrap_err();
+        assert_eq!((path.line, path.keyword.as_str()), (1, "PATH"));
+        assert!(path.message.contains("path \"1,2,3\" is not supported"), "{}", path.message);
+        let tag = stated(&[("TIMETAG_REF", "MIDDLE")]).unwrap_err();
+        assert_eq!(tag.keyword, "TIMETAG_REF");
+    }
+}
