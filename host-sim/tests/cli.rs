@@ -1473,7 +1473,7 @@ fn v2_tiny_3d_generates_loads_and_runs_with_every_summary_key() {
     assert_eq!(rows.len(), 3 * scans, "three MAP tracks per scan");
     assert!(rows.iter().all(|r| r.split(',').count() == 12), "{csv}");
 
-    for plot in ["sky_0_radar-north", "expected_cardinality", "gospa"] {
+    for plot in ["sky_0_radar-north", "expected_cardinality", "gospa", "residuals_0_radar-north"] {
         let png = assert_nonempty_file(&out.join(format!("{plot}.png")));
         assert!(png.starts_with(b"\x89PNG"), "{plot}.png is not a PNG");
     }
