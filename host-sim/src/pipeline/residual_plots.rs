@@ -12,10 +12,13 @@ use std::path::Path;
 /// One component's name and noise σ (the file's units).
 pub type Axis = (&'static str, f64);
 
-/// Per sensor, in the order first seen: its axes and per component the (time, residual / σ) points.
+/// One sensor's name, axes (if known) and per component the (time, residual / σ) points.
+type SensorResiduals = (String, Option<Vec<Axis>>, Vec<Vec<(f64, f64)>>);
+
+/// Per sensor, in the order first seen.
 #[derive(Debug, Default)]
 pub struct ResidualPlots {
-    sensors: Vec<(String, Option<Vec<Axis>>, Vec<Vec<(f64, f64)>>)>,
+    sensors: Vec<SensorResiduals>,
     latest: f64,
 }
 
@@ -57,7 +60,8 @@ impl ResidualPlots {
                 })
                 .collect();
             let y_label = if axes.is_some() { "residual / noise sigma" } else { "residual (file units)" };
-            let stem: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+            let stem: String =
+                name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
             plot_series(
                 &out.join(format!("residuals_{index}_{stem}")),
                 &format!("{name}: residuals of the measurements associated with MAP tracks"),

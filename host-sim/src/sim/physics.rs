@@ -112,7 +112,13 @@ fn retarded(state: &[f64; 6], observer: &Observer, k: f64) -> Result<[f64; 6], S
 
 /// The mean of the up- and down-leg of a two-way signal bounced by `object`: tagged at reception
 /// (`receive`, the site receiving at `t`) or at transmission (sent at `t`, received at `received`).
-fn two_way_range(object: &[f64; 6], t: f64, received: f64, receive: bool, observer_at: &dyn Fn(f64) -> Observer) -> f64 {
+fn two_way_range(
+    object: &[f64; 6],
+    t: f64,
+    received: f64,
+    receive: bool,
+    observer_at: &dyn Fn(f64) -> Observer,
+) -> f64 {
     let at = |time: f64| norm(sub(pos(object), observer_at(time).position));
     if receive {
         let down = at(t);

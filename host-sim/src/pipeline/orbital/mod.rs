@@ -199,7 +199,14 @@ impl World<3> for OrbitalWorld<'_> {
         let spec = self.scenario.sensors.iter().find(|s| s.name == sensor)?;
         let sigma = spec.noise.sigma(kind);
         let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
-        Some(plots::component_names(kind).iter().zip(&sigma).enumerate().map(|(i, (n, &s))| (*n, in_file_units(i, s))).collect())
+        Some(
+            plots::component_names(kind)
+                .iter()
+                .zip(&sigma)
+                .enumerate()
+                .map(|(i, (n, &s))| (*n, in_file_units(i, s)))
+                .collect(),
+        )
     }
 
     fn in_view(&self, k: usize, state: &[f64]) -> bool {

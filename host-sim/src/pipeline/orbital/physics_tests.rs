@@ -137,12 +137,18 @@ fn track_takes_light_time_and_refraction_from_the_tdm() {
     off.sensors[0].light_time = Some(LightTimeSpec::Off);
     off.sensors[0].refraction = Some(RefractionSpec::None);
     let kept = crate::io::tdm::scenario_from_tdms(&files, &off).expect("tracked");
-    assert_eq!((kept.sensors[0].light_time, kept.sensors[0].refraction), (off.sensors[0].light_time, off.sensors[0].refraction));
+    assert_eq!(
+        (kept.sensors[0].light_time, kept.sensors[0].refraction),
+        (off.sensors[0].light_time, off.sensors[0].refraction)
+    );
     // A plain export says it has neither, and tracks back as before.
     let plain = scenario(&tiny(0.1));
     let plain_files = crate::io::tdm::export(&plain, &dir.join("plain")).expect("export");
     let back = crate::io::tdm::scenario_from_tdms(&plain_files, &plain).expect("tracked");
-    assert_eq!((back.sensors[0].light_time, back.sensors[0].refraction), (Some(LightTimeSpec::Off), Some(RefractionSpec::None)));
+    assert_eq!(
+        (back.sensors[0].light_time, back.sensors[0].refraction),
+        (Some(LightTimeSpec::Off), Some(RefractionSpec::None))
+    );
     let _ = std::fs::remove_dir_all(&dir);
     let mut truth = tracked.clone();
     truth.truth = stated.truth.clone();

@@ -19,8 +19,8 @@ use tracker_core::model::AdmissibleRegion;
 mod checks;
 mod physics;
 pub use checks::check_sensor_names;
-pub use physics::{LightTimeSpec, RefractionSpec};
 use checks::{check_measurement, covariance6};
+pub use physics::{LightTimeSpec, RefractionSpec};
 
 /// The format tag of a version 2 file.
 pub const FORMAT_V2: &str = "rfisst-scenario/2";
