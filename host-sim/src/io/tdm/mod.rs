@@ -11,6 +11,8 @@
 //! - `TIME_SYSTEM`, `REFERENCE_FRAME` and the `CORRECTION_*` keywords are applied on the way in
 //!   ([`Reduction`]: times moved to UTC, EME2000 right ascensions turned into TEME, corrections added when
 //!   `CORRECTIONS_APPLIED = NO`);
+//! - `PATH` and `TIMETAG_REF` give a sensor's light time and `ANGLE_TYPE = AZEL` its refraction where the
+//!   configuration does not state them ([`physics`]);
 //! - a measurement is its components' lines in that order, all with the scan's time; every distinct time
 //!   is one scan; a scan without measurements is a data-section line `COMMENT EMPTY_SCAN <time>`;
 //! - values are written in their shortest round-trip decimal form (the scenario's own degrees: no unit
