@@ -189,6 +189,60 @@ mod tests {
     }
 
     #[test]
+    fn a_network_applies_light_time_only_to_the_sensors_that_set_it() {
+        use crate::model::{RadarRangeAzEl, SensorNetwork};
+        use crate::sensor::{
+            EarthRotation, GroundSite, LookShape, Placement, Platform, Region, ScanGeometry, Sensor, SiteSensor,
+        };
+        let field_of_view = Region::Look {
+            shape: LookShape::Cone { azimuth: 0.0, elevation: 1.0, half_angle: 1.5 },
+            min_elevation: 0.0,
+            range: Some([100.0, 5000.0]),
+            range_rate: None,
+        };
+        let site = |latitude: f64| SiteSensor {
+            platform: Platform::Ground(GroundSite { latitude, longitude: 0.1, height: 0.1 }),
+            sigma: [0.01, 1e-4, 1e-4],
+            detection: Sensor { detection_probability: 0.9, clutter_rate: 1.0, field_of_view },
+        };
+        let plain: SensorNetwork<f64, RadarRangeAzEl<f64>, 3, 2> =
+            SensorNetwork::new(EarthRotation::new(0.2), &[site(0.5), site(0.6)]).unwrap();
+        assert!(plain.with_light_time(2, LightTime::OneWayReceive).is_err());
+        let network = plain.with_light_time(1, LightTime::TwoWayReceive).unwrap();
+        assert_eq!((network.light_time(0), network.light_time(1)), (LightTime::Off, LightTime::TwoWayReceive));
+        let at = |sensor| ScanGeometry { sensor, time: 30.0, observer: None };
+        // Sensor 0: exactly the network without the setting; sensor 1: the retarded measurement.
+        let (first, unset) = (network.place(&at(0)).unwrap(), plain.place(&at(0)).unwrap());
+        assert_eq!(first.measure(&leo()), unset.measure(&leo()));
+        assert_eq!(first.jacobian(&leo()), unset.jacobian(&leo()));
+        let second = network.place(&at(1)).unwrap();
+        let placed = plain.place(&at(1)).unwrap();
+        assert_ne!(second.measure(&leo()), placed.measure(&leo()));
+        let expected = measure(placed.placed(), &placed.placed().observer, LightTime::TwoWayReceive, true, &leo());
+        assert_eq!(second.measure(&leo()), expected);
+        let optical: SensorNetwork<f64, OpticalRaDec<f64>, 2, 1> = SensorNetwork::new(
+            EarthRotation::new(0.2),
+            &[SiteSensor {
+                platform: Platform::Ground(GroundSite { latitude: 0.5, longitude: 0.1, height: 0.1 }),
+                sigma: [1e-5, 1e-5],
+                detection: Sensor {
+                    detection_probability: 0.9,
+                    clutter_rate: 1.0,
+                    field_of_view: Region::Look {
+                        shape: LookShape::Cone { azimuth: 0.0, elevation: 1.0, half_angle: 0.2 },
+                        min_elevation: 0.0,
+                        range: None,
+                        range_rate: None,
+                    },
+                },
+            }],
+        )
+        .unwrap();
+        assert!(optical.with_light_time(0, LightTime::TwoWayReceive).is_err());
+        assert!(optical.with_light_time(0, LightTime::OneWayReceive).is_ok());
+    }
+
+    #[test]
     fn receive_and_transmit_tags_move_the_object_opposite_ways_by_v_tau() {
         let model = radar();
         let plain = model.measure(&leo());
