@@ -75,7 +75,12 @@ fn a_track_dropped_for_a_numerical_failure_is_reported() {
         let out = dir.join(tracker);
         let output = host_sim(&["run", p(&file), "--tracker", tracker, "--quiet", "--out", p(&out)]);
         assert_eq!(output.status.code(), Some(0), "{tracker}: {}", describe(&output));
-        let err = String::from_utf8_lossy(&output.stderr).to_string();
+        // The judge's `warning: sensor` line aside (issue 29: this hand-made scenario's NIS is below its band).
+        let err: String = String::from_utf8_lossy(&output.stderr)
+            .lines()
+            .filter(|l| !l.starts_with("warning: sensor "))
+            .map(|l| format!("{l}\n"))
+            .collect();
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.starts_with("warning: scan 0 (t = 10): 1 track(s) dropped for a numerical failure"), "{err}");
         assert!(err.contains("the first track 1 (motion model: "), "{err}");

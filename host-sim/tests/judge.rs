@@ -126,3 +126,35 @@ fn a_biased_sensor_is_flagged_and_no_other() {
     assert!(f(&copy["mean_nis"]) > f(&copy["nis_band"][1]), "{copy}");
     assert!(stderr.contains("warning: sensor radar-copy: mean NIS"), "{stderr}");
 }
+
+/// A planar (version 1) run of a core tracker is judged too: its one sensor is `sensor`; a 1.5 σ offset on
+/// every x is flagged by the mean NIS.
+#[test]
+fn a_planar_run_is_judged_and_an_offset_flagged() {
+    let dir = TempDir::new("judge-planar");
+    let file = dir.join("crossings.json");
+    ok(host_sim(&["generate", "crossings", "--seed", "1", "--out", p(&file)]));
+    let out = dir.join("run");
+    ok(host_sim(&["run", p(&file), "--out", p(&out), "--quiet"]));
+    let s = summary(&out);
+    let sensor = &s["residuals"]["sensor"];
+    assert_eq!(sensor["rms"].as_array().map(Vec::len), Some(2), "{s}");
+    assert!(in_band(sensor), "{sensor}");
+    assert_eq!(s["consistency_warnings"], Value::Array(vec![]));
+    assert!(s["tracks_started"].as_u64().is_some() && f(&s["measurements_per_track"]) > 1.0, "{s}");
+    assert!(out.join("residuals_0_sensor.png").exists());
+    // σ = 0.5 on x: every x moved by 0.75.
+    let mut shifted: Value = serde_json::from_str(&read(&file)).expect("scenario JSON");
+    for scan in shifted["scans"].as_array_mut().expect("scans") {
+        for z in scan["measurements"].as_array_mut().expect("measurements") {
+            z[0] = (f(&z[0]) + 0.75).into();
+        }
+    }
+    let biased = dir.join("biased.json");
+    std::fs::write(&biased, shifted.to_string()).expect("write");
+    let out = dir.join("biased");
+    let output = ok(host_sim(&["run", p(&biased), "--out", p(&out), "--quiet"]));
+    let s = summary(&out);
+    assert_eq!(s["consistency_warnings"], serde_json::json!(["sensor"]), "{}", s["residuals"]);
+    assert!(String::from_utf8_lossy(&output.stderr).contains("warning: sensor sensor: mean NIS"));
+}

@@ -277,6 +277,9 @@ fn radar(name: &str, site: [f64; 3], shape: ShapeSpec, min_elevation_deg: f64) -
         },
         detection_probability: 0.9,
         clutter_rate: 1.0,
+        bias: None,
+        light_time: None,
+        refraction: None,
     }
 }
 
@@ -328,6 +331,9 @@ pub fn telescope(scan_interval_s: f64) -> SensorsFile {
             },
             detection_probability: 0.9,
             clutter_rate: 0.5,
+            bias: None,
+            light_time: None,
+            refraction: None,
         }],
     }
 }

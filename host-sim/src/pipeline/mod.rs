@@ -13,6 +13,7 @@ pub mod output;
 pub mod planar;
 pub mod profile;
 pub mod replay;
+pub mod residual_plots;
 pub mod run_charts;
 pub mod settings;
 pub mod snapshot;

@@ -171,6 +171,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let bar = progress(n, quiet, heading.tracker);
     let mut notices = Notices::default();
     let mut judge = Judge::new(prior.map.iter().map(|t| t.label));
+    let mut residual_plots = crate::pipeline::residual_plots::ResidualPlots::default();
     for k in 0..n {
         let time = world.time(k);
         let associations = world.associate(k);
@@ -197,6 +198,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
         };
         if let (Some(scan), Some(_)) = (&associations, info) {
             judge.scan(scan);
+            residual_plots.add(time, scan, world.residual_axes(&scan.sensor));
         }
         let numerical_drops = info.map(|i| i.numerical_drops).unwrap_or_default();
         if let Some(line) = notices.dropped(k, time, &numerical_drops) {
@@ -245,6 +247,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     summary.refused_scans = refused_scans(&*world, &records);
     if world.judged() {
         judged(&mut summary, &judge);
+        residual_plots.write(out)?;
     }
     // The process's peak resident memory so far (Linux), to check the reference's budget.
     summary.peak_resident_kib = peak_resident_kib();

@@ -110,6 +110,11 @@ pub trait World<const P: usize> {
     fn associate(&self, _k: usize) -> Option<crate::eval::consistency::ScanAssociations> {
         None
     }
+    /// The names and noise σ (the file's units) of the components of `sensor`'s measurements, for its
+    /// residual plot ([`crate::pipeline::residual_plots`]); `None`: unknown (residuals drawn as they are).
+    fn residual_axes(&self, _sensor: &str) -> Option<Vec<crate::pipeline::residual_plots::Axis>> {
+        None
+    }
     /// Whether `state` lies in the field of view of scan `k`'s sensor.
     fn in_view(&self, k: usize, state: &[f64]) -> bool;
     /// The header of `estimates.csv`.

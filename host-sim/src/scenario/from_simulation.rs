@@ -433,5 +433,8 @@ pub fn sensor_spec(sensor: &sensor::SensorSpec) -> Sensor3dSpec {
         },
         detection_probability: sensor.detection_probability,
         clutter_rate: sensor.clutter_rate,
+        bias: None,
+        light_time: None,
+        refraction: None,
     }
 }

@@ -17,6 +17,7 @@ pub mod frames;
 #[cfg(test)]
 mod long_gap_tests;
 pub mod orbit;
+pub mod physics;
 pub mod planar;
 pub mod presets;
 pub mod refraction;

@@ -24,12 +24,15 @@
 //! - [`SensorNetwork`]: up to `C` sensors of one of those types on ground sites or spacecraft, each a
 //!   [`SiteSensor`](crate::sensor::SiteSensor) with its own noise, field of view, p_D and clutter, placed at
 //!   every scan ([`ScanGeometry`](crate::sensor::ScanGeometry)).
+//! - [`LightTime`] ([`light_time`]): a [`SensorNetwork`] sensor's measurements of the object at the signal's
+//!   emission or bounce time (opt-in per sensor, [`SensorNetwork::with_light_time`]).
 //! - [`MixedNetwork`]: up to `C` sensors of mixed kinds ([`SensorKind`]: radar, radar with range-rate,
 //!   right ascension and declination, azimuth and elevation only, range only, range and range-rate) in
 //!   one tracker; each kind measures its own components, padded to the tracker's `D = 4`.
 
 mod admissible;
 mod constant_velocity;
+pub mod light_time;
 mod mixed;
 mod network;
 mod optical;
@@ -43,6 +46,7 @@ mod two_body_j2;
 pub use crate::sensor::EARTH_RADIUS;
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
+pub use light_time::LightTime;
 pub use mixed::{KindError, KindMeasurement, MIXED_DIMENSION, MixedLook, MixedNetwork, MixedSensor, SensorKind};
 pub use network::{Placeable, SensorNetwork};
 pub use optical::OpticalRaDec;

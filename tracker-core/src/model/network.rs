@@ -14,6 +14,7 @@
 //! the network is built (the quadrature of the model's [`Placeable::density`], see [`crate::sensor::LookShape::area`]): Earth rotation
 //! turns a ground site's frame about the pole, which leaves the density unchanged.
 
+use super::light_time::{self, LightTime};
 use super::{
     AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
 };
@@ -140,6 +141,10 @@ pub struct SensorNetwork<T, X, const D: usize, const C: usize> {
     current: usize,
     frame: [[T; 3]; 3],
     placed: X,
+    /// Per sensor, how light time delays its measurements (all [`LightTime::Off`] unless set).
+    light_time: [LightTime; C],
+    /// The observer's inertial state at the current placement (for light time).
+    observer: [T; 6],
 }
 
 /// The spacecraft frame: rows "East" = ŷ, "North" = x̂, "Up" = ẑ, so that azimuth is right ascension and
@@ -167,6 +172,8 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
             current: 0,
             frame: inertial_frame(),
             placed: X::placed([T::zero(); 6], inertial_frame(), first.sigma),
+            light_time: [LightTime::Off; C],
+            observer: [T::zero(); 6],
         };
         for (index, sensor) in sensors.iter().enumerate() {
             check_sensor(sensor)?;
@@ -213,7 +220,29 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<
             return Err(PlacementError::UnknownSensor { sensor, sensors: self.count });
         };
         let (state, frame) = observer_and_frame(&self.rotation, site.platform, time, observer)?;
-        Ok(Self { current: sensor, frame, placed: X::placed(state, frame, site.sigma), ..*self })
+        Ok(Self { current: sensor, frame, placed: X::placed(state, frame, site.sigma), observer: state, ..*self })
+    }
+
+    /// The network with sensor `index`'s measurements delayed by light time `mode`
+    /// ([`super::light_time`]; docs/maths.md §6.12). Every sensor starts [`LightTime::Off`], which measures
+    /// exactly as a network without the setting.
+    ///
+    /// # Errors
+    /// An unknown sensor, or a two-way mode for a model without a range.
+    pub fn with_light_time(mut self, index: usize, mode: LightTime) -> Result<Self, &'static str> {
+        if mode.two_way() && !X::AXES.range {
+            return Err("sensor network: two-way light time needs a range measurement");
+        }
+        match self.light_time.get_mut(..self.count).and_then(|modes| modes.get_mut(index)) {
+            Some(slot) => *slot = mode,
+            None => return Err("sensor network: light time for an unknown sensor"),
+        }
+        Ok(self)
+    }
+
+    /// The light time of sensor `index` ([`LightTime::Off`] for an unknown one).
+    pub fn light_time(&self, index: usize) -> LightTime {
+        self.light_time.get(..self.count).and_then(|modes| modes.get(index)).copied().unwrap_or_default()
     }
 }
 
@@ -334,11 +363,17 @@ pub(super) fn angular_volume<T: Real, X: Placeable<T, D>, const D: usize>(
 
 impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> Measure<T, 6, D> for SensorNetwork<T, X, D, C> {
     fn measure(&self, state: &SVector<T, 6>) -> SVector<T, D> {
-        self.placed.measure(state)
+        match self.light_time(self.current) {
+            LightTime::Off => self.placed.measure(state),
+            mode => light_time::measure(&self.placed, &self.observer, mode, X::AXES.range, state),
+        }
     }
 
     fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, D, 6> {
-        self.placed.jacobian(state)
+        match self.light_time(self.current) {
+            LightTime::Off => self.placed.jacobian(state),
+            mode => light_time::jacobian(&self.placed, &self.observer, mode, state),
+        }
     }
 
     fn noise_covariance(&self) -> SMatrix<T, D, D> {

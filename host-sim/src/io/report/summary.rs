@@ -71,8 +71,9 @@ pub struct RunSummary {
     /// SGP4 during the run, given twice). Absent from other runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub catalogue_dropped: Option<crate::io::catalogue::CatalogueDropped>,
-    /// Orbital runs only: per sensor, the residuals and NIS of the MAP tracks' associated measurements
-    /// ([`crate::eval::consistency`], issue 29). Absent from other runs, like the four keys below.
+    /// Runs of the core trackers: per sensor, the residuals and NIS of the MAP tracks' associated
+    /// measurements ([`crate::eval::consistency`], issue 29). Absent from the reference's runs, like the four
+    /// keys below.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub residuals: Option<std::collections::BTreeMap<String, super::SensorResiduals>>,
     /// MAP labels appearing over the run.

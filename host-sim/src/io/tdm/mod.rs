@@ -11,6 +11,8 @@
 //! - `TIME_SYSTEM`, `REFERENCE_FRAME` and the `CORRECTION_*` keywords are applied on the way in
 //!   ([`Reduction`]: times moved to UTC, EME2000 right ascensions turned into TEME, corrections added when
 //!   `CORRECTIONS_APPLIED = NO`);
+//! - `PATH` and `TIMETAG_REF` give a sensor's light time and `ANGLE_TYPE = AZEL` its refraction where the
+//!   configuration does not state them ([`physics`]);
 //! - a measurement is its components' lines in that order, all with the scan's time; every distinct time
 //!   is one scan; a scan without measurements is a data-section line `COMMENT EMPTY_SCAN <time>`;
 //! - values are written in their shortest round-trip decimal form (the scenario's own degrees: no unit
@@ -18,6 +20,7 @@
 //!
 //! Bad input is a [`TdmError`]: the line, the keyword and what is wrong.
 
+pub mod physics;
 mod reduction;
 
 pub use reduction::Reduction;
@@ -123,6 +126,8 @@ pub struct Segment {
     pub angle_type: Option<(AngleType, usize)>,
     /// Time system, reference frame and corrections ([`Reduction`]).
     pub reduction: Reduction,
+    /// Signal path, time tag and what the data lacks ([`physics::Statement`]).
+    pub physics: physics::Statement,
     /// The data lines and empty scans, in file order (times in UTC, corrections applied).
     pub records: Vec<Record>,
 }
@@ -263,11 +268,19 @@ struct MetaBlock {
     participant: Option<(String, usize)>,
     angle_type: Option<(AngleType, usize)>,
     reduction: Reduction,
+    physics: physics::Statement,
 }
 
 impl MetaBlock {
     fn starting_at(line: usize) -> Self {
-        Self { line, time_system: None, participant: None, angle_type: None, reduction: Reduction::default() }
+        Self {
+            line,
+            time_system: None,
+            participant: None,
+            angle_type: None,
+            reduction: Reduction::default(),
+            physics: physics::Statement::default(),
+        }
     }
 
     /// A metadata line other than `META_STOP`: a supported value of a known keyword.
@@ -276,6 +289,9 @@ impl MetaBlock {
             if key == "TIME_SYSTEM" {
                 self.time_system = Some(line);
             }
+            return Ok(());
+        }
+        if self.physics.read(line, key, value)? {
             return Ok(());
         }
         match key {
@@ -426,6 +442,7 @@ pub fn parse(text: &str) -> Result<Tdm, TdmError> {
                     participant,
                     angle_type: meta.angle_type,
                     reduction: meta.reduction,
+                    physics: meta.physics,
                     records: vec![],
                 });
                 state = State::BetweenMetaAndData;
@@ -613,10 +630,18 @@ pub fn scenario_from_tdms(files: &[PathBuf], config: &Scenario3d) -> Result<Scen
 /// As [`scenario_from_tdms`].
 pub fn scenario_after_prior(files: &[PathBuf], config: &Scenario3d, skip: bool) -> Result<(Scenario3d, usize), Error> {
     let mut all: Vec<SourcedScan> = vec![];
+    let mut sensors = config.sensors.clone();
+    let mut stated = vec![None; sensors.len()];
     for file in files {
         let text = crate::scenario::read_limited(file)?;
         let tdm = parse(&text).map_err(|e| with_file(file, e))?;
         let scans = scans_of(&tdm, config).map_err(|e| with_file(file, e))?;
+        for segment in &tdm.segments {
+            let Some(i) = sensors.iter().position(|s| s.name == segment.participant.0) else { continue };
+            let az_el = config.measurement != Measurement3dSpec::Optical;
+            physics::adopt(&mut sensors[i], &segment.physics, az_el, &mut stated[i])
+                .map_err(|e| Error::input(format!("{}:{}: {e}", file.display(), segment.meta_line)))?;
+        }
         all.extend(scans.into_iter().map(|(scan, line)| SourcedScan { scan, file: file.clone(), line }));
     }
     all.sort_by(|a, b| a.scan.time.total_cmp(&b.scan.time));
@@ -634,6 +659,7 @@ pub fn scenario_after_prior(files: &[PathBuf], config: &Scenario3d, skip: bool) 
         }
     }
     let mut scenario = config.clone();
+    scenario.sensors = sensors;
     scenario.truth = None;
     scenario.scans = all.iter().map(|s| s.scan.clone()).collect();
     if let Err(e) = scenario.validate() {
@@ -684,12 +710,12 @@ pub fn write(scenario: &Scenario3d, sensor: usize) -> Result<String, Error> {
     line(format!("PARTICIPANT_1 = {}", spec.name));
     line("PARTICIPANT_2 = SPACE OBJECTS".into());
     line("MODE = SEQUENTIAL".into());
-    if kind == Measurement3dSpec::Optical {
-        line("PATH = 2,1".into());
+    let optical = kind == Measurement3dSpec::Optical;
+    physics::export_lines(spec, optical).into_iter().for_each(&mut line);
+    if optical {
         line("ANGLE_TYPE = RADEC".into());
         line("REFERENCE_FRAME = TEME".into());
     } else {
-        line("PATH = 1,2,1".into());
         line("ANGLE_TYPE = AZEL".into());
         line("RANGE_UNITS = km".into());
     }

@@ -14,18 +14,29 @@ use tracker_core::{Tracker, ekf};
 pub type Association = (u32, Vec<f64>, f64);
 
 /// Per measurement of a scan of `sensor` at `time` (the tracker's units), its association with a MAP track
-/// of `tracker` before the update, or `None`; and the measurement model's dimension. No association when
+/// of `tracker` before the update, or `None`; and the measurement model's dimension. Any state dimension
+/// `S`: the planar world's trackers use it too. No association when
 /// the scan cannot be placed; a track whose prediction or innovation fails numerically takes none.
 #[allow(clippy::type_complexity)]
-pub fn associate<M, G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
-    tracker: &Tracker<f64, M, G, 6, D, H, N, Z, K, B>,
+pub fn associate<
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    tracker: &Tracker<f64, M, G, S, D, H, N, Z, K, B>,
     sensor: usize,
     time: f64,
     measurements: &[Vec<f64>],
 ) -> (usize, Vec<Option<Association>>)
 where
-    M: MotionModel<f64, 6>,
-    G: MeasurementModel<f64, 6, D> + Clone,
+    M: MotionModel<f64, S>,
+    G: MeasurementModel<f64, S, D> + Clone,
 {
     let config = tracker.config();
     let Ok(placed) = config.measurement.place(&ScanGeometry { sensor, time, observer: None }) else {

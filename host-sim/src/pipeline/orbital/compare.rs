@@ -1,7 +1,7 @@
 //! `host-sim compare` on a version 2 file: the bounded tracker and the unbounded reference on the same
 //! scans ([`crate::eval::exactness::compare_scans`]).
 
-use super::tracker::{choose_profile, config3d, measurements_in_radians};
+use super::tracker::{choose_profile, config3d};
 use crate::error::Error;
 use crate::eval::exactness::{CompareFigures, Scan, compare_scans_with_budget};
 use crate::pipeline::profile::ORBITAL;
@@ -13,13 +13,13 @@ use nalgebra::SVector;
 use tracker_core::model::Placeable;
 use tracker_core::sensor::ScanGeometry;
 
-/// The scans of `scenario` as the trackers take them (angles in radians).
+/// The scans of `scenario` as the trackers take them (angles in radians, corrections removed).
 fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<Scan<D>> {
     scenario
         .scans
         .iter()
         .map(|scan| {
-            let zs = measurements_in_radians(scenario.measurement, &scan.measurements)
+            let zs = super::corrections::corrected_measurements(scenario, scan)
                 .iter()
                 .map(|z| SVector::<f64, D>::from_column_slice(z))
                 .collect();

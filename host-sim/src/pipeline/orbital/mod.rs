@@ -13,7 +13,10 @@
 
 pub mod associate;
 pub mod compare;
+pub mod corrections;
 pub mod geometry;
+#[cfg(test)]
+mod physics_tests;
 pub mod plots;
 pub mod prior_oem;
 pub mod tracker;
@@ -130,7 +133,7 @@ impl World<3> for OrbitalWorld<'_> {
 
     fn step(&mut self, k: usize) -> Result<StepInfo, StepFailure> {
         let scan = &self.scenario.scans[k];
-        let zs = measurements_in_radians(self.scenario.measurement, &scan.measurements);
+        let zs = corrections::corrected_measurements(self.scenario, scan);
         self.runner.step(scan.sensor, scan.time, &zs).map_err(|e| match e {
             // Bad input, not a tracker failure: one line and exit code 2.
             StepError::TimeStepTooLong { .. } | StepError::Placement(_) => StepFailure::BadInput(e.to_string()),
@@ -171,7 +174,7 @@ impl World<3> for OrbitalWorld<'_> {
     fn associate(&self, k: usize) -> Option<ScanAssociations> {
         let scan = &self.scenario.scans[k];
         let kind = self.scenario.measurement;
-        let zs = measurements_in_radians(kind, &scan.measurements);
+        let zs = corrections::corrected_measurements(self.scenario, scan);
         let (dimension, associations) = self.runner.associate(scan.sensor, scan.time, &zs);
         let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
         let associated = associations
@@ -189,6 +192,21 @@ impl World<3> for OrbitalWorld<'_> {
             measurements: scan.measurements.len(),
             associated,
         })
+    }
+
+    fn residual_axes(&self, sensor: &str) -> Option<Vec<crate::pipeline::residual_plots::Axis>> {
+        let kind = self.scenario.measurement;
+        let spec = self.scenario.sensors.iter().find(|s| s.name == sensor)?;
+        let sigma = spec.noise.sigma(kind);
+        let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
+        Some(
+            plots::component_names(kind)
+                .iter()
+                .zip(&sigma)
+                .enumerate()
+                .map(|(i, (n, &s))| (*n, in_file_units(i, s)))
+                .collect(),
+        )
     }
 
     fn in_view(&self, k: usize, state: &[f64]) -> bool {

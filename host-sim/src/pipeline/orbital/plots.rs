@@ -49,6 +49,16 @@ fn fov_outline(shape: &ShapeSpec, mask_deg: f64) -> Vec<(f64, f64)> {
     }
 }
 
+/// The names of a measurement's components, for its residual plot.
+pub(super) fn component_names(kind: crate::scenario::v2::Measurement3dSpec) -> &'static [&'static str] {
+    use crate::scenario::v2::Measurement3dSpec;
+    match kind {
+        Measurement3dSpec::Radar => &["range", "azimuth", "elevation"],
+        Measurement3dSpec::RadarRangeRate => &["range", "azimuth", "elevation", "range-rate"],
+        Measurement3dSpec::Optical => &["right ascension", "declination"],
+    }
+}
+
 /// One sensor's sky-plot truth: per object id, a point per scan of that sensor (`None` out of view).
 pub(super) type SkyTruth = BTreeMap<u64, Vec<Option<(f64, f64)>>>;
 

@@ -143,8 +143,14 @@ fn site_sensors<const D: usize>(scenario: &Scenario3d) -> Vec<SiteSensor<f64, D>
 pub fn network<X: Placeable<f64, D>, const D: usize>(
     scenario: &Scenario3d,
 ) -> Result<SensorNetwork<f64, X, D, C>, Error> {
-    SensorNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &site_sensors::<D>(scenario))
-        .map_err(|e| Error::input(format!("sensors: {e}")))
+    let network =
+        SensorNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &site_sensors::<D>(scenario))
+            .map_err(|e| Error::input(format!("sensors: {e}")))?;
+    // Light time where a sensor sets it (docs/maths.md §6.12); off, the network measures as before.
+    scenario.sensors.iter().enumerate().try_fold(network, |network, (i, sensor)| match sensor.light_time_mode() {
+        tracker_core::model::LightTime::Off => Ok(network),
+        mode => network.with_light_time(i, mode).map_err(|e| Error::input(format!("sensors[{i}].light_time: {e}"))),
+    })
 }
 
 /// The core configuration and the prior of `scenario` for the tracker `kind` with `B` birth cells.

@@ -3,7 +3,8 @@
 //! against the unbounded reference ([`compare`]) and its figures ([`plots`]).
 //!
 //! Besides what every world writes, a planar run writes `scans.jsonl`: per scan, at most
-//! `max_hypotheses_out` hypotheses and the tracks they hold.
+//! `max_hypotheses_out` hypotheses and the tracks they hold. A run of a core tracker is judged without
+//! truth as an orbital one is ([`crate::eval::consistency`]; its one sensor named [`SENSOR`]).
 
 pub mod compare;
 pub mod plots;
@@ -11,6 +12,7 @@ pub mod runner;
 pub mod setup;
 
 use crate::error::Error;
+use crate::eval::consistency::{Associated, ScanAssociations};
 use crate::eval::score::Scored;
 use crate::io::report::{LabelExistence, RunSummary, ScanHypothesis, ScanLine};
 use crate::pipeline::profile::Profile;
@@ -23,6 +25,9 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use tracker_core::Region;
+
+/// The name of a planar scenario's one sensor in summary.json's `residuals` and `consistency_warnings`.
+pub const SENSOR: &str = "sensor";
 
 /// Options shared by `run` and `compare` on planar scenarios.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,6 +167,27 @@ impl World<2> for PlanarWorld<'_> {
 
     fn detected(&self, k: usize) -> Vec<u64> {
         self.scenario.truth.iter().flat_map(|t| t.scans[k].origins.iter().flatten().copied()).collect()
+    }
+
+    fn judged(&self) -> bool {
+        self.kind != TrackerKind::Reference
+    }
+
+    fn associate(&self, k: usize) -> Option<ScanAssociations> {
+        let scan = &self.scenario.scans[k];
+        let zs: Vec<Vec<f64>> = scan.measurements.iter().map(|z| z.to_vec()).collect();
+        let associations = self.runner.associate(scan.time, &zs)?;
+        let associated = associations
+            .into_iter()
+            .flatten()
+            .map(|(label, residual, nis)| Associated { label, residual, nis })
+            .collect();
+        Some(ScanAssociations { sensor: SENSOR.into(), dimension: 2, measurements: zs.len(), associated })
+    }
+
+    fn residual_axes(&self, _sensor: &str) -> Option<Vec<crate::pipeline::residual_plots::Axis>> {
+        let crate::scenario::MeasurementSpec::Position { noise_covariance } = &self.scenario.measurement;
+        Some(vec![("x", noise_covariance[0][0].sqrt()), ("y", noise_covariance[1][1].sqrt())])
     }
 
     fn in_view(&self, _k: usize, state: &[f64]) -> bool {

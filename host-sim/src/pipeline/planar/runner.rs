@@ -21,6 +21,16 @@ pub trait Runner: Send {
     fn step(&mut self, time: f64, measurements: &[SVector<f64, 2>]) -> Result<StepInfo, StepRejected>;
     /// The posterior now.
     fn snapshot(&self) -> Snapshot;
+    /// Per measurement of a scan about to be stepped, its association with a MAP track
+    /// ([`crate::pipeline::orbital::associate::associate`]); `None` for a tracker that is not judged (the
+    /// reference).
+    fn associate(
+        &self,
+        _time: f64,
+        _measurements: &[Vec<f64>],
+    ) -> Option<Vec<Option<crate::pipeline::orbital::associate::Association>>> {
+        None
+    }
 }
 
 struct CoreRunner<M, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
@@ -46,6 +56,14 @@ where
 
     fn snapshot(&self) -> Snapshot {
         Snapshot::of(&*self.tracker)
+    }
+
+    fn associate(
+        &self,
+        time: f64,
+        measurements: &[Vec<f64>],
+    ) -> Option<Vec<Option<crate::pipeline::orbital::associate::Association>>> {
+        Some(crate::pipeline::orbital::associate::associate(&self.tracker, 0, time, measurements).1)
     }
 }
 

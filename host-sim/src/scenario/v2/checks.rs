@@ -100,6 +100,7 @@ impl Sensor3dSpec {
             return Err(error(format!("{field}.detection_probability"), format!("{} is not in (0, 1]", Readable(pd))));
         }
         positive(&format!("{field}.clutter_rate"), self.clutter_rate)?;
+        self.validate_physics(field, kind)?;
         self.field_of_view.validate(&format!("{field}.field_of_view"), kind)
     }
 }

@@ -17,8 +17,10 @@ use tracker_core::MotionModel;
 use tracker_core::model::AdmissibleRegion;
 
 mod checks;
+mod physics;
 pub use checks::check_sensor_names;
 use checks::{check_measurement, covariance6};
+pub use physics::{LightTimeSpec, RefractionSpec};
 
 /// The format tag of a version 2 file.
 pub const FORMAT_V2: &str = "rfisst-scenario/2";
@@ -243,6 +245,16 @@ impl NoiseSpec {
         }
     }
 
+    /// Every field's name.
+    const ALL: [&'static str; 6] = [
+        "range_km",
+        "azimuth_arcsec",
+        "elevation_arcsec",
+        "range_rate_km_s",
+        "right_ascension_arcsec",
+        "declination_arcsec",
+    ];
+
     fn get(&self, field: &str) -> Option<f64> {
         match field {
             "range_km" => self.range_km,
@@ -257,10 +269,15 @@ impl NoiseSpec {
 
     /// σ per component in the tracker's units (km, rad, km/s).
     pub fn sigma(&self, kind: Measurement3dSpec) -> Vec<f64> {
+        self.sigma_or(kind, f64::NAN)
+    }
+
+    /// The values per component in the tracker's units, `absent` for a field not given.
+    fn sigma_or(&self, kind: Measurement3dSpec, absent: f64) -> Vec<f64> {
         Self::fields(kind)
             .iter()
             .map(|f| {
-                let v = self.get(f).unwrap_or(f64::NAN);
+                let v = self.get(f).unwrap_or(absent);
                 if f.ends_with("_arcsec") { (v * DEG_PER_ARCSEC).to_radians() } else { v }
             })
             .collect()
@@ -323,6 +340,16 @@ pub struct Sensor3dSpec {
     pub detection_probability: f64,
     /// Expected clutter returns per scan (> 0).
     pub clutter_rate: f64,
+    /// Known constant bias per component (the fields and units of `noise`), subtracted from every
+    /// measurement on the way in; absent: none ([`physics`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bias: Option<NoiseSpec>,
+    /// Light time of the measurements; absent: off (`track`: as the TDM states).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub light_time: Option<LightTimeSpec>,
+    /// Whether the elevations carry tropospheric refraction; absent: none (`track`: Bennett for AZEL TDMs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refraction: Option<RefractionSpec>,
 }
 
 /// A Gaussian over the 6-state (x, y, z, vx, vy, vz; km, km/s), inertial.
