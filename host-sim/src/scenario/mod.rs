@@ -250,19 +250,14 @@ fn default_min_unexplained() -> f64 {
 impl MeasuredBirthsSpec {
     /// The core's settings.
     pub fn core(&self) -> tracker_core::pool::MeasuredBirths<f64> {
-        use tracker_core::model::AdmissibleRegion;
-        let preset = match self.region {
-            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(self.velocity_sigma),
-            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
-            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
+        let cells = BirthRegionSpec {
+            region: self.region,
+            headings: self.headings,
+            speeds: self.speeds,
+            climbs: self.climbs,
+            ranges: self.ranges,
         };
-        let region = AdmissibleRegion {
-            headings: self.headings.unwrap_or(preset.headings),
-            speeds: self.speeds.unwrap_or(preset.speeds),
-            climbs: self.climbs.unwrap_or(preset.climbs),
-            ranges: self.ranges.unwrap_or(preset.ranges),
-            ..preset
-        };
+        let region = cells.core(self.velocity_sigma);
         tracker_core::pool::MeasuredBirths {
             region,
             expected_births: self.expected_births,
@@ -278,6 +273,46 @@ impl MeasuredBirthsSpec {
             return Err(error("birth.measured", "needs birth.events \"independent\"".to_string()));
         }
         self.core().validate().map_err(|reason| error("birth.measured", reason.to_string()))
+    }
+}
+
+/// An admissible region and its cells (each one optional: the preset's value): the region of
+/// [`MeasuredBirthsSpec`], or a sensor's own (`sensors[i].birth_region` of a version 2 file).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthRegionSpec {
+    /// The admissible region.
+    pub region: AdmissiblePresetSpec,
+    /// Cells of heading.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub headings: Option<usize>,
+    /// Cells of horizontal speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speeds: Option<usize>,
+    /// Cells of radial speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub climbs: Option<usize>,
+    /// Optical: cells of radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ranges: Option<usize>,
+}
+
+impl BirthRegionSpec {
+    /// The core's region (`velocity_sigma`: the planar preset's velocity spread).
+    pub fn core(&self, velocity_sigma: f64) -> tracker_core::model::AdmissibleRegion<f64> {
+        use tracker_core::model::AdmissibleRegion;
+        let preset = match self.region {
+            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(velocity_sigma),
+            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
+            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
+        };
+        AdmissibleRegion {
+            headings: self.headings.unwrap_or(preset.headings),
+            speeds: self.speeds.unwrap_or(preset.speeds),
+            climbs: self.climbs.unwrap_or(preset.climbs),
+            ranges: self.ranges.unwrap_or(preset.ranges),
+            ..preset
+        }
     }
 }
 

@@ -72,7 +72,7 @@ pub(super) fn write_plots(
             .collect();
         let estimates = [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
         let stem = out.join(format!("sky_{s}_{}", stem_of(&sensor.name)));
-        if scenario.measurement.sky_in_ra_dec() {
+        if scenario.kind(s).sky_in_ra_dec() {
             let title = format!("{}: right ascension / declination, truth in view and MAP estimates", sensor.name);
             plots::sky_plot_ra_dec(&stem, &title, &truth, &estimates, None)?;
         } else {

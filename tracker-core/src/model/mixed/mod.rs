@@ -23,7 +23,9 @@
 //! ([`Measure::look_of_state`]), and a measurement is in view when its range (and range-rate) lie in the
 //! windows.
 //!
-//! **Births.** Radar kinds use the radar admissible regions, right ascension/declination the optical one;
+//! **Births.** Radar kinds use the radar admissible regions, right ascension/declination the optical one,
+//! in the region the tracker's birth model gives or, where a sensor has one, that sensor's own
+//! ([`MixedNetwork::with_birth_region`]: a telescope staring at the GEO belt beside a radar fence on LEO);
 //! an azimuth/elevation measurement is turned into the inertial direction it names and uses the optical
 //! region (with an isotropic angular σ, the larger of σ_A cos E and σ_E). Range-only kinds give no birth
 //! density: their objects are born from another sensor's measurements.
@@ -231,6 +233,8 @@ pub struct MixedLook<T> {
     pub frame: [[T; 3]; 3],
     /// Noise standard deviations of the kind's components, then zeros.
     pub sigma: [T; MIXED_DIMENSION],
+    /// The sensor's own admissible region for births, in place of the birth model's.
+    pub birth_region: Option<AdmissibleRegion<T>>,
 }
 
 type Vector4<T> = SVector<T, MIXED_DIMENSION>;
@@ -426,6 +430,7 @@ impl<T: Real> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedLook<T> {
         region: &AdmissibleRegion<T>,
         out: &mut [BirthComponent<T, 6>],
     ) -> Result<usize, BirthError> {
+        let region = self.birth_region.as_ref().unwrap_or(region);
         match self.kind {
             SensorKind::Radar => self.radar().birth_components(&head::<T, 3>(z), region, out),
             SensorKind::RadarRangeRate => self.radar_rate().birth_components(z, region, out),
@@ -498,6 +503,7 @@ pub struct MixedNetwork<T, const C: usize> {
     rotation: EarthRotation<T>,
     sensors: [MixedSensor<T>; C],
     volumes: [T; C],
+    birth_regions: [Option<AdmissibleRegion<T>>; C],
     count: usize,
     current: usize,
     placed: MixedLook<T>,
@@ -519,6 +525,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             rotation,
             sensors: [*first; C],
             volumes: [T::one(); C],
+            birth_regions: [None; C],
             count: sensors.len(),
             current: 0,
             placed: MixedLook {
@@ -526,6 +533,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
                 observer: [T::zero(); 6],
                 frame: inertial_frame(),
                 sigma: first.sensor.sigma,
+                birth_region: None,
             },
         };
         for (index, sensor) in sensors.iter().enumerate() {
@@ -547,6 +555,28 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             network = placed;
         }
         Ok(network)
+    }
+
+    /// The network with sensor `sensor`'s births in `region` instead of the birth model's region (a
+    /// telescope on the GEO belt beside radars on LEO).
+    ///
+    /// # Errors
+    /// An unknown sensor, or a region that is not valid ([`AdmissibleRegion::validate`]).
+    pub fn with_birth_region(mut self, sensor: usize, region: AdmissibleRegion<T>) -> Result<Self, &'static str> {
+        region.validate()?;
+        let count = self.count;
+        let slot = self.birth_regions.get_mut(..count).and_then(|regions| regions.get_mut(sensor));
+        let Some(slot) = slot else { return Err("sensor network: a birth region for a sensor it does not have") };
+        *slot = Some(region);
+        if self.current == sensor {
+            self.placed.birth_region = Some(region);
+        }
+        Ok(self)
+    }
+
+    /// Sensor `sensor`'s own birth region, if it has one ([`MixedNetwork::with_birth_region`]).
+    pub fn birth_region(&self, sensor: usize) -> Option<AdmissibleRegion<T>> {
+        self.birth_regions.get(..self.count).and_then(|regions| regions.get(sensor)).copied().flatten()
     }
 
     /// The sensors.
@@ -593,7 +623,13 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             return Err(PlacementError::UnknownSensor { sensor, sensors: self.count });
         };
         let (state, frame) = observer_and_frame(&self.rotation, site.sensor.platform, time, observer)?;
-        let placed = MixedLook { kind: site.kind, observer: state, frame, sigma: site.sensor.sigma };
+        let placed = MixedLook {
+            kind: site.kind,
+            observer: state,
+            frame,
+            sigma: site.sensor.sigma,
+            birth_region: self.birth_region(sensor),
+        };
         Ok(Self { current: sensor, placed, ..*self })
     }
 }
