@@ -15,7 +15,8 @@ use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::v2::*;
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, BirthRegionSpec, EvaluationSpec, MeasuredBirthsSpec,
-    NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
+    NumericalFailureSpec, SamplerSpec, SelectionSpec, SensorRegionSpec, StoreOverflowSpec, TrackerSpec,
+    TruthObjectSpec,
 };
 use crate::sim::network::NetworkConfig;
 use crate::sim::orbit::Propagator;
@@ -150,26 +151,19 @@ fn file_kind(kind: SensorKind) -> Measurement3dSpec {
     }
 }
 
-/// A network sensor's own birth region: telescopes on the GEO belt (as `optical-geo`), an az/el station
-/// on LEO with few cells (2 headings, 2 radii: 8 components); radars use `birth.measured`'s LEO region
-/// and range-only kinds give no births.
+/// A network sensor's own births: telescopes on the GEO belt (as `optical-geo`); none from an az/el
+/// station (single-frame angles-only births of LEO objects do not land within kilometres: its objects are
+/// born from the radars' measurements and kept by the station); radars use `birth.measured`'s LEO region
+/// and range-only kinds give none.
 fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegionSpec> {
-    let cells = |region, headings, ranges| BirthRegionSpec {
-        region,
-        headings: Some(headings),
-        speeds: Some(1),
-        climbs: Some(1),
-        ranges: Some(ranges),
-    };
+    let region = |region| BirthRegionSpec { region, headings: None, speeds: None, climbs: None, ranges: None };
     match kind {
         Measurement3dSpec::Optical => Some(BirthRegionSpec {
-            region: AdmissiblePresetSpec::Geo,
             headings: TELESCOPE_GEO_BIRTHS.headings,
-            speeds: None,
-            climbs: None,
             ranges: TELESCOPE_GEO_BIRTHS.ranges,
+            ..region(SensorRegionSpec::Geo)
         }),
-        Measurement3dSpec::AzEl => Some(cells(AdmissiblePresetSpec::Leo, 2, 2)),
+        Measurement3dSpec::AzEl => Some(region(SensorRegionSpec::None)),
         _ => None,
     }
 }

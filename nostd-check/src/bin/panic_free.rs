@@ -381,7 +381,7 @@ fn births<T: Real>(argc: i32) -> u64 {
         observer,
         frame: enu,
         sigma: black_box([c(5e-6), c(5e-6), c(1e-3), c(1e-4)]),
-        birth_region: None,
+        births: SensorBirths::FromModel,
     };
     let z = black_box(SVector::from([c(0.3) * x, c(0.1), c(0.9), c(-1.0)]));
     fold(mixed.birth_components(&z, &region, &mut out[..length]));

@@ -85,9 +85,9 @@ impl ScenarioNetwork<MIXED> for MixedNetwork<f64, C> {
         let mut network = MixedNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &sensors)
             .map_err(|e| Error::input(format!("sensors: {e}")))?;
         for (i, sensor) in scenario.sensors.iter().enumerate() {
-            if let (Some(_), Some(region)) = (sensor.birth_region, scenario.birth_region(i)) {
+            if let Some(births) = sensor.birth_region {
                 network =
-                    network.with_birth_region(i, region).map_err(|e| Error::input(format!("sensors[{i}]: {e}")))?;
+                    network.with_births(i, births.core()).map_err(|e| Error::input(format!("sensors[{i}]: {e}")))?;
             }
         }
         Ok(network)

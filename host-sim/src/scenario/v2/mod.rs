@@ -247,7 +247,7 @@ pub struct Sensor3dSpec {
     #[serde(default, skip_serializing_if = "Option::is_none", with = "kinds::sensor_kind")]
     pub kind: Option<Measurement3dSpec>,
     /// Births from this sensor's measurements in this admissible region instead of `birth.measured`'s
-    /// (its other settings apply); only under the measurement type network.
+    /// (its other settings apply), or none; only under the measurement type network.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub birth_region: Option<crate::scenario::BirthRegionSpec>,
     /// Where it stands.
@@ -508,22 +508,25 @@ impl Scenario3d {
                     ),
                 ))
             }
-            _ => match self.sensors[sensor].birth_region {
-                Some(region) => region
-                    .core(1.0)
+            _ => match self.sensors[sensor].birth_region.map(|b| b.core()) {
+                Some(tracker_core::model::SensorBirths::Region(region)) => region
                     .validate()
                     .map_err(|reason| error(format!("sensors[{sensor}].birth_region"), reason.to_string())),
-                None => Ok(()),
+                _ => Ok(()),
             },
         }
     }
 
     /// Sensor `sensor`'s admissible region for births: its own, else `birth.measured`'s (`None` without
-    /// measured births).
+    /// measured births, or when the sensor's births are off).
     pub fn birth_region(&self, sensor: usize) -> Option<tracker_core::model::AdmissibleRegion<f64>> {
+        use tracker_core::model::SensorBirths;
         let measured = self.birth.measured.as_ref()?;
-        let own = self.sensors.get(sensor).and_then(|s| s.birth_region);
-        Some(own.map_or_else(|| measured.core().region, |region| region.core(measured.velocity_sigma)))
+        match self.sensors.get(sensor).and_then(|s| s.birth_region).map(|b| b.core()) {
+            None | Some(SensorBirths::FromModel) => Some(measured.core().region),
+            Some(SensorBirths::Region(region)) => Some(region),
+            Some(SensorBirths::Off) => None,
+        }
     }
 
     fn validate_epoch(&self) -> Result<(), ScenarioError> {
