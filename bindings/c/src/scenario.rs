@@ -18,7 +18,7 @@ use host_sim::scenario::v2::{Measurement3dSpec, Scenario3d};
 use host_sim::scenario::{Scenario, ScenarioError};
 use std::fmt::Write as _;
 use tracker_core::config::Selection;
-use tracker_core::model::{Placeable, ProcessNoise, RadarRangeRate};
+use tracker_core::model::{Placeable, ProcessNoise, RadarRangeRate, SensorNetwork};
 use tracker_core::sampler::Proposal;
 use tracker_core::sensor::Platform;
 use tracker_core::{
@@ -131,6 +131,13 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
             matches!(kind, K::RfisstOpticalF32 | K::RfisstOpticalF64 | K::RfisstNetworkF32 | K::RfisstNetworkF64)
         }
         Measurement3dSpec::RadarRangeRate => matches!(kind, K::RfisstNetworkF32 | K::RfisstNetworkF64),
+        other => {
+            return Err(format!(
+                "measurement: a {} scenario is not read from JSON by the C interface yet; give the network tracker \
+                 a configuration struct (RfisstConfig) with each sensor's kind",
+                other.name()
+            ));
+        }
     };
     if !fits {
         return Err(format!("kind: a {} scenario does not fit a {} tracker", measurement.name(), kind.name()));
@@ -144,6 +151,7 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
         Measurement3dSpec::RadarRangeRate => {
             orbital_config::<RadarRangeRate<f64>, 4>(scenario, sensor::RFISST_SENSOR_RADAR_RANGE_RATE)?
         }
+        other => return Err(format!("measurement: a {} scenario is not read from JSON yet", other.name())),
     };
     config.earth_rotation_angle = scenario.earth_rotation_at_epoch();
     let detected = match detected_in {
@@ -175,12 +183,16 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
 type Prior6 = Vec<(f64, Vec<PriorObject<f64, 6>>)>;
 
 /// The 3-D configuration through host-sim's `config3d` for the measurement model `X`.
-fn orbital_config<X: Placeable<f64, D>, const D: usize>(
+fn orbital_config<X: Placeable<f64, D> + Send + Sync + 'static, const D: usize>(
     scenario: &Scenario3d,
     kind: u32,
 ) -> Result<(RfisstConfig, Prior6), String> {
-    let (core, prior) =
-        config3d::<X, D, { ssa_caps::BIRTH_CELLS }>(scenario, TrackerKind::Rfisst).map_err(|e| e.to_string())?;
+    let (core, prior) = config3d::<
+        SensorNetwork<f64, X, D, { host_sim::pipeline::orbital::C }>,
+        D,
+        { ssa_caps::BIRTH_CELLS },
+    >(scenario, TrackerKind::Rfisst)
+    .map_err(|e| e.to_string())?;
     let mut config = common(&core)?;
     let motion = &core.motion;
     config.mu = motion.mu;

@@ -101,6 +101,8 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
+            AnyPreset::Ssa(Preset3d::SsaNetwork),
+            AnyPreset::Ssa(Preset3d::TinyNetwork),
             AnyPreset::Catalogue,
         ]
     }

@@ -261,6 +261,8 @@ pub fn missing(catalogue: &Catalogue, seed: u64, fraction: f64) -> Result<Vec<bo
 
 fn radar(name: &str, site: [f64; 3], shape: ShapeSpec, min_elevation_deg: f64) -> Sensor3dSpec {
     Sensor3dSpec {
+        kind: None,
+        birth_region: None,
         name: name.into(),
         site: SiteSpec { latitude_deg: site[0], longitude_deg: site[1], height_km: site[2] },
         noise: NoiseSpec {
@@ -316,6 +318,8 @@ pub fn telescope(scan_interval_s: f64) -> SensorsFile {
         scan_interval_s,
         max_sun_elevation_deg: -12.0,
         sensors: vec![Sensor3dSpec {
+            kind: None,
+            birth_region: None,
             name: "telescope".into(),
             site: SiteSpec { latitude_deg: 32.0, longitude_deg: -110.0, height_km: 2.0 },
             noise: NoiseSpec {

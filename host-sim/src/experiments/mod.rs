@@ -17,6 +17,10 @@
 //!   prior; two trackers, one per measurement type ([`crate::experiments::catalogue`]). Writes
 //!   `catalogue.json`. Not part of `all`: it takes minutes.
 //!
+//! - `network`: the `ssa-network` preset (two radars, two telescopes, an az/el and a ranging station) with
+//!   one fused tracker and with the same tracker on each single-kind subset of the sensors
+//!   ([`crate::experiments::network`]). Writes `network.json`. Not part of `all`.
+//!
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 //!
@@ -32,6 +36,7 @@ mod runs;
 mod scaling;
 
 pub mod catalogue;
+pub mod network;
 pub mod perf;
 
 pub use runs::{EXPERIMENTS, Experiment, run, seeds};

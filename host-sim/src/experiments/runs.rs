@@ -30,7 +30,10 @@ pub enum Experiment {
     /// A catalogue (verification set, a shell, a launch train) seen by two radars and a telescope for 24 h,
     /// with objects missing from the prior ([`crate::experiments::catalogue`]); not part of `all` (minutes).
     Catalogue,
-    /// Every experiment above but `catalogue`, each in its own directory.
+    /// The `ssa-network` preset: one fused tracker against each single-kind subset of its sensors
+    /// ([`crate::experiments::network`]); not part of `all` (a minute per seed).
+    Network,
+    /// Every experiment above but `catalogue` and `network`, each in its own directory.
     All,
 }
 
@@ -48,6 +51,7 @@ impl Experiment {
             Experiment::Debris => "debris",
             Experiment::Ablation => "ablation",
             Experiment::Catalogue => "catalogue",
+            Experiment::Network => "network",
             Experiment::All => "all",
         }
     }
@@ -129,6 +133,7 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
         Experiment::Debris => to_value(debris(dir, seed, quiet)?),
         Experiment::Ablation => to_value(ablation(dir, seed)?),
         Experiment::Catalogue => to_value(crate::experiments::catalogue::run(dir, seed, quiet)?),
+        Experiment::Network => to_value(crate::experiments::network::network(dir, seed, quiet)?),
         Experiment::All => return Err(err("`all` is not one experiment")),
     };
     Ok(figures)

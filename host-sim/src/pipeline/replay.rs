@@ -306,6 +306,7 @@ fn summarise(
             .collect(),
         peak_resident_kib: None,
         sensors: heading.sensors,
+        sensor_kinds: heading.sensor_kinds.clone(),
         numerical_drops: NumericalDropsSummary::default(),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,

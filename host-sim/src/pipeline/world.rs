@@ -65,6 +65,8 @@ pub struct Heading {
     pub profile: &'static str,
     /// Sensors (worlds with a sensor network only).
     pub sensors: Option<usize>,
+    /// The kinds of the sensors, each once (worlds with a sensor network only).
+    pub sensor_kinds: Option<Vec<String>>,
     /// The scenario's evaluation settings.
     pub evaluation: EvaluationSpec,
     /// Whether the scenario has truth.

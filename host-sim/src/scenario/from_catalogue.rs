@@ -198,7 +198,12 @@ fn simulator_sensor(sensor: &Sensor3dSpec, kind: Measurement3dSpec) -> SensorSpe
             Measurement3dSpec::RadarRangeRate => SensorKind::RadarRangeRate {
                 max_range_rate: fov.range_rate_km_s.map_or(0.0, |[lo, hi]| lo.abs().max(hi.abs())),
             },
-            Measurement3dSpec::Optical => SensorKind::Optical,
+            Measurement3dSpec::Optical | Measurement3dSpec::Network => SensorKind::Optical,
+            Measurement3dSpec::AzEl => SensorKind::AzEl,
+            Measurement3dSpec::Range => SensorKind::Range,
+            Measurement3dSpec::RangeRangeRate => SensorKind::RangeRangeRate {
+                max_range_rate: fov.range_rate_km_s.map_or(0.0, |[lo, hi]| lo.abs().max(hi.abs())),
+            },
         },
         fov: FieldOfView { shape, min_elevation: fov.min_elevation_deg.to_radians(), range: fov.range_km },
         sigma: sensor.noise.sigma(kind),

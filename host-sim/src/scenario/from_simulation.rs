@@ -14,9 +14,11 @@ use crate::error::Error;
 use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::v2::*;
 use crate::scenario::{
-    AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec,
-    NumericalFailureSpec, SamplerSpec, SelectionSpec, StoreOverflowSpec, TrackerSpec, TruthObjectSpec,
+    AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, BirthRegionSpec, EvaluationSpec, MeasuredBirthsSpec,
+    NumericalFailureSpec, SamplerSpec, SelectionSpec, SensorRegionSpec, StoreOverflowSpec, TrackerSpec,
+    TruthObjectSpec,
 };
+use crate::sim::network::NetworkConfig;
 use crate::sim::orbit::Propagator;
 use crate::sim::presets::OpticalGeoConfig;
 use crate::sim::presets::RadarLeoConfig;
@@ -37,6 +39,12 @@ pub enum Preset3d {
     /// One radar, 3 LEO objects, 11 scans over 100 s (tests).
     #[value(name = "tiny-3d")]
     Tiny3d,
+    /// Two radars, two telescopes, an az/el and a ranging station; LEO, GEO and Molniya objects, some
+    /// unknown to the prior; 3 h ([`crate::sim::network`]).
+    SsaNetwork,
+    /// `ssa-network`'s sensors over 2 LEO (one unknown), 1 GEO and 1 Molniya object, 10 minutes (tests).
+    #[value(name = "tiny-network")]
+    TinyNetwork,
 }
 
 impl Preset3d {
@@ -62,6 +70,8 @@ impl Preset3d {
                 presets::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
             }
             Preset3d::Tiny3d => presets::tiny_3d_with(seed, unknowns),
+            Preset3d::SsaNetwork => crate::sim::network::ssa_network(seed, unknowns, &NetworkConfig::PRESET),
+            Preset3d::TinyNetwork => crate::sim::network::ssa_network(seed, unknowns, &NetworkConfig::TINY),
         };
         result.map_err(|e| match e {
             crate::sim::error::SsaError::BadUnknowns => Error::input(e.to_string()),
@@ -80,10 +90,13 @@ struct Settings {
     births: MeasuredBirthsSpec,
 }
 
-fn settings(kind: SensorKind) -> Settings {
-    match kind {
+fn settings(measurement: Measurement3dSpec) -> Settings {
+    match measurement {
         // LEO radar: a catalogue-quality prior; GOSPA in km.
-        SensorKind::Radar | SensorKind::RadarRangeRate { .. } => Settings {
+        Measurement3dSpec::Radar
+        | Measurement3dSpec::RadarRangeRate
+        | Measurement3dSpec::Range
+        | Measurement3dSpec::RangeRangeRate => Settings {
             position_sigma: 0.2,
             velocity_sigma: 2e-4,
             q: 1e-12,
@@ -95,8 +108,23 @@ fn settings(kind: SensorKind) -> Settings {
             },
             births: RADAR_LEO_BIRTHS,
         },
+        // A network of LEO, GEO and Molniya objects: the radar prior, the telescope's error bound and
+        // cut-off (its GEO objects' range is weakly observed), cells that live until the sensor's next scan
+        // (each sensor scans once a minute); each sensor's region is its own (`network_birth_region`).
+        Measurement3dSpec::Network => Settings {
+            position_sigma: 0.2,
+            velocity_sigma: 2e-4,
+            q: 1e-12,
+            evaluation: EvaluationSpec {
+                error_bound: 10.0,
+                gospa_cutoff: 20.0,
+                gospa_order: 2.0,
+                confirmation_existence: 0.5,
+            },
+            births: MeasuredBirthsSpec { lifetime: 300.0, ..RADAR_LEO_BIRTHS },
+        },
         // GEO telescope: angles only, range weakly observed: a looser prior and cut-off.
-        SensorKind::Optical => Settings {
+        Measurement3dSpec::Optical | Measurement3dSpec::AzEl => Settings {
             position_sigma: 1.0,
             velocity_sigma: 1e-4,
             q: 1e-12,
@@ -108,6 +136,35 @@ fn settings(kind: SensorKind) -> Settings {
             },
             births: TELESCOPE_GEO_BIRTHS,
         },
+    }
+}
+
+/// The file's kind of a simulator's sensor.
+fn file_kind(kind: SensorKind) -> Measurement3dSpec {
+    match kind {
+        SensorKind::Radar => Measurement3dSpec::Radar,
+        SensorKind::RadarRangeRate { .. } => Measurement3dSpec::RadarRangeRate,
+        SensorKind::Optical => Measurement3dSpec::Optical,
+        SensorKind::AzEl => Measurement3dSpec::AzEl,
+        SensorKind::Range => Measurement3dSpec::Range,
+        SensorKind::RangeRangeRate { .. } => Measurement3dSpec::RangeRangeRate,
+    }
+}
+
+/// A network sensor's own births: telescopes on the GEO belt (as `optical-geo`); none from an az/el
+/// station (single-frame angles-only births of LEO objects do not land within kilometres: its objects are
+/// born from the radars' measurements and kept by the station); radars use `birth.measured`'s LEO region
+/// and range-only kinds give none.
+fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegionSpec> {
+    let region = |region| BirthRegionSpec { region, headings: None, speeds: None, climbs: None, ranges: None };
+    match kind {
+        Measurement3dSpec::Optical => Some(BirthRegionSpec {
+            headings: TELESCOPE_GEO_BIRTHS.headings,
+            ranges: TELESCOPE_GEO_BIRTHS.ranges,
+            ..region(SensorRegionSpec::Geo)
+        }),
+        Measurement3dSpec::AzEl => Some(region(SensorRegionSpec::None)),
+        _ => None,
     }
 }
 
@@ -184,18 +241,18 @@ pub struct KnownTruth<'a> {
 /// # Errors
 /// As [`to_scenario`], and `known`'s errors.
 pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Result<(Scenario3d, Generated), Error> {
-    let kind = sim.sensors.first().map(|s| s.kind).ok_or_else(|| Error::internal("simulation has no sensor"))?;
-    let measurement = match kind {
-        SensorKind::Radar => Measurement3dSpec::Radar,
-        SensorKind::RadarRangeRate { .. } => Measurement3dSpec::RadarRangeRate,
-        SensorKind::Optical => Measurement3dSpec::Optical,
-    };
-    if sim.sensors.iter().any(|s| std::mem::discriminant(&s.kind) != std::mem::discriminant(&kind)) {
-        return Err(Error::internal("the simulation's sensors mix measurement types"));
-    }
-    let settings = settings(kind);
+    let kinds: Vec<Measurement3dSpec> = sim.sensors.iter().map(|s| file_kind(s.kind)).collect();
+    let first = *kinds.first().ok_or_else(|| Error::internal("simulation has no sensor"))?;
+    let measurement = if kinds.iter().all(|k| *k == first) { first } else { Measurement3dSpec::Network };
+    let settings = settings(measurement);
     let unknown = sim.objects.iter().any(|o| !o.in_prior);
-    let sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
+    let mut sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
+    if measurement == Measurement3dSpec::Network {
+        for (sensor, kind) in sensors.iter_mut().zip(&kinds) {
+            sensor.kind = Some(*kind);
+            sensor.birth_region = unknown.then(|| network_birth_region(*kind)).flatten();
+        }
+    }
 
     let times: Vec<f64> = sim.scans.iter().map(|s| s.time).collect();
     let mut truth_scans = truth_at(sim, &times, known.as_ref())?;
@@ -343,7 +400,6 @@ fn scans_in_view(
     scenario: &Scenario3d,
     truth_scans: &mut [TruthScan3dSpec],
 ) -> Result<(Vec<Scan3dSpec>, usize), Error> {
-    let measurement = scenario.measurement;
     // Scans: measurements in degrees, detections outside the field of view dropped.
     let check = FieldOfViewCheck::new(scenario)?;
     let mut dropped_outside = 0;
@@ -354,6 +410,7 @@ fn scans_in_view(
             .collect();
         let mut measurements = vec![];
         let mut origins = vec![];
+        let measurement = scenario.kind(scan.sensor);
         for (z, origin) in scan.measurements.iter().zip(origin_of) {
             let in_file: Vec<f64> =
                 z.iter().enumerate().map(|(i, &v)| if measurement.is_angle(i) { v.to_degrees() } else { v }).collect();
@@ -399,6 +456,17 @@ pub fn sensor_spec(sensor: &sensor::SensorSpec) -> Sensor3dSpec {
             declination_arcsec: Some(arcsec(sensor.sigma[1])),
             ..NoiseSpec::default()
         },
+        SensorKind::AzEl => NoiseSpec {
+            azimuth_arcsec: Some(arcsec(sensor.sigma[0])),
+            elevation_arcsec: Some(arcsec(sensor.sigma[1])),
+            ..NoiseSpec::default()
+        },
+        SensorKind::Range => NoiseSpec { range_km: Some(sensor.sigma[0]), ..NoiseSpec::default() },
+        SensorKind::RangeRangeRate { .. } => NoiseSpec {
+            range_km: Some(sensor.sigma[0]),
+            range_rate_km_s: Some(sensor.sigma[1]),
+            ..NoiseSpec::default()
+        },
     };
     let shape = match sensor.fov.shape {
         field_of_view::LookShape::Cone { azimuth, elevation, half_angle } => ShapeSpec::Cone {
@@ -416,6 +484,8 @@ pub fn sensor_spec(sensor: &sensor::SensorSpec) -> Sensor3dSpec {
     };
     Sensor3dSpec {
         name: sensor.name.clone(),
+        kind: None,
+        birth_region: None,
         site: SiteSpec {
             latitude_deg: degrees(sensor.site.latitude),
             longitude_deg: degrees(sensor.site.longitude),
@@ -427,7 +497,9 @@ pub fn sensor_spec(sensor: &sensor::SensorSpec) -> Sensor3dSpec {
             min_elevation_deg: degrees(sensor.fov.min_elevation),
             range_km: sensor.fov.range,
             range_rate_km_s: match sensor.kind {
-                SensorKind::RadarRangeRate { max_range_rate } => Some([-max_range_rate, max_range_rate]),
+                SensorKind::RadarRangeRate { max_range_rate } | SensorKind::RangeRangeRate { max_range_rate } => {
+                    Some([-max_range_rate, max_range_rate])
+                }
                 _ => None,
             },
         },

@@ -256,13 +256,7 @@ impl MeasuredBirthsSpec {
             AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
             AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
         };
-        let region = AdmissibleRegion {
-            headings: self.headings.unwrap_or(preset.headings),
-            speeds: self.speeds.unwrap_or(preset.speeds),
-            climbs: self.climbs.unwrap_or(preset.climbs),
-            ranges: self.ranges.unwrap_or(preset.ranges),
-            ..preset
-        };
+        let region = with_cells(preset, [self.headings, self.speeds, self.climbs, self.ranges]);
         tracker_core::pool::MeasuredBirths {
             region,
             expected_births: self.expected_births,
@@ -278,6 +272,66 @@ impl MeasuredBirthsSpec {
             return Err(error("birth.measured", "needs birth.events \"independent\"".to_string()));
         }
         self.core().validate().map_err(|reason| error("birth.measured", reason.to_string()))
+    }
+}
+
+/// `region` with the cells given (headings, speeds, climbs, ranges; `None`: the region's own).
+fn with_cells(
+    region: tracker_core::model::AdmissibleRegion<f64>,
+    [headings, speeds, climbs, ranges]: [Option<usize>; 4],
+) -> tracker_core::model::AdmissibleRegion<f64> {
+    tracker_core::model::AdmissibleRegion {
+        headings: headings.unwrap_or(region.headings),
+        speeds: speeds.unwrap_or(region.speeds),
+        climbs: climbs.unwrap_or(region.climbs),
+        ranges: ranges.unwrap_or(region.ranges),
+        ..region
+    }
+}
+
+/// The admissible region of one sensor's births.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SensorRegionSpec {
+    /// Low Earth orbit.
+    Leo,
+    /// The GEO belt.
+    Geo,
+    /// None: the sensor's measurements start no track.
+    None,
+}
+
+/// A sensor's own births (`sensors[i].birth_region` of a version 2 file): an admissible region and its
+/// cells (each one optional: the region's own), or none.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BirthRegionSpec {
+    /// The admissible region, or `none`.
+    pub region: SensorRegionSpec,
+    /// Cells of heading.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub headings: Option<usize>,
+    /// Cells of horizontal speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speeds: Option<usize>,
+    /// Cells of radial speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub climbs: Option<usize>,
+    /// Optical: cells of radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ranges: Option<usize>,
+}
+
+impl BirthRegionSpec {
+    /// The core's setting.
+    pub fn core(&self) -> tracker_core::model::SensorBirths<f64> {
+        use tracker_core::model::{AdmissibleRegion, SensorBirths};
+        let cells = [self.headings, self.speeds, self.climbs, self.ranges];
+        match self.region {
+            SensorRegionSpec::Leo => SensorBirths::Region(with_cells(AdmissibleRegion::leo(), cells)),
+            SensorRegionSpec::Geo => SensorBirths::Region(with_cells(AdmissibleRegion::geo(), cells)),
+            SensorRegionSpec::None => SensorBirths::Off,
+        }
     }
 }
 

@@ -16,6 +16,7 @@ pub mod fk5;
 pub mod frames;
 #[cfg(test)]
 mod long_gap_tests;
+pub mod network;
 pub mod orbit;
 pub mod physics;
 pub mod planar;

@@ -294,13 +294,17 @@ const GEO_EPOCH: &str = "2026-03-20T02:00:00Z";
 
 /// The staring telescope of `optical-geo`, pointed at the GEO belt on its own meridian.
 pub fn geo_telescope() -> SensorSpec {
-    let site = Site { latitude: deg(32.0), longitude: deg(-110.0), height: 2.0 };
+    geo_telescope_at("telescope", Site { latitude: deg(32.0), longitude: deg(-110.0), height: 2.0 })
+}
+
+/// A telescope like [`geo_telescope`] at `site`, staring at the geostationary point at 110° W.
+pub fn geo_telescope_at(name: &str, site: Site) -> SensorSpec {
     // Boresight: the look angles of the geostationary point at the site's longitude.
-    let geo = Site { latitude: 0.0, longitude: site.longitude, height: geo_radius() - WGS84_A };
+    let geo = Site { latitude: 0.0, longitude: deg(-110.0), height: geo_radius() - WGS84_A };
     let observer = site.observer(0.0);
     let (_, azimuth, elevation) = observer.range_az_el(fixed_to_inertial(geo.earth_fixed(), 0.0));
     SensorSpec {
-        name: "telescope".into(),
+        name: name.into(),
         site,
         kind: SensorKind::Optical,
         fov: FieldOfView {
@@ -315,7 +319,7 @@ pub fn geo_telescope() -> SensorSpec {
 }
 
 /// The geosynchronous radius (km): mean motion ω_E.
-fn geo_radius() -> f64 {
+pub(crate) fn geo_radius() -> f64 {
     (MU / (EARTH_ROTATION_RATE * EARTH_ROTATION_RATE)).cbrt()
 }
 

@@ -21,6 +21,15 @@ pub enum SensorKind {
     },
     /// Telescope: [α, δ].
     Optical,
+    /// A ground station's mount angles only: [A, E].
+    AzEl,
+    /// Range only: [ρ].
+    Range,
+    /// Range and range-rate: [ρ, ρ̇]; clutter ρ̇ uniform in ±`max_range_rate`.
+    RangeRangeRate {
+        /// Largest |ρ̇| of clutter and of what is in view (km/s).
+        max_range_rate: f64,
+    },
 }
 
 impl SensorKind {
@@ -29,7 +38,23 @@ impl SensorKind {
         match self {
             SensorKind::Radar => 3,
             SensorKind::RadarRangeRate { .. } => 4,
-            SensorKind::Optical => 2,
+            SensorKind::Optical | SensorKind::AzEl | SensorKind::RangeRangeRate { .. } => 2,
+            SensorKind::Range => 1,
+        }
+    }
+
+    /// Whether it measures range.
+    pub fn has_range(&self) -> bool {
+        !matches!(self, SensorKind::Optical | SensorKind::AzEl)
+    }
+
+    /// The components of its azimuth (or right ascension) and elevation (or declination), if it measures
+    /// angles.
+    fn angles(&self) -> Option<(usize, usize)> {
+        match self {
+            SensorKind::Radar | SensorKind::RadarRangeRate { .. } => Some((1, 2)),
+            SensorKind::Optical | SensorKind::AzEl => Some((0, 1)),
+            SensorKind::Range | SensorKind::RangeRangeRate { .. } => None,
         }
     }
 }
@@ -55,7 +80,7 @@ pub struct SensorSpec {
 
 impl SensorSpec {
     pub(super) fn check(&self) -> Result<(), SsaError> {
-        let radar = !matches!(self.kind, SensorKind::Optical);
+        let radar = self.kind.has_range();
         let ok = self.sigma.len() == self.kind.dimension()
             && self.sigma.iter().all(|s| s.is_finite() && *s >= 0.0)
             && (0.0..=1.0).contains(&self.detection_probability)
@@ -71,13 +96,28 @@ impl SensorSpec {
             SensorKind::Radar => observer.radar(state, false),
             SensorKind::RadarRangeRate { .. } => observer.radar(state, true),
             SensorKind::Optical => observer.optical(pos(state)).to_vec(),
+            SensorKind::AzEl => observer.radar(state, false)[1..].to_vec(),
+            SensorKind::Range => observer.radar(state, false)[..1].to_vec(),
+            SensorKind::RangeRangeRate { .. } => {
+                let z = observer.radar(state, true);
+                vec![z[0], z[3]]
+            }
         }
     }
 
-    /// Whether a true state is inside the field of view.
+    /// Whether a true state is inside the field of view (a range and range-rate sensor: its range-rate
+    /// within ±`max_range_rate` too).
     pub fn sees(&self, observer: &Observer, state: &[f64; 6]) -> bool {
         let (rho, a, e) = observer.range_az_el(pos(state));
-        self.fov.contains(a, e, Some(rho))
+        let rate_ok = match self.kind {
+            SensorKind::RangeRangeRate { max_range_rate } => observer.radar(state, true)[3].abs() <= max_range_rate,
+            _ => true,
+        };
+        rate_ok && self.fov.contains(a, e, Some(rho))
+    }
+
+    fn in_range_window(&self, range: f64) -> bool {
+        self.fov.range.is_none_or(|[low, high]| range >= low && range <= high)
     }
 
     /// Whether a measurement-space point is inside the field of view (its look angles and range).
@@ -88,6 +128,10 @@ impl SensorSpec {
                 let (a, e) = observer.look(radec_direction(z[0], z[1]));
                 self.fov.contains(a, e, None)
             }
+            SensorKind::AzEl => self.fov.contains(z[0], z[1], None),
+            // No angles: the range (and range-rate) windows.
+            SensorKind::Range => self.in_range_window(z[0]),
+            SensorKind::RangeRangeRate { max_range_rate } => self.in_range_window(z[0]) && z[1].abs() <= max_range_rate,
         }
     }
 
@@ -120,13 +164,23 @@ impl SensorSpec {
                 // No tight (α, δ) image of a box is computed: the whole sky bounds it.
                 LookShape::Box { .. } => vec![(0.0, PI), (0.0, FRAC_PI_2)],
             },
+            SensorKind::AzEl => vec![(az_c, az_w), el],
+            SensorKind::Range | SensorKind::RangeRangeRate { .. } => {
+                let [lo, hi] = self.fov.range.unwrap_or([0.0, 0.0]);
+                let mut b = vec![((lo + hi) * 0.5, (hi - lo) * 0.5)];
+                if let SensorKind::RangeRangeRate { max_range_rate } = self.kind {
+                    b.push((0.0, max_range_rate));
+                }
+                b
+            }
         }
     }
 
     fn angle_components(&self) -> &'static [usize] {
-        match self.kind {
-            SensorKind::Radar | SensorKind::RadarRangeRate { .. } => &[1],
-            SensorKind::Optical => &[0],
+        match self.kind.angles() {
+            Some((0, _)) => &[0],
+            Some(_) => &[1],
+            None => &[],
         }
     }
 
@@ -171,10 +225,7 @@ impl SensorSpec {
         for (zi, s) in z.iter_mut().zip(&self.sigma) {
             *zi += s * random.normal();
         }
-        let (a, e) = match self.kind {
-            SensorKind::Optical => (0, 1),
-            _ => (1, 2),
-        };
+        let Some((a, e)) = self.kind.angles() else { return z };
         if z[e] > FRAC_PI_2 {
             z[e] = PI - z[e];
             z[a] += PI;

@@ -376,7 +376,13 @@ fn births<T: Real>(argc: i32) -> u64 {
     let optical = OpticalRaDec { observer, sigma: black_box([c(5e-6), c(5e-6)]) };
     fold(optical.birth_components(&black_box(SVector::from([c(0.3) * x, c(0.1)])), &region, &mut out[..length]));
     let kind = black_box(SensorKind::ALL[argc as usize % 6]);
-    let mixed = MixedLook { kind, observer, frame: enu, sigma: black_box([c(5e-6), c(5e-6), c(1e-3), c(1e-4)]) };
+    let mixed = MixedLook {
+        kind,
+        observer,
+        frame: enu,
+        sigma: black_box([c(5e-6), c(5e-6), c(1e-3), c(1e-4)]),
+        births: SensorBirths::FromModel,
+    };
     let z = black_box(SVector::from([c(0.3) * x, c(0.1), c(0.9), c(-1.0)]));
     fold(mixed.birth_components(&z, &region, &mut out[..length]));
     let mut planar = [BirthComponent::<T, 4>::ZERO; 2];

@@ -47,7 +47,9 @@ pub use crate::sensor::EARTH_RADIUS;
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
 pub use light_time::LightTime;
-pub use mixed::{KindError, KindMeasurement, MIXED_DIMENSION, MixedLook, MixedNetwork, MixedSensor, SensorKind};
+pub use mixed::{
+    KindError, KindMeasurement, MIXED_DIMENSION, MixedLook, MixedNetwork, MixedSensor, SensorBirths, SensorKind,
+};
 pub use network::{Placeable, SensorNetwork};
 pub use optical::OpticalRaDec;
 pub use position::PositionMeasurement;

@@ -61,6 +61,10 @@ pub struct RunSummary {
     /// Version 2 (3-D) scenarios only: the number of sensors. Absent from version 1 runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensors: Option<usize>,
+    /// Version 2 (3-D) scenarios only: the kinds of the sensors, each once (`radar`, `radar-range-rate`,
+    /// `optical`, `az-el`, `range`, `range-range-rate`). Absent from version 1 runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensor_kinds: Option<Vec<String>>,
     /// Tracks the core dropped for a numerical failure (issue 33).
     #[serde(default)]
     pub numerical_drops: super::NumericalDropsSummary,

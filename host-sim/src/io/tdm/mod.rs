@@ -97,8 +97,20 @@ impl DataKind {
             Measurement3dSpec::RadarRangeRate => {
                 &[DataKind::Range, DataKind::Angle1, DataKind::Angle2, DataKind::Doppler]
             }
-            Measurement3dSpec::Optical => &[DataKind::Angle1, DataKind::Angle2],
+            Measurement3dSpec::Optical | Measurement3dSpec::AzEl => &[DataKind::Angle1, DataKind::Angle2],
+            Measurement3dSpec::Range => &[DataKind::Range],
+            Measurement3dSpec::RangeRangeRate => &[DataKind::Range, DataKind::Doppler],
+            Measurement3dSpec::Network => &[],
         }
+    }
+}
+
+/// The `ANGLE_TYPE` of a sensor kind's angles (`None`: it measures none).
+fn angle_type_of(kind: Measurement3dSpec) -> Option<AngleType> {
+    match kind {
+        Measurement3dSpec::Optical => Some(AngleType::RaDec),
+        Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate | Measurement3dSpec::AzEl => Some(AngleType::AzEl),
+        Measurement3dSpec::Range | Measurement3dSpec::RangeRangeRate | Measurement3dSpec::Network => None,
     }
 }
 
@@ -482,22 +494,23 @@ pub struct SourcedScan {
     pub line: usize,
 }
 
-/// The scans of one parsed TDM under `config` (its sensors, measurement type and epoch), in file order.
+/// The scans of one parsed TDM under `config` (its sensors, each sensor's kind, and the epoch), in file
+/// order.
 ///
 /// # Errors
 /// A sensor the configuration does not have, an angle type that is not the measurement type's, components
 /// out of order or incomplete, a time before the epoch or before the previous one.
 pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize)>, TdmError> {
     let epoch = Instant::epoch_of(config);
-    let kind = config.measurement;
-    let components = DataKind::components(kind);
-    let wanted = if kind == Measurement3dSpec::Optical { AngleType::RaDec } else { AngleType::AzEl };
     let mut scans: Vec<(Scan3dSpec, usize, Instant)> = vec![];
     for segment in &tdm.segments {
         let (name, name_line) = &segment.participant;
         let Some(sensor) = config.sensors.iter().position(|s| &s.name == name) else {
             return fail(*name_line, "PARTICIPANT_1", format!("\"{name}\" is not a sensor of the configuration"));
         };
+        let kind = config.kind(sensor);
+        let components = DataKind::components(kind);
+        let wanted = angle_type_of(kind);
         check_angle_type(segment, wanted, kind)?;
         let first_of_segment = scans.len();
         let mut empty: Vec<(Scan3dSpec, usize, Instant)> = vec![];
@@ -562,7 +575,7 @@ pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize
             let line = segment.records.last().map_or(segment.meta_stop_line, |r| r.line);
             return fail(line, components[next].keyword(), "the last measurement is incomplete");
         }
-        if wanted == AngleType::RaDec && segment.reduction.from_eme2000() {
+        if wanted == Some(AngleType::RaDec) && segment.reduction.from_eme2000() {
             for (scan, line, time) in &mut scans[first_of_segment..] {
                 for z in &mut scan.measurements {
                     reduction::ra_dec_to_teme(*line, time, z)?;
@@ -585,17 +598,14 @@ pub fn scans_of(tdm: &Tdm, config: &Scenario3d) -> Result<Vec<(Scan3dSpec, usize
     Ok(scans.into_iter().map(|(scan, line, _)| (scan, line)).collect())
 }
 
-/// The segment's `ANGLE_TYPE` is `wanted` (that of the configuration's `kind` of measurement), or absent
-/// from a segment without data.
-fn check_angle_type(segment: &Segment, wanted: AngleType, kind: Measurement3dSpec) -> Result<(), TdmError> {
+/// The segment's `ANGLE_TYPE` is `wanted` (that of the sensor's `kind` of measurement), or absent from a
+/// segment without data; any (or none) for a kind without angles.
+fn check_angle_type(segment: &Segment, wanted: Option<AngleType>, kind: Measurement3dSpec) -> Result<(), TdmError> {
+    let Some(wanted) = wanted else { return Ok(()) };
     match segment.angle_type {
         Some((t, _)) if t == wanted => {}
         Some((_, line)) => {
-            return fail(
-                line,
-                "ANGLE_TYPE",
-                format!("does not match the configuration's {} measurements", kind.name()),
-            );
+            return fail(line, "ANGLE_TYPE", format!("does not match the sensor's {} measurements", kind.name()));
         }
         None if segment.records.iter().any(|r| r.value.is_some()) => {
             return fail(segment.meta_stop_line, "ANGLE_TYPE", "required with angle data, missing");
@@ -638,7 +648,7 @@ pub fn scenario_after_prior(files: &[PathBuf], config: &Scenario3d, skip: bool) 
         let scans = scans_of(&tdm, config).map_err(|e| with_file(file, e))?;
         for segment in &tdm.segments {
             let Some(i) = sensors.iter().position(|s| s.name == segment.participant.0) else { continue };
-            let az_el = config.measurement != Measurement3dSpec::Optical;
+            let az_el = config.kind(i).measures_elevation();
             physics::adopt(&mut sensors[i], &segment.physics, az_el, &mut stated[i])
                 .map_err(|e| Error::input(format!("{}:{}: {e}", file.display(), segment.meta_line)))?;
         }
@@ -682,7 +692,7 @@ pub fn scenario_after_prior(files: &[PathBuf], config: &Scenario3d, skip: bool) 
 pub fn write(scenario: &Scenario3d, sensor: usize) -> Result<String, Error> {
     let epoch = Instant::epoch_of(scenario);
     let spec = &scenario.sensors[sensor];
-    let kind = scenario.measurement;
+    let kind = scenario.kind(sensor);
     let scans: Vec<&Scan3dSpec> = scenario.scans.iter().filter(|s| s.sensor == sensor).collect();
     let mut times = Vec::with_capacity(scans.len());
     for (k, scan) in scans.iter().enumerate() {
@@ -710,13 +720,16 @@ pub fn write(scenario: &Scenario3d, sensor: usize) -> Result<String, Error> {
     line(format!("PARTICIPANT_1 = {}", spec.name));
     line("PARTICIPANT_2 = SPACE OBJECTS".into());
     line("MODE = SEQUENTIAL".into());
-    let optical = kind == Measurement3dSpec::Optical;
-    physics::export_lines(spec, optical).into_iter().for_each(&mut line);
-    if optical {
-        line("ANGLE_TYPE = RADEC".into());
-        line("REFERENCE_FRAME = TEME".into());
-    } else {
-        line("ANGLE_TYPE = AZEL".into());
+    physics::export_lines(spec, kind).into_iter().for_each(&mut line);
+    match angle_type_of(kind) {
+        Some(AngleType::RaDec) => {
+            line("ANGLE_TYPE = RADEC".into());
+            line("REFERENCE_FRAME = TEME".into());
+        }
+        Some(AngleType::AzEl) => line("ANGLE_TYPE = AZEL".into()),
+        None => {}
+    }
+    if kind.has_range() {
         line("RANGE_UNITS = km".into());
     }
     line("META_STOP".into());

@@ -14,7 +14,7 @@
 //! A sensor's `light_time` and `refraction` in the configuration win over what the TDM states.
 
 use super::{TdmError, fail};
-use crate::scenario::v2::{LightTimeSpec, RefractionSpec, Sensor3dSpec};
+use crate::scenario::v2::{LightTimeSpec, Measurement3dSpec, RefractionSpec, Sensor3dSpec};
 
 /// The metadata comment: no light time in the data.
 pub const NO_LIGHT_TIME: &str = "LIGHT_TIME NONE";
@@ -100,11 +100,13 @@ impl Statement {
 }
 
 /// The metadata lines `export-tdm` writes for `sensor`'s physics: `PATH`, `TIMETAG_REF` and the comments
-/// that say what the data lacks (`optical`: a telescope, downlink, no refraction comment needed).
-pub fn export_lines(sensor: &Sensor3dSpec, optical: bool) -> Vec<String> {
+/// that say what the data lacks: a sensor of `kind` without range receives only (downlink), one without
+/// elevations needs no refraction comment.
+pub fn export_lines(sensor: &Sensor3dSpec, kind: Measurement3dSpec) -> Vec<String> {
     let light_time = sensor.light_time.unwrap_or_default();
+    let passive = !kind.has_range();
     let (path, tag) = match light_time {
-        LightTimeSpec::Off | LightTimeSpec::OneWayReceive if optical => ("2,1", None),
+        LightTimeSpec::Off | LightTimeSpec::OneWayReceive if passive => ("2,1", None),
         LightTimeSpec::Off | LightTimeSpec::TwoWayReceive => ("1,2,1", None),
         LightTimeSpec::TwoWayTransmit => ("1,2,1", Some("TRANSMIT")),
         LightTimeSpec::OneWayReceive => ("2,1", None),
@@ -115,7 +117,7 @@ pub fn export_lines(sensor: &Sensor3dSpec, optical: bool) -> Vec<String> {
     if light_time == LightTimeSpec::Off {
         lines.push(format!("COMMENT {NO_LIGHT_TIME}"));
     }
-    if !optical && sensor.atmosphere().is_none() {
+    if kind.measures_elevation() && sensor.atmosphere().is_none() {
         lines.push(format!("COMMENT {NO_REFRACTION}"));
     }
     lines

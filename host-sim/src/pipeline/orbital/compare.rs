@@ -1,7 +1,7 @@
 //! `host-sim compare` on a version 2 file: the bounded tracker and the unbounded reference on the same
 //! scans ([`crate::eval::exactness::compare_scans`]).
 
-use super::tracker::{choose_profile, config3d};
+use super::tracker::{ScenarioNetwork, choose_profile, config3d, padded};
 use crate::error::Error;
 use crate::eval::exactness::{CompareFigures, Scan, compare_scans_with_budget};
 use crate::pipeline::profile::ORBITAL;
@@ -9,8 +9,6 @@ use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::{ReferenceBudget, TrackerKind};
 use crate::scenario::v2::Scenario3d;
 use crate::{with_capacities, with_measurement};
-use nalgebra::SVector;
-use tracker_core::model::Placeable;
 use tracker_core::sensor::ScanGeometry;
 
 /// The scans of `scenario` as the trackers take them (angles in radians, corrections removed).
@@ -19,24 +17,22 @@ fn scans3d<const D: usize>(scenario: &Scenario3d) -> Vec<Scan<D>> {
         .scans
         .iter()
         .map(|scan| {
-            let zs = super::corrections::corrected_measurements(scenario, scan)
-                .iter()
-                .map(|z| SVector::<f64, D>::from_column_slice(z))
-                .collect();
+            let zs =
+                super::corrections::corrected_measurements(scenario, scan).iter().map(|z| padded::<D>(z)).collect();
             (ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None }, zs)
         })
         .collect()
 }
 
-fn compare_with<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn compare_with<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
     budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
-    let (config, prior) = config3d::<X, D, B>(scenario, kind)?;
+    let (config, prior) = config3d::<G, D, B>(scenario, kind)?;
     compare_scans_with_budget::<_, _, 6, D, H, N, Z, K, B>(
         &config,
         &prior,
@@ -47,14 +43,14 @@ where
     .map_err(Error::input)
 }
 
-/// [`compare3d`] for the measurement model `X`.
-fn compare_for<X: Placeable<f64, D>, const D: usize>(
+/// [`compare3d`] for the network `G`.
+fn compare_for<G: ScenarioNetwork<D>, const D: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Profile,
     budget: ReferenceBudget,
 ) -> Result<CompareFigures, Error> {
-    with_capacities!(profile, ORBITAL, compare_with, [X, D], (scenario, kind, budget))
+    with_capacities!(profile, ORBITAL, compare_with, [G, D], (scenario, kind, budget))
 }
 
 /// `host-sim compare` on a version 2 file: the bounded tracker `kind` (homht or rfisst) and the unbounded

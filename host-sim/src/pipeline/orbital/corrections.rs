@@ -10,14 +10,18 @@ use crate::scenario::v2::{Measurement3dSpec, Scan3dSpec, Scenario3d};
 use crate::sim::refraction::geometric_elevation;
 use tracker_core::sensor::wrap_angle;
 
-/// The elevation's component of a measurement kind that has one (radar: A, E after ρ).
+/// The elevation's component of a measurement kind that has one (radar: A, E after ρ; az/el: E after A).
 fn elevation_component(kind: Measurement3dSpec) -> Option<usize> {
-    if kind.sky_in_ra_dec() { None } else { Some(2) }
+    match kind {
+        Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => Some(2),
+        Measurement3dSpec::AzEl => Some(1),
+        _ => None,
+    }
 }
 
 /// The scan's measurements in the tracker's units with its sensor's bias and refraction removed.
 pub fn corrected_measurements(scenario: &Scenario3d, scan: &Scan3dSpec) -> Vec<Vec<f64>> {
-    let kind = scenario.measurement;
+    let kind = scenario.kind(scan.sensor);
     let mut zs = measurements_in_radians(kind, &scan.measurements);
     let Some(sensor) = scenario.sensors.get(scan.sensor) else { return zs };
     if sensor.bias.is_some() {

@@ -2,13 +2,10 @@
 //! range-rate, topocentric right ascension and declination, field-of-view membership of a state), and the
 //! core's own field-of-view test of measurements.
 
-use super::tracker::{C, network};
+use super::tracker::{ScenarioNetwork, network, padded};
 use crate::error::Error;
 use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use crate::with_measurement;
-use nalgebra::SVector;
-use tracker_core::Placement;
-use tracker_core::model::{Placeable, SensorNetwork};
 use tracker_core::sensor::{EarthRotation, GroundSite, ScanGeometry};
 use tracker_core::{Look, Region};
 
@@ -18,7 +15,7 @@ pub struct SiteGeometry {
     rotation: EarthRotation<f64>,
     sites: Vec<GroundSite<f64>>,
     regions: Vec<Region<f64>>,
-    kind: Measurement3dSpec,
+    kinds: Vec<Measurement3dSpec>,
 }
 
 impl SiteGeometry {
@@ -36,7 +33,7 @@ impl SiteGeometry {
                 })
                 .collect(),
             regions: scenario.sensors.iter().map(|s| s.field_of_view.region()).collect(),
-            kind: scenario.measurement,
+            kinds: (0..scenario.sensors.len()).map(|i| scenario.kind(i)).collect(),
         }
     }
 
@@ -52,8 +49,9 @@ impl SiteGeometry {
     }
 
     /// Look angles (rad), range (km) and range-rate (km/s) of `state` from sensor `sensor` at `time`; the
-    /// range and range-rate only where the measurement type has them.
+    /// range and range-rate only where the sensor's kind has them.
     pub fn look(&self, sensor: usize, time: f64, state: &[f64; 6]) -> Look<f64> {
+        let kind = self.kinds[sensor];
         let (d, w, enu) = self.line_of_sight(sensor, time, state);
         let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let (e, n, u) = (dot(&enu[0], &d), dot(&enu[1], &d), dot(&enu[2], &d));
@@ -61,8 +59,8 @@ impl SiteGeometry {
         Look {
             azimuth: e.atan2(n),
             elevation: u.atan2(e.hypot(n)),
-            range: self.kind.has_range().then_some(range),
-            range_rate: self.kind.has_range_rate().then(|| dot(&d, &w) / range),
+            range: kind.has_range().then_some(range),
+            range_rate: kind.has_range_rate().then(|| dot(&d, &w) / range),
         }
     }
 
@@ -77,10 +75,10 @@ impl SiteGeometry {
         self.regions[sensor].contains_look(&self.look(sensor, time, state))
     }
 
-    /// The sky-plot point of `state`: (azimuth, elevation) for radar, (right ascension, declination) for
-    /// a telescope.
+    /// The sky-plot point of `state`: (right ascension, declination) for a telescope, (azimuth, elevation)
+    /// for every other kind.
     pub fn sky_point(&self, sensor: usize, time: f64, state: &[f64; 6]) -> (f64, f64) {
-        if self.kind.sky_in_ra_dec() {
+        if self.kinds[sensor].sky_in_ra_dec() {
             self.ra_dec(sensor, time, state)
         } else {
             let look = self.look(sensor, time, state);
@@ -99,27 +97,21 @@ pub struct FieldOfViewCheck {
 /// Whether a measurement (tracker units) of sensor `sensor` at `time` is in its field of view.
 type Sees = dyn Fn(usize, f64, &[f64]) -> bool + Send + Sync;
 
-fn sees_in<X: Placeable<f64, D>, const D: usize>(
-    network: &SensorNetwork<f64, X, D, C>,
-    sensor: usize,
-    time: f64,
-    z: &[f64],
-) -> bool {
-    if z.len() != D {
-        return false;
-    }
+fn sees_in<G: ScenarioNetwork<D>, const D: usize>(network: &G, sensor: usize, time: f64, z: &[f64]) -> bool {
     match network.place(&ScanGeometry { sensor, time, observer: None }) {
-        Ok(placed) => placed.detection().is_some_and(|d| d.field_of_view.sees(&placed, &SVector::from_column_slice(z))),
+        Ok(placed) => {
+            z.len() == placed.dimension() && {
+                let z = padded::<D>(z);
+                placed.detection().is_some_and(|d| placed.measurement_in_view(&d.field_of_view, &z))
+            }
+        }
         Err(_) => false,
     }
 }
 
-/// The check of a network of measurement model `X`.
-fn check_for<X, const D: usize>(scenario: &Scenario3d) -> Result<FieldOfViewCheck, Error>
-where
-    X: Placeable<f64, D> + Send + Sync + 'static,
-{
-    let network = network::<X, D>(scenario)?;
+/// The check of the network `G`.
+fn check_for<G: ScenarioNetwork<D>, const D: usize>(scenario: &Scenario3d) -> Result<FieldOfViewCheck, Error> {
+    let network = network::<G, D>(scenario)?;
     Ok(FieldOfViewCheck { sees: Box::new(move |sensor, time, z| sees_in(&network, sensor, time, z)) })
 }
 

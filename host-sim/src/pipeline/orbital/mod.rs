@@ -24,8 +24,8 @@ pub mod tracker;
 pub use compare::compare3d;
 pub use geometry::{FieldOfViewCheck, SiteGeometry};
 pub use tracker::{
-    C, Posterior6, Runner3d, birth_components_per_measurement, build3d, choose_profile, config3d,
-    measurements_in_radians, network,
+    C, Posterior6, Runner3d, ScenarioNetwork, birth_components_per_measurement, build3d, choose_profile, config3d,
+    measurements_in_radians, network, padded,
 };
 
 use crate::error::Error;
@@ -40,21 +40,49 @@ use plots::SkyTruth;
 use std::path::{Path, PathBuf};
 use tracker_core::StepError;
 
-/// Calls `$f::<X, D>($args..)` with the core's measurement model `X` (of `D` coordinates) of the
-/// measurement kind `$kind` of a version 2 file: the one place the two meet.
+/// Calls `$f::<G, D>($args..)` with the core's measurement model `G` (of `D` coordinates) of the
+/// measurement type `$kind` of a version 2 file ([`ScenarioNetwork`]): the one place the two meet. Radar,
+/// radar with range-rate and optical are a [`SensorNetwork`](tracker_core::model::SensorNetwork) of their
+/// model; every other type (`network`, az/el, range, range and range-rate) a
+/// [`MixedNetwork`](tracker_core::model::MixedNetwork).
 #[macro_export]
 macro_rules! with_measurement {
     ($kind:expr, $f:ident, ($($arg:expr),* $(,)?)) => {
         match $kind {
-            $crate::scenario::v2::Measurement3dSpec::Radar => {
-                $f::<::tracker_core::model::RadarRangeAzEl<f64>, 3>($($arg),*)
-            }
-            $crate::scenario::v2::Measurement3dSpec::RadarRangeRate => {
-                $f::<::tracker_core::model::RadarRangeRate<f64>, 4>($($arg),*)
-            }
-            $crate::scenario::v2::Measurement3dSpec::Optical => {
-                $f::<::tracker_core::model::OpticalRaDec<f64>, 2>($($arg),*)
-            }
+            $crate::scenario::v2::Measurement3dSpec::Radar => $f::<
+                ::tracker_core::model::SensorNetwork<
+                    f64,
+                    ::tracker_core::model::RadarRangeAzEl<f64>,
+                    3,
+                    { $crate::pipeline::orbital::C },
+                >,
+                3,
+            >($($arg),*),
+            $crate::scenario::v2::Measurement3dSpec::RadarRangeRate => $f::<
+                ::tracker_core::model::SensorNetwork<
+                    f64,
+                    ::tracker_core::model::RadarRangeRate<f64>,
+                    4,
+                    { $crate::pipeline::orbital::C },
+                >,
+                4,
+            >($($arg),*),
+            $crate::scenario::v2::Measurement3dSpec::Optical => $f::<
+                ::tracker_core::model::SensorNetwork<
+                    f64,
+                    ::tracker_core::model::OpticalRaDec<f64>,
+                    2,
+                    { $crate::pipeline::orbital::C },
+                >,
+                2,
+            >($($arg),*),
+            $crate::scenario::v2::Measurement3dSpec::AzEl
+            | $crate::scenario::v2::Measurement3dSpec::Range
+            | $crate::scenario::v2::Measurement3dSpec::RangeRangeRate
+            | $crate::scenario::v2::Measurement3dSpec::Network => $f::<
+                ::tracker_core::model::MixedNetwork<f64, { $crate::pipeline::orbital::C }>,
+                { ::tracker_core::model::MIXED_DIMENSION },
+            >($($arg),*),
         }
     };
 }
@@ -111,6 +139,7 @@ impl World<3> for OrbitalWorld<'_> {
             tracker: self.kind.name(),
             profile: self.profile.name(),
             sensors: Some(scenario.sensors.len()),
+            sensor_kinds: Some(scenario.sensor_kinds().iter().map(|k| k.name().to_string()).collect()),
             evaluation: scenario.evaluation,
             has_truth: scenario.truth.is_some(),
             births: scenario
@@ -173,7 +202,7 @@ impl World<3> for OrbitalWorld<'_> {
 
     fn associate(&self, k: usize) -> Option<ScanAssociations> {
         let scan = &self.scenario.scans[k];
-        let kind = self.scenario.measurement;
+        let kind = self.scenario.kind(scan.sensor);
         let zs = corrections::corrected_measurements(self.scenario, scan);
         let (dimension, associations) = self.runner.associate(scan.sensor, scan.time, &zs);
         let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
@@ -195,8 +224,8 @@ impl World<3> for OrbitalWorld<'_> {
     }
 
     fn residual_axes(&self, sensor: &str) -> Option<Vec<crate::pipeline::residual_plots::Axis>> {
-        let kind = self.scenario.measurement;
-        let spec = self.scenario.sensors.iter().find(|s| s.name == sensor)?;
+        let index = self.scenario.sensors.iter().position(|s| s.name == sensor)?;
+        let (kind, spec) = (self.scenario.kind(index), &self.scenario.sensors[index]);
         let sigma = spec.noise.sigma(kind);
         let in_file_units = |i: usize, v: f64| if kind.is_angle(i) { v.to_degrees() } else { v };
         Some(
@@ -350,7 +379,8 @@ mod tests {
         use tracker_core::{Measure, Placement};
         let scenario = tiny();
         let geometry = SiteGeometry::new(&scenario);
-        let network = network::<RadarRangeAzEl<f64>, 3>(&scenario).expect("network");
+        let network = network::<tracker_core::model::SensorNetwork<f64, RadarRangeAzEl<f64>, 3, C>, 3>(&scenario)
+            .expect("network");
         let truth = &scenario.truth.as_ref().expect("truth").scans[4].objects[0];
         let time = scenario.scans[4].time;
         let placed = network.place(&ScanGeometry { sensor: 0, time, observer: None }).expect("placed");

@@ -51,12 +51,7 @@ fn fov_outline(shape: &ShapeSpec, mask_deg: f64) -> Vec<(f64, f64)> {
 
 /// The names of a measurement's components, for its residual plot.
 pub(super) fn component_names(kind: crate::scenario::v2::Measurement3dSpec) -> &'static [&'static str] {
-    use crate::scenario::v2::Measurement3dSpec;
-    match kind {
-        Measurement3dSpec::Radar => &["range", "azimuth", "elevation"],
-        Measurement3dSpec::RadarRangeRate => &["range", "azimuth", "elevation", "range-rate"],
-        Measurement3dSpec::Optical => &["right ascension", "declination"],
-    }
+    kind.components().0
 }
 
 /// One sensor's sky-plot truth: per object id, a point per scan of that sensor (`None` out of view).
@@ -82,7 +77,7 @@ pub(super) fn write_plots(
             .collect();
         let estimates = [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
         let stem = out.join(format!("sky_{s}_{}", stem_of(&sensor.name)));
-        if scenario.measurement.sky_in_ra_dec() {
+        if scenario.kind(s).sky_in_ra_dec() {
             let title = format!("{}: right ascension / declination, truth in view and MAP estimates", sensor.name);
             plots::sky_plot_ra_dec(&stem, &title, &truth, &estimates, None)?;
         } else {

@@ -1,6 +1,8 @@
 //! The orbital world's core trackers: the sensor network, configuration and prior of a version 2
 //! scenario, and the tracker (f64, two-body + J2) behind one interface whatever its measurement model and
-//! capacities ([`Runner3d`]).
+//! capacities ([`Runner3d`]). A network of one kind is the core's [`SensorNetwork`]; sensors of mixed kinds
+//! (and the kinds without a model of their own: az/el, range, range and range-rate) are one
+//! [`MixedNetwork`] ([`ScenarioNetwork`]).
 
 use crate::error::Error;
 use crate::pipeline::profile::ORBITAL;
@@ -12,12 +14,13 @@ use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
 use std::collections::HashMap;
-use tracker_core::model::{Placeable, SensorNetwork};
+use tracker_core::model::{MeasurementModel, MixedNetwork, MixedSensor, Placeable, SensorNetwork};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
-use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, Sensor, StepError, Tracker, TwoBodyJ2, ssa_caps};
+use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, Sensor, StepError, Tracker, TwoBodyJ2};
 
-/// Sensors a network holds (tracker-core's `ssa_caps::SENSORS`).
-pub const C: usize = ssa_caps::SENSORS;
+/// Sensors a network holds on the host: a network of dozens of stations (tracker-core's embedded caps
+/// are `ssa_caps::SENSORS` for one kind, `ssa_caps::NETWORK_SENSORS` for mixed kinds).
+pub const C: usize = 32;
 
 /// What the run needs of a posterior.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -51,20 +54,89 @@ pub trait Runner3d: Send {
     ) -> (usize, Vec<Option<super::associate::Association>>);
 }
 
-type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
-    Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
-
-struct Core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> {
-    tracker: Box<Tracker3d<X, D, H, N, Z, K, B>>,
+/// The core measurement model of a scenario's sensors: a network of one kind ([`SensorNetwork`] of the
+/// placeable model `X`) or of mixed kinds ([`MixedNetwork`], measurements padded to its `D` components).
+pub trait ScenarioNetwork<const D: usize>: MeasurementModel<f64, 6, D> + Clone + Send + Sync + 'static {
+    /// The network of `scenario`'s sensors.
+    ///
+    /// # Errors
+    /// The core's message when it rejects the network.
+    fn from_scenario(scenario: &Scenario3d) -> Result<Self, Error>;
 }
 
-impl<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Runner3d
-    for Core3d<X, D, H, N, Z, K, B>
+impl<X, const D: usize> ScenarioNetwork<D> for SensorNetwork<f64, X, D, C>
 where
-    X: Placeable<f64, D> + Send,
+    X: Placeable<f64, D> + Send + Sync + 'static,
+{
+    fn from_scenario(scenario: &Scenario3d) -> Result<Self, Error> {
+        let network =
+            SensorNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &site_sensors::<D>(scenario))
+                .map_err(|e| Error::input(format!("sensors: {e}")))?;
+        // Light time where a sensor sets it (docs/maths.md §6.12); off, the network measures as before.
+        scenario.sensors.iter().enumerate().try_fold(network, |network, (i, sensor)| match sensor.light_time_mode() {
+            tracker_core::model::LightTime::Off => Ok(network),
+            mode => network.with_light_time(i, mode).map_err(|e| Error::input(format!("sensors[{i}].light_time: {e}"))),
+        })
+    }
+}
+
+impl ScenarioNetwork<MIXED> for MixedNetwork<f64, C> {
+    fn from_scenario(scenario: &Scenario3d) -> Result<Self, Error> {
+        // Light time is modelled for networks of one kind only (tracker-core's `SensorNetwork`): refused
+        // here rather than ignored.
+        if let Some(i) =
+            scenario.sensors.iter().position(|s| s.light_time_mode() != tracker_core::model::LightTime::Off)
+        {
+            return Err(Error::input(format!(
+                "sensors[{i}].light_time: not modelled yet for a sensor of a network of mixed kinds (measurement \
+                 type {}); leave it out or \"off\"",
+                scenario.measurement.name()
+            )));
+        }
+        let sites = site_sensors::<MIXED>(scenario);
+        let mut sensors = Vec::with_capacity(sites.len());
+        for (i, sensor) in sites.into_iter().enumerate() {
+            let kind = scenario.kind(i).core().ok_or_else(|| Error::input(format!("sensors[{i}]: no kind")))?;
+            sensors.push(MixedSensor { kind, sensor });
+        }
+        let mut network = MixedNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &sensors)
+            .map_err(|e| Error::input(format!("sensors: {e}")))?;
+        for (i, sensor) in scenario.sensors.iter().enumerate() {
+            if let Some(births) = sensor.birth_region {
+                network =
+                    network.with_births(i, births.core()).map_err(|e| Error::input(format!("sensors[{i}]: {e}")))?;
+            }
+        }
+        Ok(network)
+    }
+}
+
+/// The components of a [`MixedNetwork`]'s measurements.
+const MIXED: usize = tracker_core::model::MIXED_DIMENSION;
+
+/// `z` (a sensor's own components) as the tracker's vector of `D`: zeros after its components (a mixed
+/// network's padding; the identity for a network of one kind, whose measurements have `D`).
+pub fn padded<const D: usize>(z: &[f64]) -> SVector<f64, D> {
+    SVector::from_iterator(z.iter().copied().chain(core::iter::repeat(0.0)).take(D))
+}
+
+type Tracker3d<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<f64, TwoBodyJ2<f64>, G, 6, D, H, N, Z, K, B>;
+
+struct Core3d<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
+where
+    G: ScenarioNetwork<D>,
+{
+    tracker: Box<Tracker3d<G, D, H, N, Z, K, B>>,
+}
+
+impl<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> Runner3d
+    for Core3d<G, D, H, N, Z, K, B>
+where
+    G: ScenarioNetwork<D>,
 {
     fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError> {
-        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
+        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| padded::<D>(z)).collect();
         let report = self.tracker.step_scan(&ScanGeometry { sensor, time, observer: None }, &zs)?;
         Ok(StepInfo {
             children: report.children,
@@ -117,15 +189,17 @@ fn site_sensors<const D: usize>(scenario: &Scenario3d) -> Vec<SiteSensor<f64, D>
     scenario
         .sensors
         .iter()
-        .map(|s| {
-            let sigma = s.noise.sigma(scenario.measurement);
+        .enumerate()
+        .map(|(i, s)| {
+            let sigma = s.noise.sigma(scenario.kind(i));
             SiteSensor {
                 platform: Platform::Ground(GroundSite {
                     latitude: s.site.latitude_deg.to_radians(),
                     longitude: s.site.longitude_deg.to_radians(),
                     height: s.site.height_km,
                 }),
-                sigma: core::array::from_fn(|i| sigma.get(i).copied().unwrap_or(f64::NAN)),
+                // A mixed network's padding is zero; a network of one kind has D components.
+                sigma: core::array::from_fn(|k| sigma.get(k).copied().unwrap_or(0.0)),
                 detection: Sensor {
                     detection_probability: s.detection_probability,
                     clutter_rate: s.clutter_rate,
@@ -140,17 +214,8 @@ fn site_sensors<const D: usize>(scenario: &Scenario3d) -> Vec<SiteSensor<f64, D>
 ///
 /// # Errors
 /// The core's message when it rejects the network.
-pub fn network<X: Placeable<f64, D>, const D: usize>(
-    scenario: &Scenario3d,
-) -> Result<SensorNetwork<f64, X, D, C>, Error> {
-    let network =
-        SensorNetwork::new(EarthRotation::new(scenario.earth_rotation_at_epoch()), &site_sensors::<D>(scenario))
-            .map_err(|e| Error::input(format!("sensors: {e}")))?;
-    // Light time where a sensor sets it (docs/maths.md §6.12); off, the network measures as before.
-    scenario.sensors.iter().enumerate().try_fold(network, |network, (i, sensor)| match sensor.light_time_mode() {
-        tracker_core::model::LightTime::Off => Ok(network),
-        mode => network.with_light_time(i, mode).map_err(|e| Error::input(format!("sensors[{i}].light_time: {e}"))),
-    })
+pub fn network<G: ScenarioNetwork<D>, const D: usize>(scenario: &Scenario3d) -> Result<G, Error> {
+    G::from_scenario(scenario)
 }
 
 /// The core configuration and the prior of `scenario` for the tracker `kind` with `B` birth cells.
@@ -158,20 +223,20 @@ pub fn network<X: Placeable<f64, D>, const D: usize>(
 /// # Errors
 /// Bad input: a network the core refuses, more birth cells than `B`, no sensor.
 #[allow(clippy::type_complexity)]
-pub fn config3d<X, const D: usize, const B: usize>(
+pub fn config3d<G, const D: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
-) -> Result<(Config<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, B>, Vec<(f64, Vec<PriorObject<f64, 6>>)>), Error>
+) -> Result<(Config<f64, TwoBodyJ2<f64>, G, 6, B>, Vec<(f64, Vec<PriorObject<f64, 6>>)>), Error>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
-    let network = network::<X, D>(scenario)?;
+    let network = network::<G, D>(scenario)?;
     let cells =
         settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "this tracker's capacity")
             .map_err(Error::input)?;
     let spec = &scenario.tracker;
     let (selection, store_overflow, numerical_failure) = settings::policies(spec);
-    let first = network.sensors().first().map(|s| s.detection);
+    let first = network.detection();
     let config = Config {
         motion: scenario.motion_model(),
         measurement: network,
@@ -202,17 +267,17 @@ where
     Ok((config, prior))
 }
 
-fn core3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn core3d<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
 ) -> Result<Box<dyn Runner3d>, Error>
 where
-    X: Placeable<f64, D> + Send + 'static,
+    G: ScenarioNetwork<D>,
 {
-    let (config, objects) = config3d::<X, D, B>(scenario, kind)?;
+    let (config, objects) = config3d::<G, D, B>(scenario, kind)?;
     let prior: Vec<PriorHypothesis<'_, f64, 6>> =
         objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
-    let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, scenario.prior.time)
+    let tracker = Tracker3d::<G, D, H, N, Z, K, B>::new(config, &prior, scenario.prior.time)
         .map_err(|e| Error::input(format!("tracker configuration: {e}")))?;
     Ok(Box::new(Core3d { tracker: Box::new(tracker) }))
 }
@@ -239,8 +304,10 @@ pub fn choose_profile(scenario: &Scenario3d, asked: Option<Profile>) -> Profile 
 /// [`Measurement3dSpec::birth_components`]). A measurement whose components do not fit the pool gives no
 /// birth.
 pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
-    let Some(measured) = &scenario.birth.measured else { return 0 };
-    scenario.measurement.birth_components(&measured.core().region)
+    (0..scenario.sensors.len())
+        .filter_map(|i| Some(scenario.kind(i).birth_components(&scenario.birth_region(i)?)))
+        .max()
+        .unwrap_or(0)
 }
 
 /// Builds the 3-D tracker `kind` for `scenario`.
@@ -255,16 +322,16 @@ pub fn build3d(kind: TrackerKind, profile: Profile, scenario: &Scenario3d) -> Re
     with_measurement!(scenario.measurement, build_for, (kind, profile, scenario))
 }
 
-/// [`build3d`] for the measurement model `X`.
-fn build_for<X, const D: usize>(
+/// [`build3d`] for the network `G`.
+fn build_for<G, const D: usize>(
     kind: TrackerKind,
     profile: Profile,
     scenario: &Scenario3d,
 ) -> Result<Box<dyn Runner3d>, Error>
 where
-    X: Placeable<f64, D> + Send + 'static,
+    G: ScenarioNetwork<D>,
 {
-    with_capacities!(profile, ORBITAL, core3d, [X, D], (scenario, kind))
+    with_capacities!(profile, ORBITAL, core3d, [G, D], (scenario, kind))
 }
 
 /// The measurements of a scan in the tracker's units: angles from degrees to radians, azimuth and right

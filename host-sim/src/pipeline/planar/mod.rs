@@ -109,6 +109,7 @@ impl World<2> for PlanarWorld<'_> {
             tracker: self.kind.name(),
             profile: if self.kind == TrackerKind::Reference { "unbounded" } else { self.options.profile.name() },
             sensors: None,
+            sensor_kinds: None,
             evaluation: scenario.evaluation,
             has_truth: scenario.truth.is_some(),
             births: scenario

@@ -19,6 +19,7 @@ use super::run::{self, SoakWorld, WorldParts};
 use crate::error::Error;
 use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
 use crate::pipeline::orbital::{C, FieldOfViewCheck, choose_profile, config3d};
+use crate::pipeline::orbital::{ScenarioNetwork, padded};
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::TrackerKind;
@@ -32,12 +33,12 @@ use crate::sim::ssa::draw_scan;
 use crate::sim::time::earth_rotation_angle;
 use nalgebra::SVector;
 use std::time::Instant;
-use tracker_core::model::{OpticalRaDec, Placeable, RadarRangeAzEl, SensorNetwork};
+use tracker_core::model::{OpticalRaDec, RadarRangeAzEl, SensorNetwork};
 use tracker_core::sensor::ScanGeometry;
 use tracker_core::{PriorHypothesis, StepError, StepReport, Tracker, TwoBodyJ2};
 
-type Tracker3d<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
-    Tracker<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>;
+type Tracker3d<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> =
+    Tracker<f64, TwoBodyJ2<f64>, G, 6, D, H, N, Z, K, B>;
 
 /// The truth of the objects now, scan after scan.
 struct Stream3d {
@@ -103,12 +104,12 @@ struct Drawn {
 }
 
 /// The MAP hypothesis's position error (km) of every object (infinite when it lacks the object's label).
-fn position_errors<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
-    tracker: &Tracker3d<X, D, H, N, Z, K, B>,
+fn position_errors<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+    tracker: &Tracker3d<G, D, H, N, Z, K, B>,
     truth: &[[f64; 6]],
 ) -> Vec<f64>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
     let mut errors = vec![f64::INFINITY; truth.len()];
     for track in tracker.map_hypothesis().tracks() {
@@ -217,22 +218,22 @@ fn sensors_text(sim: &SsaScenario) -> String {
 
 /// The tracker `host-sim run --tracker rfisst` builds for `file`, on the heap.
 #[allow(clippy::type_complexity)]
-fn soak_tracker<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn soak_tracker<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     file: &Scenario3d,
-) -> Result<Box<Tracker3d<X, D, H, N, Z, K, B>>, Error>
+) -> Result<Box<Tracker3d<G, D, H, N, Z, K, B>>, Error>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
-    let (config, objects) = config3d::<X, D, B>(file, TrackerKind::Rfisst)?;
+    let (config, objects) = config3d::<G, D, B>(file, TrackerKind::Rfisst)?;
     let prior: Vec<PriorHypothesis<'_, f64, 6>> =
         objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
-    let tracker = Tracker3d::<X, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
+    let tracker = Tracker3d::<G, D, H, N, Z, K, B>::new(config, &prior, file.prior.time)
         .map_err(|e| Error::internal(format!("soak: tracker: {e}")))?;
     Ok(Box::new(tracker))
 }
 
 /// Runs `scans` scans of `sim` (the soak `scenario`) through the tracker of `profile`.
-fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn soak<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: Scenario,
     profile: Profile,
     sim: SsaScenario,
@@ -240,13 +241,13 @@ fn soak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const
     quiet: bool,
 ) -> Result<SoakReport, Error>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
     let started = Instant::now();
     let seed = sim.seed;
     let (file, _) = to_scenario(&sim)?;
     let check = FieldOfViewCheck::new(&file)?;
-    let tracker = soak_tracker::<X, D, H, N, Z, K, B>(&file)?;
+    let tracker = soak_tracker::<G, D, H, N, Z, K, B>(&file)?;
     let stream = Stream3d::new(sim)?;
     let world = OrbitalSoak {
         scenario,
@@ -262,9 +263,9 @@ where
 }
 
 /// An orbital preset's stream and its tracker, for the soak's loop.
-struct OrbitalSoak<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
+struct OrbitalSoak<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
     scenario: Scenario,
     profile: Profile,
@@ -272,7 +273,7 @@ where
     objects: usize,
     file: Scenario3d,
     check: FieldOfViewCheck,
-    tracker: Box<Tracker3d<X, D, H, N, Z, K, B>>,
+    tracker: Box<Tracker3d<G, D, H, N, Z, K, B>>,
     stream: Stream3d,
     tally: Tally,
 }
@@ -285,10 +286,10 @@ struct Scan3d<const D: usize> {
     in_view: Vec<usize>,
 }
 
-impl<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> SoakWorld
-    for OrbitalSoak<X, D, H, N, Z, K, B>
+impl<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize> SoakWorld
+    for OrbitalSoak<G, D, H, N, Z, K, B>
 where
-    X: Placeable<f64, D>,
+    G: ScenarioNetwork<D>,
 {
     type Scan = Scan3d<D>;
     const HYPOTHESES: usize = H;
@@ -298,7 +299,7 @@ where
     fn draw(&mut self, k: u64) -> Result<Self::Scan, String> {
         let Drawn { sensor, time, measurements, outside, in_view } = self.stream.scan(k, &self.check)?;
         self.tally.dropped += outside;
-        let measurements = measurements.iter().map(|z| SVector::from_column_slice(z)).collect();
+        let measurements = measurements.iter().map(|z| padded::<D>(z)).collect();
         Ok(Scan3d { geometry: ScanGeometry { sensor, time, observer: None }, measurements, in_view })
     }
 
@@ -366,7 +367,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
     let profile = choose_profile(&to_scenario(&sim)?.0, None);
     match (scenario, profile) {
         (Scenario::RadarLeo, Profile::Embedded) => soak::<
-            RadarRangeAzEl<f64>,
+            SensorNetwork<f64, RadarRangeAzEl<f64>, 3, C>,
             3,
             { ORBITAL.embedded.hypotheses },
             { ORBITAL.embedded.objects },
@@ -375,7 +376,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
             { ORBITAL.embedded.birth_cells },
         >(scenario, profile, sim, scans, quiet),
         (Scenario::OpticalGeo, Profile::Embedded) => soak::<
-            OpticalRaDec<f64>,
+            SensorNetwork<f64, OpticalRaDec<f64>, 2, C>,
             2,
             { ORBITAL.embedded.hypotheses },
             { ORBITAL.embedded.objects },

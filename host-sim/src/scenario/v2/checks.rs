@@ -3,21 +3,11 @@
 use super::*;
 use crate::scenario::{Readable, ScenarioError, check_covariance, error, positive};
 
-/// Measured values inside their ranges: range ≥ 0, azimuth and right ascension in [−360, 360], elevation and
+/// Measured values inside their ranges ([`Measurement3dSpec::components`]): range ≥ 0, azimuth and right
+/// ascension in any convention (wrapped when the scan is stepped, [`crate::io::angles`]), elevation and
 /// declination in [−90, 90].
-/// Azimuth and right ascension in any convention, wrapped when the scan is stepped
-/// ([`crate::io::angles`]).
-const TURN: (f64, f64) = crate::io::angles::ACCEPTED_TURN;
-
 pub(super) fn check_measurement(field: &str, kind: Measurement3dSpec, z: &[f64]) -> Result<(), ScenarioError> {
-    let (names, bounds): (&[&str], &[(f64, f64)]) = match kind {
-        Measurement3dSpec::Radar => (&["range", "azimuth", "elevation"], &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0)]),
-        Measurement3dSpec::RadarRangeRate => (
-            &["range", "azimuth", "elevation", "range-rate"],
-            &[(0.0, f64::INFINITY), TURN, (-90.0, 90.0), (f64::NEG_INFINITY, f64::INFINITY)],
-        ),
-        Measurement3dSpec::Optical => (&["right ascension", "declination"], &[TURN, (-90.0, 90.0)]),
-    };
+    let (names, bounds) = kind.components();
     for ((value, name), (low, high)) in z.iter().zip(names).zip(bounds) {
         if !(*low..=*high).contains(value) {
             return Err(error(field, format!("{name} {} is not in [{low}, {high}]", Readable(*value))));
@@ -137,8 +127,7 @@ impl FieldOfView3dSpec {
                 }
             }
         }
-        let radar = kind != Measurement3dSpec::Optical;
-        match (self.range_km, radar) {
+        match (self.range_km, kind.has_range()) {
             (Some([low, high]), true) => {
                 finite_all(&format!("{field}.range_km"), &[low, high])?;
                 if low < 0.0 {
@@ -151,11 +140,16 @@ impl FieldOfView3dSpec {
                     ));
                 }
             }
-            (None, true) => return Err(error(format!("{field}.range_km"), "required for radar")),
-            (Some(_), false) => return Err(error(format!("{field}.range_km"), "not part of an optical field of view")),
+            (None, true) => return Err(error(format!("{field}.range_km"), format!("required for {}", kind.name()))),
+            (Some(_), false) => {
+                return Err(error(
+                    format!("{field}.range_km"),
+                    format!("not part of the field of view of a sensor of kind {} (no range)", kind.name()),
+                ));
+            }
             (None, false) => {}
         }
-        match (self.range_rate_km_s, kind == Measurement3dSpec::RadarRangeRate) {
+        match (self.range_rate_km_s, kind.has_range_rate()) {
             (Some([low, high]), true) => {
                 finite_all(&format!("{field}.range_rate_km_s"), &[low, high])?;
                 if !(high > low) {
@@ -165,7 +159,9 @@ impl FieldOfView3dSpec {
                     ));
                 }
             }
-            (None, true) => return Err(error(format!("{field}.range_rate_km_s"), "required for radar-range-rate")),
+            (None, true) => {
+                return Err(error(format!("{field}.range_rate_km_s"), format!("required for {}", kind.name())));
+            }
             (Some(_), false) => {
                 return Err(error(
                     format!("{field}.range_rate_km_s"),

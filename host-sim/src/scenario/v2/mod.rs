@@ -14,12 +14,13 @@ use crate::scenario::{
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use tracker_core::MotionModel;
-use tracker_core::model::AdmissibleRegion;
 
 mod checks;
+mod kinds;
 mod physics;
 pub use checks::check_sensor_names;
 use checks::{check_measurement, covariance6};
+pub use kinds::Measurement3dSpec;
 pub use physics::{LightTimeSpec, RefractionSpec};
 
 /// The format tag of a version 2 file.
@@ -31,8 +32,8 @@ pub const MIN_SITE_HEIGHT: f64 = -1.0;
 /// The highest site height (km) of a ground site.
 pub const MAX_SITE_HEIGHT: f64 = 100.0;
 
-/// The largest number of sensors (tracker-core's `ssa_caps::SENSORS`).
-pub const MAX_SENSORS: usize = tracker_core::ssa_caps::SENSORS;
+/// The largest number of sensors (the host's networks, [`crate::pipeline::orbital::C`]).
+pub const MAX_SENSORS: usize = crate::pipeline::orbital::C;
 
 /// A version 2 scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,7 +52,7 @@ pub struct Scenario3d {
     pub epoch: EpochSpec,
     /// How objects move.
     pub motion: Motion3dSpec,
-    /// What every sensor measures.
+    /// What every sensor measures, or `network`: each sensor's own `kind` ([`Scenario3d::kind`]).
     pub measurement: Measurement3dSpec,
     /// The sensors; a scan names one by its index.
     pub sensors: Vec<Sensor3dSpec>,
@@ -120,81 +121,6 @@ pub enum ProcessNoiseSpec {
     },
 }
 
-/// What the sensors measure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Measurement3dSpec {
-    /// Radar: [range (km), azimuth (deg), elevation (deg)].
-    Radar,
-    /// Radar with range-rate: [range (km), azimuth (deg), elevation (deg), range-rate (km/s)].
-    RadarRangeRate,
-    /// Telescope: [right ascension (deg), declination (deg)], topocentric.
-    Optical,
-}
-
-impl Measurement3dSpec {
-    /// Components of one measurement.
-    pub fn dimension(self) -> usize {
-        match self {
-            Measurement3dSpec::Radar => 3,
-            Measurement3dSpec::RadarRangeRate => 4,
-            Measurement3dSpec::Optical => 2,
-        }
-    }
-
-    /// The name in the file.
-    pub fn name(self) -> &'static str {
-        match self {
-            Measurement3dSpec::Radar => "radar",
-            Measurement3dSpec::RadarRangeRate => "radar-range-rate",
-            Measurement3dSpec::Optical => "optical",
-        }
-    }
-
-    /// Which components are angles (degrees in the file, radians in the tracker).
-    pub fn is_angle(self, component: usize) -> bool {
-        match self {
-            Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => component == 1 || component == 2,
-            Measurement3dSpec::Optical => true,
-        }
-    }
-
-    /// Whether the measurement's `component` is an azimuth or a right ascension (wrapped to
-    /// (−180°, 180°] on the way in, [`crate::io::angles`]).
-    pub fn wraps(self, component: usize) -> bool {
-        match self {
-            Measurement3dSpec::Radar | Measurement3dSpec::RadarRangeRate => component == 1,
-            Measurement3dSpec::Optical => component == 0,
-        }
-    }
-
-    /// Whether a measurement holds the range.
-    pub fn has_range(self) -> bool {
-        self != Measurement3dSpec::Optical
-    }
-
-    /// Whether a measurement holds the range-rate.
-    pub fn has_range_rate(self) -> bool {
-        self == Measurement3dSpec::RadarRangeRate
-    }
-
-    /// Whether the sky is drawn in right ascension and declination (a telescope's frame) rather than
-    /// azimuth and elevation.
-    pub fn sky_in_ra_dec(self) -> bool {
-        self == Measurement3dSpec::Optical
-    }
-
-    /// The most birth components one measurement can give in the admissible region `region`: radar
-    /// headings × speeds × climbs (the range fixes the rest); for the other models the region's bound
-    /// ([`AdmissibleRegion::max_components`]).
-    pub fn birth_components(self, region: &AdmissibleRegion<f64>) -> usize {
-        match self {
-            Measurement3dSpec::Radar => region.headings.saturating_mul(region.speeds).saturating_mul(region.climbs),
-            Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Optical => region.max_components(),
-        }
-    }
-}
-
 /// A ground site on WGS-84.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -242,6 +168,10 @@ impl NoiseSpec {
             Measurement3dSpec::Radar => &["range_km", "azimuth_arcsec", "elevation_arcsec"],
             Measurement3dSpec::RadarRangeRate => &["range_km", "azimuth_arcsec", "elevation_arcsec", "range_rate_km_s"],
             Measurement3dSpec::Optical => &["right_ascension_arcsec", "declination_arcsec"],
+            Measurement3dSpec::AzEl => &["azimuth_arcsec", "elevation_arcsec"],
+            Measurement3dSpec::Range => &["range_km"],
+            Measurement3dSpec::RangeRangeRate => &["range_km", "range_rate_km_s"],
+            Measurement3dSpec::Network => &[],
         }
     }
 
@@ -330,6 +260,13 @@ pub struct FieldOfView3dSpec {
 pub struct Sensor3dSpec {
     /// Name (for plots and messages).
     pub name: String,
+    /// What it measures: required when the scenario's `measurement` is `network`, else absent or the same.
+    #[serde(default, skip_serializing_if = "Option::is_none", with = "kinds::sensor_kind")]
+    pub kind: Option<Measurement3dSpec>,
+    /// Births from this sensor's measurements in this admissible region instead of `birth.measured`'s
+    /// (its other settings apply), or none; only under the measurement type network.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub birth_region: Option<crate::scenario::BirthRegionSpec>,
     /// Where it stands.
     pub site: SiteSpec,
     /// Measurement noise.
@@ -524,6 +461,17 @@ impl Scenario3d {
         self.scans.iter().map(|s| s.measurements.len()).max().unwrap_or(0)
     }
 
+    /// What sensor `sensor` measures: its own `kind`, else the scenario's `measurement`.
+    pub fn kind(&self, sensor: usize) -> Measurement3dSpec {
+        self.sensors.get(sensor).and_then(|s| s.kind).unwrap_or(self.measurement)
+    }
+
+    /// The kinds of the sensors, each once, in the core's order ([`Measurement3dSpec::SENSOR_KINDS`]).
+    pub fn sensor_kinds(&self) -> Vec<Measurement3dSpec> {
+        let present: Vec<Measurement3dSpec> = (0..self.sensors.len()).map(|i| self.kind(i)).collect();
+        Measurement3dSpec::SENSOR_KINDS.into_iter().filter(|kind| present.contains(kind)).collect()
+    }
+
     /// Objects of the prior's largest hypothesis.
     pub fn max_prior_objects(&self) -> usize {
         self.prior.hypotheses.iter().map(|h| h.objects.len()).max().unwrap_or(0)
@@ -553,7 +501,8 @@ impl Scenario3d {
         }
         check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
-            sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
+            self.validate_sensor_kind(i)?;
+            sensor.validate(&format!("sensors[{i}]"), self.kind(i))?;
         }
         self.validate_births()?;
         self.validate_prior()?;
@@ -562,6 +511,49 @@ impl Scenario3d {
             truth.validate(&self.scans)?;
         }
         self.evaluation.validate()
+    }
+
+    /// A sensor's `kind`: required under `network`, else absent or the scenario's own.
+    fn validate_sensor_kind(&self, sensor: usize) -> Result<(), ScenarioError> {
+        let field = format!("sensors[{sensor}].kind");
+        match (self.measurement, self.sensors[sensor].kind) {
+            (Measurement3dSpec::Network, None) => Err(error(field, "required when the measurement type is network")),
+            _ if self.measurement != Measurement3dSpec::Network && self.sensors[sensor].birth_region.is_some() => {
+                Err(error(
+                    format!("sensors[{sensor}].birth_region"),
+                    "only a sensor of a network (measurement type network) has its own birth region",
+                ))
+            }
+            (measurement, Some(kind)) if measurement != Measurement3dSpec::Network && kind != measurement => {
+                Err(error(
+                    field,
+                    format!(
+                        "\"{}\" differs from the measurement type \"{}\" (sensors of mixed kinds need the \
+                         measurement type network)",
+                        kind.name(),
+                        measurement.name()
+                    ),
+                ))
+            }
+            _ => match self.sensors[sensor].birth_region.map(|b| b.core()) {
+                Some(tracker_core::model::SensorBirths::Region(region)) => region
+                    .validate()
+                    .map_err(|reason| error(format!("sensors[{sensor}].birth_region"), reason.to_string())),
+                _ => Ok(()),
+            },
+        }
+    }
+
+    /// Sensor `sensor`'s admissible region for births: its own, else `birth.measured`'s (`None` without
+    /// measured births, or when the sensor's births are off).
+    pub fn birth_region(&self, sensor: usize) -> Option<tracker_core::model::AdmissibleRegion<f64>> {
+        use tracker_core::model::SensorBirths;
+        let measured = self.birth.measured.as_ref()?;
+        match self.sensors.get(sensor).and_then(|s| s.birth_region).map(|b| b.core()) {
+            None | Some(SensorBirths::FromModel) => Some(measured.core().region),
+            Some(SensorBirths::Region(region)) => Some(region),
+            Some(SensorBirths::Off) => None,
+        }
     }
 
     fn validate_epoch(&self) -> Result<(), ScenarioError> {
@@ -672,7 +664,6 @@ impl Scenario3d {
         // The bound the tracker applies (tracker-core's `place_scan`): a longer gap is TimeStepTooLong.
         let limit = self.motion_model().max_time_step();
         let mut previous = self.prior.time;
-        let dimension = self.measurement.dimension();
         for (k, scan) in self.scans.iter().enumerate() {
             let field = format!("scans[{k}]");
             finite(&format!("{field}.time"), scan.time)?;
@@ -701,20 +692,18 @@ impl Scenario3d {
                     format!("unknown sensor {}: there are {} sensors", scan.sensor, self.sensors.len()),
                 ));
             }
+            let kind = self.kind(scan.sensor);
+            let dimension = kind.dimension();
             for (j, z) in scan.measurements.iter().enumerate() {
                 let field = format!("{field}.measurements[{j}]");
                 if z.len() != dimension {
                     return Err(error(
                         &field,
-                        format!(
-                            "has {} components, a {} measurement has {dimension}",
-                            z.len(),
-                            self.measurement.name()
-                        ),
+                        format!("has {} components, a {} measurement has {dimension}", z.len(), kind.name()),
                     ));
                 }
                 finite_all(&field, z)?;
-                check_measurement(&field, self.measurement, z)?;
+                check_measurement(&field, kind, z)?;
             }
         }
         Ok(())

@@ -149,6 +149,10 @@ impl Sensor3dSpec {
                 "applies to azimuth and elevation: astrometric right ascension and declination, reduced \
                  against catalogue stars, have it removed already",
             )),
+            Some(RefractionSpec::Bennett { .. }) if !kind.measures_elevation() => Err(error(
+                format!("{field}.refraction"),
+                format!("applies to elevations: a {} measurement has none", kind.name()),
+            )),
             Some(RefractionSpec::Bennett { pressure_kpa, temperature_c })
                 if !(pressure_kpa.is_finite()
                     && (0.0..=120.0).contains(&pressure_kpa)

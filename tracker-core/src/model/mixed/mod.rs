@@ -23,7 +23,10 @@
 //! ([`Measure::look_of_state`]), and a measurement is in view when its range (and range-rate) lie in the
 //! windows.
 //!
-//! **Births.** Radar kinds use the radar admissible regions, right ascension/declination the optical one;
+//! **Births.** Radar kinds use the radar admissible regions, right ascension/declination the optical one,
+//! in the region the tracker's birth model gives or, where a sensor has one, that sensor's own
+//! ([`MixedNetwork::with_births`]: a telescope staring at the GEO belt beside a radar fence on LEO), or none
+//! where a sensor's measurements should start no track ([`SensorBirths::Off`]);
 //! an azimuth/elevation measurement is turned into the inertial direction it names and uses the optical
 //! region (with an isotropic angular σ, the larger of σ_A cos E and σ_E). Range-only kinds give no birth
 //! density: their objects are born from another sensor's measurements.
@@ -231,6 +234,21 @@ pub struct MixedLook<T> {
     pub frame: [[T; 3]; 3],
     /// Noise standard deviations of the kind's components, then zeros.
     pub sigma: [T; MIXED_DIMENSION],
+    /// Where the sensor's births come from.
+    pub births: SensorBirths<T>,
+}
+
+/// Where the births of one sensor of a [`MixedNetwork`] come from.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SensorBirths<T> {
+    /// The birth model's admissible region.
+    #[default]
+    FromModel,
+    /// The sensor's own admissible region (a telescope on the GEO belt beside radars on LEO).
+    Region(AdmissibleRegion<T>),
+    /// None: the sensor's measurements start no track (its objects are born from other sensors').
+    Off,
 }
 
 type Vector4<T> = SVector<T, MIXED_DIMENSION>;
@@ -426,6 +444,11 @@ impl<T: Real> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedLook<T> {
         region: &AdmissibleRegion<T>,
         out: &mut [BirthComponent<T, 6>],
     ) -> Result<usize, BirthError> {
+        let region = match &self.births {
+            SensorBirths::FromModel => region,
+            SensorBirths::Region(own) => own,
+            SensorBirths::Off => return Err(BirthError::Unsupported),
+        };
         match self.kind {
             SensorKind::Radar => self.radar().birth_components(&head::<T, 3>(z), region, out),
             SensorKind::RadarRangeRate => self.radar_rate().birth_components(z, region, out),
@@ -498,6 +521,7 @@ pub struct MixedNetwork<T, const C: usize> {
     rotation: EarthRotation<T>,
     sensors: [MixedSensor<T>; C],
     volumes: [T; C],
+    births: [SensorBirths<T>; C],
     count: usize,
     current: usize,
     placed: MixedLook<T>,
@@ -519,6 +543,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             rotation,
             sensors: [*first; C],
             volumes: [T::one(); C],
+            births: [SensorBirths::FromModel; C],
             count: sensors.len(),
             current: 0,
             placed: MixedLook {
@@ -526,6 +551,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
                 observer: [T::zero(); 6],
                 frame: inertial_frame(),
                 sigma: first.sensor.sigma,
+                births: SensorBirths::FromModel,
             },
         };
         for (index, sensor) in sensors.iter().enumerate() {
@@ -547,6 +573,30 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             network = placed;
         }
         Ok(network)
+    }
+
+    /// The network with sensor `sensor`'s births from `births` instead of the birth model's region: its
+    /// own region (a telescope on the GEO belt beside radars on LEO) or none.
+    ///
+    /// # Errors
+    /// An unknown sensor, or a region that is not valid ([`AdmissibleRegion::validate`]).
+    pub fn with_births(mut self, sensor: usize, births: SensorBirths<T>) -> Result<Self, &'static str> {
+        if let SensorBirths::Region(region) = &births {
+            region.validate()?;
+        }
+        let count = self.count;
+        let slot = self.births.get_mut(..count).and_then(|all| all.get_mut(sensor));
+        let Some(slot) = slot else { return Err("sensor network: births for a sensor it does not have") };
+        *slot = births;
+        if self.current == sensor {
+            self.placed.births = births;
+        }
+        Ok(self)
+    }
+
+    /// Where sensor `sensor`'s births come from ([`MixedNetwork::with_births`]).
+    pub fn births(&self, sensor: usize) -> SensorBirths<T> {
+        self.births.get(..self.count).and_then(|all| all.get(sensor)).copied().unwrap_or_default()
     }
 
     /// The sensors.
@@ -593,7 +643,13 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             return Err(PlacementError::UnknownSensor { sensor, sensors: self.count });
         };
         let (state, frame) = observer_and_frame(&self.rotation, site.sensor.platform, time, observer)?;
-        let placed = MixedLook { kind: site.kind, observer: state, frame, sigma: site.sensor.sigma };
+        let placed = MixedLook {
+            kind: site.kind,
+            observer: state,
+            frame,
+            sigma: site.sensor.sigma,
+            births: self.births(sensor),
+        };
         Ok(Self { current: sensor, placed, ..*self })
     }
 }

@@ -220,7 +220,7 @@ fn the_kinds_without_a_model_of_their_own_are_scored_and_updated_in_their_own_di
     let rotation = EarthRotation::new(0.3);
     let Platform::Ground(site) = ground(SITES[0].0, SITES[0].1) else { unreachable!() };
     let (observer, frame) = (site.observer(&rotation, 0.0), site.enu(&rotation, 0.0));
-    let look = |kind| MixedLook { kind, observer, frame, sigma: sigma(kind) };
+    let look = |kind| MixedLook { kind, observer, frame, sigma: sigma(kind), births: SensorBirths::FromModel };
     let radar = RadarRangeRate { observer, enu: frame, sigma: [1.0; 4] };
     let state = Gaussian { mean: truth(&rotation), covariance: prior_covariance() };
     let s = |kind| sigma(kind);
@@ -363,6 +363,39 @@ fn births_come_from_every_kind_with_angles_and_not_from_range_alone() {
             assert!(angle < 1e-6, "{kind}: component {angle} rad off the line of sight");
         }
     }
+}
+
+/// A telescope with its own birth region (the GEO belt) puts its births on the GEO shell, while the
+/// network's other optical-region births stay in the birth model's region (LEO here).
+#[test]
+fn a_sensor_with_its_own_birth_region_uses_it() {
+    let rotation = EarthRotation::new(0.3);
+    let telescope = SensorKind::ALL.iter().position(|k| *k == SensorKind::OpticalRaDec).unwrap_or(0);
+    let az_el = SensorKind::ALL.iter().position(|k| *k == SensorKind::AzEl).unwrap_or(0);
+    let network = every_kind(rotation).with_births(telescope, SensorBirths::Region(AdmissibleRegion::geo())).unwrap();
+    assert_eq!(network.births(telescope), SensorBirths::Region(AdmissibleRegion::geo()));
+    assert_eq!(network.births(az_el), SensorBirths::FromModel);
+    assert!(every_kind(rotation).with_births(6, SensorBirths::Off).is_err());
+    let broken = AdmissibleRegion { mu: -1.0, ..AdmissibleRegion::geo() };
+    assert!(every_kind(rotation).with_births(0, SensorBirths::Region(broken)).is_err());
+    let state = truth(&rotation);
+    let radii = |sensor: usize| {
+        let placed = network.place(&ScanGeometry { sensor, time: 0.0, observer: None }).unwrap();
+        let z = placed.measure(&state);
+        let mut out = [BirthComponent::<f64, 6>::ZERO; crate::model::MAX_BIRTH_COMPONENTS];
+        let count = placed.birth_components(&z, &AdmissibleRegion::leo(), &mut out).unwrap();
+        out[..count].iter().map(|c| c.state.mean.fixed_rows::<3>(0).norm()).collect::<Vec<f64>>()
+    };
+    let geo = radii(telescope);
+    assert!(!geo.is_empty() && geo.iter().all(|r| (r - 42_164.0).abs() < 300.0), "{geo:?}");
+    let leo = radii(az_el);
+    assert!(!leo.is_empty() && leo.iter().all(|r| *r < 6378.137 + 2100.0), "{leo:?}");
+    // Births off: the sensor's measurements give none.
+    let silent = network.with_births(az_el, SensorBirths::Off).unwrap();
+    let placed = silent.place(&ScanGeometry { sensor: az_el, time: 0.0, observer: None }).unwrap();
+    let mut out = [BirthComponent::<f64, 6>::ZERO; crate::model::MAX_BIRTH_COMPONENTS];
+    let z = placed.measure(&state);
+    assert_eq!(placed.birth_components(&z, &AdmissibleRegion::leo(), &mut out), Err(BirthError::Unsupported));
 }
 
 #[test]
