@@ -3,7 +3,7 @@
 //! `pipeline::planar::setup` and `pipeline::orbital::config3d`), the same capacity profiles, the same
 //! measurement units; so that the MAP estimates equal the CLI's bit for bit.
 
-use host_sim::pipeline::orbital::{C, choose_profile, config3d};
+use host_sim::pipeline::orbital::{ScenarioNetwork, choose_profile, config3d};
 use host_sim::pipeline::planar::setup;
 use host_sim::pipeline::profile::{ORBITAL, PLANAR};
 use host_sim::pipeline::{Profile, TrackerKind, settings};
@@ -11,7 +11,6 @@ use host_sim::scenario::v2::Scenario3d;
 use host_sim::scenario::{MotionSpec, Scenario};
 use host_sim::{with_capacities, with_measurement};
 use nalgebra::SVector;
-use tracker_core::model::{Placeable, SensorNetwork};
 use tracker_core::report::StepReport;
 use tracker_core::sensor::ScanGeometry;
 use tracker_core::{
@@ -218,34 +217,30 @@ pub fn build_planar(scenario: &Scenario, kind: TrackerKind, profile: Profile) ->
     }
 }
 
-fn orbital<X, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+fn orbital<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
 ) -> Result<Box<dyn Engine>, String>
 where
-    X: Placeable<f64, D> + Send + Sync + 'static,
+    G: ScenarioNetwork<D>,
 {
-    let (config, objects) = config3d::<X, D, B>(scenario, kind).map_err(|e| e.to_string())?;
+    let (config, objects) = config3d::<G, D, B>(scenario, kind).map_err(|e| e.to_string())?;
     let prior: Vec<PriorHypothesis<'_, f64, 6>> =
         objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
-    let tracker = Tracker::<f64, TwoBodyJ2<f64>, SensorNetwork<f64, X, D, C>, 6, D, H, N, Z, K, B>::new(
-        config,
-        &prior,
-        scenario.prior.time,
-    )
-    .map_err(|e| format!("tracker configuration: {e}"))?;
+    let tracker = Tracker::<f64, TwoBodyJ2<f64>, G, 6, D, H, N, Z, K, B>::new(config, &prior, scenario.prior.time)
+        .map_err(|e| format!("tracker configuration: {e}"))?;
     Ok(Box::new(Core { tracker: Box::new(tracker), planar: false }))
 }
 
-fn orbital_for<X, const D: usize>(
+fn orbital_for<G, const D: usize>(
     scenario: &Scenario3d,
     kind: TrackerKind,
     profile: Profile,
 ) -> Result<Box<dyn Engine>, String>
 where
-    X: Placeable<f64, D> + Send + Sync + 'static,
+    G: ScenarioNetwork<D>,
 {
-    with_capacities!(profile, ORBITAL, orbital, [X, D], (scenario, kind))
+    with_capacities!(profile, ORBITAL, orbital, [G, D], (scenario, kind))
 }
 
 /// The 3-D tracker `kind` of a version 2 scenario; `profile` `None` picks it as `host-sim run` does.

@@ -21,7 +21,7 @@ enum World {
     Planar,
     /// Version 2: named sensors, measurements in the scenario file's units (km, degrees, km/s), states
     /// (x, y, z, vx, vy, vz) in km and km/s.
-    Orbital { measurement: Measurement3dSpec, sensors: Vec<String> },
+    Orbital { measurement: Measurement3dSpec, kinds: Vec<Measurement3dSpec>, sensors: Vec<String> },
 }
 
 /// What every call raises once the tracker has panicked on its thread (a bug).
@@ -81,6 +81,7 @@ impl Tracker {
             AnyScenario::V1(_) => World::Planar,
             AnyScenario::V2(s) => World::Orbital {
                 measurement: s.measurement,
+                kinds: (0..s.sensors.len()).map(|i| s.kind(i)).collect(),
                 sensors: s.sensors.iter().map(|s| s.name.clone()).collect(),
             },
         };
@@ -144,9 +145,13 @@ impl Tracker {
         }
     }
 
-    /// The measurements as row-major f64 of `D` per row, in the tracker's units.
-    fn measurement_rows(&self, py: Python<'_>, measurements: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
-        let d = self.measurement_dim();
+    /// The measurements of sensor `sensor` (its kind's components per row) as row-major f64 of the
+    /// tracker's `D` per row (a network's rows padded with zeros), in the tracker's units.
+    fn measurement_rows(&self, py: Python<'_>, sensor: usize, measurements: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+        let d = match &self.world {
+            World::Orbital { kinds, .. } => kinds.get(sensor).map_or(self.measurement_dim(), |k| k.dimension()),
+            World::Planar => self.measurement_dim(),
+        };
         let array = py.import("numpy")?.call_method1("asarray", (measurements, "float64")).map_err(|e| {
             error(py, Class::Input, "NotNumeric", format!("measurements: not an array of numbers: {e}"))
         })?;
@@ -166,9 +171,12 @@ impl Tracker {
         let rows: Vec<f64> = view.iter().copied().collect();
         Ok(match &self.world {
             World::Planar => rows,
-            World::Orbital { measurement, .. } => {
+            World::Orbital { measurement, kinds, .. } => {
+                let kind = kinds.get(sensor).copied().unwrap_or(*measurement);
                 let rows: Vec<Vec<f64>> = rows.chunks_exact(d).map(<[f64]>::to_vec).collect();
-                measurements_in_radians(*measurement, &rows).concat()
+                let width = measurement.dimension();
+                let padded = |z: Vec<f64>| z.into_iter().chain(core::iter::repeat(0.0)).take(width);
+                measurements_in_radians(kind, &rows).into_iter().flat_map(padded).collect()
             }
         })
     }
@@ -269,7 +277,7 @@ impl Tracker {
         sensor: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let sensor = self.sensor_index(py, sensor)?;
-        let rows = self.measurement_rows(py, measurements)?;
+        let rows = self.measurement_rows(py, sensor, measurements)?;
         let mut engine = self.engine.take().ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err(LOST))?;
         let stack = &self.stack;
         let ran = py.detach(|| {
@@ -364,7 +372,9 @@ impl Tracker {
         self.state_dim()
     }
 
-    /// Entries of a measurement: 2 (planar, optical), 3 (radar) or 4 (radar with range rate).
+    /// Entries of a measurement: 2 (planar, optical), 3 (radar) or 4 (radar with range rate); for a network
+    /// (`measurement_kind` "network"), the tracker's padded 4: each sensor's measurements have its own kind's
+    /// components.
     #[getter(measurement_dim)]
     fn get_measurement_dim(&self) -> usize {
         self.measurement_dim()

@@ -6,6 +6,7 @@
 //! rejected so that a typo cannot silently fall back to a default.
 
 pub mod any;
+mod births;
 pub mod checks;
 pub mod from_catalogue;
 pub mod from_simulation;
@@ -16,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 pub use any::{AnyScenario, load_any, parse_any};
+pub use births::{AdmissiblePresetSpec, BirthRegionSpec, MeasuredBirthsSpec, SensorRegionSpec};
 pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
 pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
 pub use quote::{Readable, cut_quotes, excerpt};
@@ -188,149 +190,6 @@ impl BirthEventsSpec {
         match self {
             BirthEventsSpec::FirstOrder => tracker_core::BirthEvents::FirstOrder,
             BirthEventsSpec::Independent => tracker_core::BirthEvents::Independent,
-        }
-    }
-}
-
-/// The admissible region a measurement's birth density is cut from (`tracker_core::model::AdmissibleRegion`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum AdmissiblePresetSpec {
-    /// Planar positions: velocity N(0, `velocity_sigma`² I).
-    #[default]
-    Planar,
-    /// Low Earth orbit (bound orbits, perigee ≥ R_E + 200 km, apogee ≤ R_E + 2000 km).
-    Leo,
-    /// The GEO belt (near-circular, inclination ≤ 15°).
-    Geo,
-}
-
-/// Birth cells made from unexplained measurements (`tracker_core::pool::MeasuredBirths`,
-/// docs/maths.md §5.8).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MeasuredBirthsSpec {
-    /// The admissible region.
-    #[serde(default)]
-    pub region: AdmissiblePresetSpec,
-    /// Planar: the standard deviation of each velocity component of a new object.
-    #[serde(default = "default_velocity_sigma")]
-    pub velocity_sigma: f64,
-    /// Cells of the region's discretisation (each one optional: the preset's value).
-    #[serde(default)]
-    pub headings: Option<usize>,
-    /// Cells of horizontal speed.
-    #[serde(default)]
-    pub speeds: Option<usize>,
-    /// Cells of radial speed.
-    #[serde(default)]
-    pub climbs: Option<usize>,
-    /// Optical: cells of radius.
-    #[serde(default)]
-    pub ranges: Option<usize>,
-    /// λ_B: expected births per scan.
-    pub expected_births: f64,
-    /// The largest α of one measurement's cells, in (0, 1).
-    pub max_probability: f64,
-    /// The smallest r_U for a measurement to make cells.
-    #[serde(default = "default_min_unexplained")]
-    pub min_unexplained: f64,
-    /// Seconds a cell lives.
-    pub lifetime: f64,
-}
-
-fn default_velocity_sigma() -> f64 {
-    1.0
-}
-
-fn default_min_unexplained() -> f64 {
-    0.5
-}
-
-impl MeasuredBirthsSpec {
-    /// The core's settings.
-    pub fn core(&self) -> tracker_core::pool::MeasuredBirths<f64> {
-        use tracker_core::model::AdmissibleRegion;
-        let preset = match self.region {
-            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(self.velocity_sigma),
-            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
-            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
-        };
-        let region = with_cells(preset, [self.headings, self.speeds, self.climbs, self.ranges]);
-        tracker_core::pool::MeasuredBirths {
-            region,
-            expected_births: self.expected_births,
-            max_probability: self.max_probability,
-            min_unexplained: self.min_unexplained,
-            lifetime: self.lifetime,
-        }
-    }
-
-    /// Checks the settings as the core will.
-    pub(crate) fn validate(&self, events: BirthEventsSpec) -> Result<(), ScenarioError> {
-        if events != BirthEventsSpec::Independent {
-            return Err(error("birth.measured", "needs birth.events \"independent\"".to_string()));
-        }
-        self.core().validate().map_err(|reason| error("birth.measured", reason.to_string()))
-    }
-}
-
-/// `region` with the cells given (headings, speeds, climbs, ranges; `None`: the region's own).
-fn with_cells(
-    region: tracker_core::model::AdmissibleRegion<f64>,
-    [headings, speeds, climbs, ranges]: [Option<usize>; 4],
-) -> tracker_core::model::AdmissibleRegion<f64> {
-    tracker_core::model::AdmissibleRegion {
-        headings: headings.unwrap_or(region.headings),
-        speeds: speeds.unwrap_or(region.speeds),
-        climbs: climbs.unwrap_or(region.climbs),
-        ranges: ranges.unwrap_or(region.ranges),
-        ..region
-    }
-}
-
-/// The admissible region of one sensor's births.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SensorRegionSpec {
-    /// Low Earth orbit.
-    Leo,
-    /// The GEO belt.
-    Geo,
-    /// None: the sensor's measurements start no track.
-    None,
-}
-
-/// A sensor's own births (`sensors[i].birth_region` of a version 2 file): an admissible region and its
-/// cells (each one optional: the region's own), or none.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BirthRegionSpec {
-    /// The admissible region, or `none`.
-    pub region: SensorRegionSpec,
-    /// Cells of heading.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub headings: Option<usize>,
-    /// Cells of horizontal speed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub speeds: Option<usize>,
-    /// Cells of radial speed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub climbs: Option<usize>,
-    /// Optical: cells of radius.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ranges: Option<usize>,
-}
-
-impl BirthRegionSpec {
-    /// The core's setting.
-    pub fn core(&self) -> tracker_core::model::SensorBirths<f64> {
-        use tracker_core::model::{AdmissibleRegion, SensorBirths};
-        let cells = [self.headings, self.speeds, self.climbs, self.ranges];
-        match self.region {
-            SensorRegionSpec::Leo => SensorBirths::Region(with_cells(AdmissibleRegion::leo(), cells)),
-            SensorRegionSpec::Geo => SensorBirths::Region(with_cells(AdmissibleRegion::geo(), cells)),
-            SensorRegionSpec::None => SensorBirths::Off,
         }
     }
 }
