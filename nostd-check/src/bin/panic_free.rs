@@ -349,7 +349,7 @@ fn network<T: Real>(argc: i32) -> u64 {
 /// `birth_components` of every model with one, on opaque models, measurements, regions and output slices.
 fn births<T: Real>(argc: i32) -> u64 {
     use tracker_core::model::{
-        AdmissibleRegion, BirthComponent, MixedLook, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
+        AdmissibleRegion, BirthComponent, MixedLook, OpticalRaDec, RadarRangeAzEl, RadarRangeRate, SensorBirths,
     };
     use tracker_core::{BirthGeometry, model::MAX_BIRTH_COMPONENTS};
     let c = T::of_f64;
