@@ -1,5 +1,5 @@
 """The Python tracker's MAP estimates equal ``host-sim run``'s (estimates.csv) bit for bit, on planar
-(version 1) and 3-D (version 2: radar, optical) presets, scan by scan; scans the CLI refused are refused
+(version 1) and 3-D (version 2: radar, optical, a network of mixed kinds) presets, scan by scan; scans the CLI refused are refused
 from Python with an InputError of the same kind, and the tracker goes on unchanged."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ PLANAR = ["x", "y", "vx", "vy"]
 ORBITAL = ["x", "y", "z", "vx", "vy", "vz"]
 
 
-@pytest.mark.parametrize("preset", ["linear-small", "crossings", "tiny-3d", "optical-geo"])
+@pytest.mark.parametrize("preset", ["linear-small", "crossings", "tiny-3d", "optical-geo", "tiny-network"])
 def test_map_estimates_equal_the_cli(host_sim, preset: str) -> None:
     path = host_sim.scenario(preset)
     scenario = load(path)
@@ -30,7 +30,10 @@ def test_map_estimates_equal_the_cli(host_sim, preset: str) -> None:
     columns = PLANAR if version == 1 else ORBITAL
     compared = 0
     for k, scan in enumerate(scenario["scans"]):
-        measurements = np.asarray(scan["measurements"], dtype=float).reshape(-1, tracker.measurement_dim)
+        # A network's sensors have their own kinds: each scan's rows have its sensor's components.
+        rows_of_scan = scan["measurements"]
+        width = len(rows_of_scan[0]) if rows_of_scan else tracker.measurement_dim
+        measurements = np.asarray(rows_of_scan, dtype=float).reshape(-1, width)
         try:
             tracker.step(scan["time"], measurements, scan.get("sensor"))
         except rfisst.InputError:

@@ -197,3 +197,13 @@ fn c_example_matches_rust() {
     // The scans did something: two objects tracked, more than one hypothesis.
     assert!(text.contains("scan 5 hypotheses ") && text.contains("  track 1 existence "), "{text}");
 }
+
+/// The README's "From C" section shows the example's `main` as it is in the file this test builds.
+#[test]
+fn the_readme_shows_the_example_main_as_it_is() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let example = std::fs::read_to_string(root.join("bindings/c/examples/map_tracks.c")).expect("example");
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README");
+    let main = example.find("int main(int argc").map(|at| example[at..].trim_end()).expect("a main");
+    assert!(readme.contains(main), "README.md's From C section differs from bindings/c/examples/map_tracks.c");
+}
