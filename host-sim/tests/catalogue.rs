@@ -405,6 +405,60 @@ fn generate_catalogue_telescope_sees_sunlit_objects_from_a_dark_site() {
     assert!(shadowed);
 }
 
+/// A sensors file of mixed kinds: the radars' file and the telescope's in one network (issue 28), the
+/// telescope with its own birth region; `kinds: false` leaves the kinds out.
+fn network_sensors(dir: &TempDir, kinds: bool) -> PathBuf {
+    let read = |p: &str| serde_json::from_str::<Value>(&std::fs::read_to_string(p).expect("sensors")).expect("json");
+    let (mut radars, telescope) = (read(RADARS), read(TELESCOPE));
+    let mut sensors = radars["sensors"].as_array().expect("sensors").clone();
+    for sensor in &mut sensors {
+        if kinds {
+            sensor["kind"] = serde_json::json!("radar");
+        }
+    }
+    let mut optical = telescope["sensors"][0].clone();
+    optical["kind"] = serde_json::json!("optical");
+    optical["birth_region"] = serde_json::json!({"region": "geo", "headings": 3});
+    sensors.push(optical);
+    radars["measurement"] = serde_json::json!({"type": "network"});
+    radars["sensors"] = Value::Array(sensors);
+    let path = dir.join(if kinds { "network.json" } else { "network-no-kinds.json" });
+    std::fs::write(&path, radars.to_string()).expect("write");
+    path
+}
+
+#[test]
+fn generate_catalogue_takes_a_network_of_mixed_kinds() {
+    use host_sim::scenario::v2::{Measurement3dSpec, Scenario3d};
+    let dir = TempDir::new("gen-network");
+    let (sensors, out) = (network_sensors(&dir, true), dir.join("n.json"));
+    let output = generate(CATALOGUE, sensors.to_str().unwrap(), START, "4", "3", &out);
+    assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    let scenario = Scenario3d::load(&out).expect("the generated file loads");
+    assert_eq!(scenario.measurement, Measurement3dSpec::Network);
+    let kinds: Vec<Measurement3dSpec> = (0..3).map(|i| scenario.kind(i)).collect();
+    assert_eq!(kinds, [Measurement3dSpec::Radar, Measurement3dSpec::Radar, Measurement3dSpec::Optical]);
+    // The file's birth region is the scenario's, not the default.
+    let region = scenario.sensors[2].birth_region.expect("birth region");
+    assert_eq!(region.headings, Some(3));
+    // Each scan carries its sensor's kind: 3 components for the radars, 2 for the telescope, whose frames
+    // come only from a dark site (fewer than the radars').
+    let mut per_sensor = [0_usize; 3];
+    for scan in &scenario.scans {
+        per_sensor[scan.sensor] += 1;
+        let dimension = if scan.sensor == 2 { 2 } else { 3 };
+        assert!(scan.measurements.iter().all(|z| z.len() == dimension), "scan at {} s", scan.time);
+    }
+    assert!(per_sensor[2] > 0 && per_sensor[2] < per_sensor[0], "{per_sensor:?}");
+    // Without the kinds: one line naming the field, exit 2, nothing written.
+    let bad = dir.join("bad.json");
+    let output = generate(CATALOGUE, network_sensors(&dir, false).to_str().unwrap(), START, "1", "3", &bad);
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(err.lines().count() == 1 && err.contains("sensors[0].kind"), "{err}");
+    assert!(!bad.exists());
+}
+
 #[test]
 fn generate_catalogue_rejects_bad_input_with_one_line_and_no_file() {
     let dir = TempDir::new("gen-bad");

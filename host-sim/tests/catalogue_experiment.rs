@@ -7,8 +7,7 @@ use serde_json::Value;
 const SHORT: Settings = Settings {
     start: "2026-03-20T06:00:00Z",
     duration_hours: 0.1,
-    radar_interval_s: 20.0,
-    telescope_interval_s: 60.0,
+    scan_interval_s: 20.0,
     verification: false,
     planes: 2,
     per_plane: 3,
@@ -34,9 +33,19 @@ fn short_run() {
     let report = run_with(&dir, 3, true, &SHORT).expect("runs");
     let text = std::fs::read_to_string(dir.join("catalogue.json")).expect("catalogue.json");
     let json: Value = serde_json::from_str(&text).expect("JSON");
-    for key in ["objects", "births_total", "births_confirmed", "mean_gospa", "mean_ms_per_scan", "max_ms_per_scan"] {
+    for key in [
+        "objects",
+        "births_total",
+        "births_confirmed",
+        "false_tracks",
+        "mean_gospa",
+        "mean_ms_per_scan",
+        "max_ms_per_scan",
+    ] {
         assert!(json.get(key).is_some_and(Value::is_number), "{key}: {json}");
     }
+    // One tracker for the whole network: the radars' kind and the telescope's.
+    assert_eq!(json["sensor_kinds"], serde_json::json!(["radar", "optical"]), "{json}");
     assert_eq!(json["objects"], 9);
     // The train and half of the six others are missing.
     assert_eq!(report.missing_from_prior, 6);
@@ -47,33 +56,35 @@ fn short_run() {
     assert!(report.mean_gospa <= cap, "{}", report.mean_gospa);
     assert!(report.mean_ms_per_scan > 0.0 && report.max_ms_per_scan >= report.mean_ms_per_scan);
     let details = json["details"].as_array().expect("details");
-    assert_eq!(details.len(), 2);
-    assert_eq!((details[0]["network"].as_str(), details[1]["network"].as_str()), (Some("radars"), Some("telescope")));
-    for d in details {
-        assert!(d["scans"].as_u64().is_some_and(|s| s > 0), "{d}");
-        assert!(d["births_confirmed"].as_u64() <= d["births_detected"].as_u64(), "{d}");
-    }
-    // births_total counts each detected missing object once, whichever network saw it.
-    let detected: Vec<usize> = details.iter().map(|d| d["births_detected"].as_u64().unwrap_or(0) as usize).collect();
-    assert!(report.births_total >= detected[0].max(detected[1]), "{json}");
-    assert!(report.births_total <= detected[0] + detected[1], "{json}");
-    // 0.1 h: 37 radar scans (every 10 s from 0 to 360 s); 7 telescope frames.
-    assert_eq!(details[0]["scans"], 37);
-    assert_eq!(details[1]["scans"], 7);
+    assert_eq!(details.len(), 1);
+    let d = &details[0];
+    assert_eq!(d["network"].as_str(), Some("network"));
+    assert_eq!(d["sensors"], serde_json::json!(["radar-north", "radar-south", "telescope"]));
+    assert!(d["births_confirmed"].as_u64() <= d["births_detected"].as_u64(), "{d}");
+    assert_eq!(d["births_detected"].as_u64(), Some(report.births_total as u64), "{json}");
+    assert_eq!(d["false_tracks"], json["false_tracks"]);
+    // 0.1 h of the telescope's night: the three sensors in turn, one scan every 20 s / 3 from 0 to 360 s.
+    let scans = d["scans"].as_u64().expect("scans");
+    assert!((54..=55).contains(&scans), "{scans}");
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("network/summary.json")).expect("summary"))
+            .expect("JSON");
+    assert_eq!(summary["sensor_kinds"], json["sensor_kinds"]);
     for file in [
         "catalogue.omm.json",
-        "sensors-radars.json",
-        "sensors-telescope.json",
-        "radars/summary.json",
-        "radars/tracks.oem",
-        "telescope/summary.json",
+        "sensors-network.json",
+        "network/summary.json",
+        "network/tracks.oem",
         "cardinality.png",
         "gospa.png",
-        "ground_tracks_radars.png",
-        "ground_tracks_telescope.png",
+        "ground_tracks_network.png",
     ] {
         assert!(dir.join(file).is_file(), "{file}");
     }
+    // The sensors file written is the one a user can reload (a network of mixed kinds).
+    let sensors =
+        host_sim::scenario::from_catalogue::SensorsFile::load(&dir.join("sensors-network.json")).expect("sensors");
+    assert_eq!(sensors.sensors.len(), 3);
     // The catalogue written is the one a user can reload.
     let entries = host_sim::io::catalogue::load(&dir.join("catalogue.omm.json")).expect("reload");
     assert_eq!(entries.len(), 9);

@@ -188,3 +188,21 @@ fn kinds_outside_a_network_must_match_its_measurement_type() {
     assert_eq!(output.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&output.stderr).contains("sensors[0].birth_region: only a sensor of a network"));
 }
+
+/// `soak --scenario ssa-network` (issue 33 item 8): the fused tracker on the whole network, observed past
+/// the preset's end; healthy and its report complete (the 100,000-scan figures are in docs/robustness.md).
+#[test]
+fn a_short_network_soak_is_healthy() {
+    let dir = TempDir::new("soak-network");
+    let out = dir.join("soak.json");
+    ok(host_sim(&["soak", "--scenario", "ssa-network", "--scans", "120", "--quiet", "--out", p(&out)]));
+    let report: Value = serde_json::from_str(&read(&out)).expect("soak JSON");
+    assert_eq!(report["scenario"], "ssa-network");
+    assert_eq!(report["scans"], 120);
+    assert_eq!(report["nan_count"], 0);
+    assert_eq!(report["errors_by_kind"], serde_json::json!({}));
+    assert_eq!(report["numerical_drops"], 0);
+    // Every kind's measurements went through the one tracker.
+    assert!(report["measurements"].as_u64().expect("measurements") > 100, "{report}");
+    assert!(report["tracking"]["in_view_tracked_fraction"].as_f64().expect("fraction") > 0.5, "{report}");
+}

@@ -7,27 +7,26 @@
 //! that they are current); a generated constellation shell (6 planes × 12 satellites, 550 km, 53°, evenly
 //! phased); and a launch train of 12 satellites on one 350 km, 53° orbit, 3 s apart along the track (about
 //! 23 km), the hard association case. 112 objects in all.
-//! It is written to `catalogue.omm.json` (OMM JSON, exact), with the two sensors files, so that
-//! `host-sim run-catalogue` can rerun either network (without the missing objects and births set here).
+//! It is written to `catalogue.omm.json` (OMM JSON, exact), with the sensors file, so that
+//! `host-sim run-catalogue` can rerun the network (without the missing objects and births set here).
 //!
 //! Objects missing from the prior: the whole launch train (a new launch) and a fraction of the others chosen
 //! by the seed. The trackers start tracks for them from the measurements (the measured birth pool,
 //! docs/maths.md §5.8).
 //!
-//! **Two trackers, not one.** A tracker has one measurement type (radar range/azimuth/elevation, D = 3;
-//! telescope right ascension/declination, D = 2; a const generic), so the radars and the telescope cannot be
-//! fused in one tracker today: the experiment runs two R-FISST trackers (host profile) on the same truth, one
-//! on the two-radar scenario (`radars/`), one on the telescope scenario (`telescope/`), each written by
-//! [`crate::pipeline::orbital::run`]. Fusing both in one tracker is future work. `catalogue.json`'s `births_total` counts the
-//! objects missing from the prior that some sensor detected, `births_confirmed` those that at least one
-//! tracker confirmed (each object once; per tracker in `details`);
-//! `mean_gospa` is the mean over every scan of both; `mean_ms_per_scan` and `max_ms_per_scan` cover every
-//! accepted scan of both. Both are scored with the radar's evaluation settings (error bound 5 km, GOSPA
-//! cut-off 10 km, order 2), so that the GOSPA of the two means the same.
+//! **One tracker for the whole network** (issue 28): the two radars and the telescope in one R-FISST
+//! tracker (host profile, `measurement: network`: radar range/azimuth/elevation and telescope right
+//! ascension/declination in one hypothesis set, docs/maths.md §6.10), written by
+//! [`crate::pipeline::orbital::run`] into `network/`. The sensors take turns, each every `scan_interval_s`;
+//! the telescope only while its site is dark and only sunlit objects. Births from the radars' measurements
+//! in the LEO region; the telescope's in the GEO belt (`network_birth_region`: its single-frame LEO births
+//! made 34 false tracks and confirmed none when it was a tracker of its own). `catalogue.json`'s
+//! `births_total` counts the objects missing from the prior that some sensor detected, `births_confirmed`
+//! those the tracker confirmed; `sensor_kinds` lists the kinds present. Scored with the radar's evaluation
+//! settings (error bound 5 km, GOSPA cut-off 10 km, order 2).
 //!
-//! Run time: about 2 minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not
-//! part of `experiment all`. The radars' run folder is about 660 MB (`tracks.oem`: every MAP track at every
-//! scan).
+//! Run time: a few minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not part
+//! of `experiment all`. The run folder is several hundred MB (`tracks.oem`: every MAP track at every scan).
 
 use crate::error::Error;
 use crate::eval::metrics::gospa;
@@ -37,17 +36,18 @@ use crate::pipeline::output::write_json;
 use crate::pipeline::{Profile, TrackerKind};
 use crate::plots::{self, Scale, Series, SkySeries};
 use crate::scenario::from_catalogue::{self as catalogue_scenario, Request, SENSORS_FORMAT, SensorsFile};
+use crate::scenario::from_simulation::{RADAR_LEO_BIRTHS, network_birth_region};
 use crate::scenario::v2::{
     Birth3dSpec, FieldOfView3dSpec, Measurement3dSpec, NoiseSpec, Scenario3d, Sensor3dSpec, ShapeSpec, SiteSpec,
 };
-use crate::scenario::{AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, EvaluationSpec, MeasuredBirthsSpec};
+use crate::scenario::{BirthDetectionSpec, BirthEventsSpec, EvaluationSpec};
 use crate::sim::rng::{Random, Stream};
 use crate::sim::time;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-/// The experiment's start (UTC): the catalogue's epoch and the scenarios'. The telescope's site turns dark
-/// (Sun 12° below the horizon) soon after, so that both trackers start from a current prior; its night
+/// The experiment's start (UTC): the catalogue's epoch and the scenario's. The telescope's site turns dark
+/// (Sun 12° below the horizon) soon after, so that it starts from a current prior; its night
 /// ends about 10 hours later, and the next begins just after the 24 hours (when this was written the
 /// tracker's longest gap between scans was 20 s × 1100 sub-steps, shorter than a day; it is 48 h since
 /// issue 29).
@@ -68,10 +68,9 @@ pub struct Settings {
     pub start: &'static str,
     /// Duration (hours).
     pub duration_hours: f64,
-    /// Seconds between two scans of one radar (the two radars take turns).
-    pub radar_interval_s: f64,
-    /// Seconds between two telescope frames (only while its site is dark).
-    pub telescope_interval_s: f64,
+    /// Seconds between two scans of one sensor (the sensors take turns; the telescope only while its site is
+    /// dark).
+    pub scan_interval_s: f64,
     /// Whether the verification element sets are in the catalogue.
     pub verification: bool,
     /// Orbital planes of the shell.
@@ -89,8 +88,7 @@ impl Settings {
     pub const FULL: Settings = Settings {
         start: START,
         duration_hours: 24.0,
-        radar_interval_s: 20.0,
-        telescope_interval_s: 30.0,
+        scan_interval_s: 20.0,
         verification: true,
         planes: 6,
         per_plane: 12,
@@ -261,7 +259,7 @@ pub fn missing(catalogue: &Catalogue, seed: u64, fraction: f64) -> Result<Vec<bo
 
 fn radar(name: &str, site: [f64; 3], shape: ShapeSpec, min_elevation_deg: f64) -> Sensor3dSpec {
     Sensor3dSpec {
-        kind: None,
+        kind: Some(Measurement3dSpec::Radar),
         birth_region: None,
         name: name.into(),
         site: SiteSpec { latitude_deg: site[0], longitude_deg: site[1], height_km: site[2] },
@@ -285,11 +283,30 @@ fn radar(name: &str, site: [f64; 3], shape: ShapeSpec, min_elevation_deg: f64) -
     }
 }
 
-/// The two radars (those of `radar-leo`, clutter 1 per scan).
-pub fn radars(scan_interval_s: f64) -> SensorsFile {
+/// The network: the two radars of `radar-leo` (clutter 1 per scan) and the telescope, all sky above 20°
+/// elevation, 2″, at 32° N 110° W (dark from about 02:15 to 12:30 UTC in March), each measuring its own kind.
+pub fn sensors(scan_interval_s: f64) -> SensorsFile {
+    let telescope = Sensor3dSpec {
+        kind: Some(Measurement3dSpec::Optical),
+        birth_region: network_birth_region(Measurement3dSpec::Optical),
+        name: "telescope".into(),
+        site: SiteSpec { latitude_deg: 32.0, longitude_deg: -110.0, height_km: 2.0 },
+        noise: NoiseSpec { right_ascension_arcsec: Some(2.0), declination_arcsec: Some(2.0), ..NoiseSpec::default() },
+        field_of_view: FieldOfView3dSpec {
+            shape: ShapeSpec::Box { azimuth_deg: 0.0, half_width_deg: 180.0, elevation_deg: [20.0, 90.0] },
+            min_elevation_deg: 20.0,
+            range_km: None,
+            range_rate_km_s: None,
+        },
+        detection_probability: 0.9,
+        clutter_rate: 0.5,
+        bias: None,
+        light_time: None,
+        refraction: None,
+    };
     SensorsFile {
         format: SENSORS_FORMAT.into(),
-        measurement: Measurement3dSpec::Radar,
+        measurement: Measurement3dSpec::Network,
         scan_interval_s,
         max_sun_elevation_deg: -12.0,
         sensors: vec![
@@ -305,68 +322,12 @@ pub fn radars(scan_interval_s: f64) -> SensorsFile {
                 ShapeSpec::Cone { azimuth_deg: 180.0, elevation_deg: 55.0, half_angle_deg: 45.0 },
                 10.0,
             ),
+            telescope,
         ],
     }
 }
 
-/// The telescope: all sky above 20° elevation, 2″, at 32° N 110° W (dark from about 02:15 to 12:30 UTC in
-/// March).
-pub fn telescope(scan_interval_s: f64) -> SensorsFile {
-    SensorsFile {
-        format: SENSORS_FORMAT.into(),
-        measurement: Measurement3dSpec::Optical,
-        scan_interval_s,
-        max_sun_elevation_deg: -12.0,
-        sensors: vec![Sensor3dSpec {
-            kind: None,
-            birth_region: None,
-            name: "telescope".into(),
-            site: SiteSpec { latitude_deg: 32.0, longitude_deg: -110.0, height_km: 2.0 },
-            noise: NoiseSpec {
-                right_ascension_arcsec: Some(2.0),
-                declination_arcsec: Some(2.0),
-                ..NoiseSpec::default()
-            },
-            field_of_view: FieldOfView3dSpec {
-                shape: ShapeSpec::Box { azimuth_deg: 0.0, half_width_deg: 180.0, elevation_deg: [20.0, 90.0] },
-                min_elevation_deg: 20.0,
-                range_km: None,
-                range_rate_km_s: None,
-            },
-            detection_probability: 0.9,
-            clutter_rate: 0.5,
-            bias: None,
-            light_time: None,
-            refraction: None,
-        }],
-    }
-}
-
-/// The measured birth pool of each network. Radars: the `radar-leo` preset's
-/// ([`crate::scenario::from_simulation::RADAR_LEO_BIRTHS`]: the LEO region, 12 headings, λ_B 1e-2, α ≤ 1e-3, cells living
-/// 60 s). Telescope: the LEO region too, since the objects it can start tracks for are LEO (the train and
-/// the shell; the deep-space verification objects are few), 3 ranges × 4 headings, λ_B 1e-6, α ≤ 1e-5
-/// (larger values confirmed hundreds of false tracks from single frames), cells living 120 s (a LEO pass
-/// lasts minutes, not hours).
-fn births(kind: Measurement3dSpec) -> MeasuredBirthsSpec {
-    match kind {
-        Measurement3dSpec::Optical => MeasuredBirthsSpec {
-            region: AdmissiblePresetSpec::Leo,
-            velocity_sigma: 1.0,
-            headings: Some(4),
-            speeds: Some(1),
-            climbs: Some(1),
-            ranges: Some(3),
-            expected_births: 1e-6,
-            max_probability: 1e-5,
-            min_unexplained: 0.5,
-            lifetime: 120.0,
-        },
-        _ => crate::scenario::from_simulation::RADAR_LEO_BIRTHS,
-    }
-}
-
-/// Both networks' evaluation: the radar's (error bound 5 km, GOSPA cut-off 10 km, order 2).
+/// The evaluation: the radar's (error bound 5 km, GOSPA cut-off 10 km, order 2).
 const EVALUATION: EvaluationSpec =
     EvaluationSpec { error_bound: 5.0, gospa_cutoff: 10.0, gospa_order: 2.0, confirmation_existence: 0.5 };
 
@@ -389,7 +350,7 @@ pub fn forget(scenario: &mut Scenario3d, missing: &[bool]) -> Result<(), Error> 
         probability: 0.0,
         detection: BirthDetectionSpec::AllDetected,
         events: BirthEventsSpec::Independent,
-        measured: Some(births(scenario.measurement)),
+        measured: Some(RADAR_LEO_BIRTHS),
         cells: vec![],
     };
     scenario.evaluation = EVALUATION;
@@ -426,7 +387,7 @@ struct Network {
     per_scan: Vec<(f64, f64, usize, usize)>,
 }
 
-/// What both networks share.
+/// What a network's run is given.
 struct Shared<'a> {
     settings: &'a Settings,
     catalogue_file: &'a Path,
@@ -641,22 +602,16 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
             settings.start
         );
     }
-    let radar_sensors = radars(settings.radar_interval_s);
-    let telescope_sensors = telescope(settings.telescope_interval_s);
+    let sensors = sensors(settings.scan_interval_s);
     let shared = Shared { settings, catalogue_file: &catalogue_file, missing: &missing, quiet, dir };
-    // The telescope's detections from the complement of the seed, so that the two networks' draws differ.
-    let networks =
-        [network("radars", &radar_sensors, seed, &shared)?, network("telescope", &telescope_sensors, !seed, &shared)?];
+    let networks = [network("network", &sensors, seed, &shared)?];
     let epoch_jd = time::parse_iso8601(settings.start).map_err(|e| Error::input(format!("start: {e}")))?;
     for n in &networks {
         plot_ground_tracks(n, epoch_jd, dir)?;
     }
     plot_over_time(&networks, dir)?;
 
-    let details = vec![
-        figures(&networks[0], &radar_sensors, &catalogue.origins),
-        figures(&networks[1], &telescope_sensors, &catalogue.origins),
-    ];
+    let details: Vec<CatalogueTracker> = networks.iter().map(|n| figures(n, &sensors, &catalogue.origins)).collect();
     let scans: usize = details.iter().map(|d| d.scans).sum();
     let gospa_sum: f64 = networks.iter().flat_map(|n| n.per_scan.iter().map(|p| p.1)).sum();
     let accepted = |d: &CatalogueTracker| (d.scans - d.rejected_scans) as f64;
@@ -668,6 +623,8 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
         missing_from_prior: missing.iter().filter(|&&m| m).count(),
         births_total: births_by_any(&networks, |r| r.first_detection_scan.is_some()),
         births_confirmed: births_by_any(&networks, |r| r.confirmation_scan.is_some()),
+        false_tracks: details.iter().filter_map(|d| d.false_tracks).sum(),
+        sensor_kinds: networks[0].summary.sensor_kinds.clone().unwrap_or_default(),
         mean_gospa: gospa_sum / scans.max(1) as f64,
         mean_ms_per_scan: details.iter().map(|d| d.mean_ms_per_scan * accepted(d)).sum::<f64>()
             / accepted_total.max(1.0),

@@ -110,7 +110,8 @@ fn default_dark() -> f64 {
 pub struct SensorsFile {
     /// Must be [`SENSORS_FORMAT`].
     pub format: String,
-    /// What every sensor measures (as in a version 2 scenario).
+    /// What every sensor measures (as in a version 2 scenario); `network` for sensors of mixed kinds, each
+    /// with its own `kind` (and optionally its own `birth_region`).
     pub measurement: Measurement3dSpec,
     /// Seconds between two scans of one sensor (> 0); the sensors take turns, evenly spaced.
     pub scan_interval_s: f64,
@@ -164,9 +165,15 @@ impl SensorsFile {
         }
         crate::scenario::v2::check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
-            sensor.validate(&format!("sensors[{i}]"), self.measurement)?;
+            sensor.validate_kind(i, self.measurement)?;
+            sensor.validate(&format!("sensors[{i}]"), sensor.kind_under(self.measurement))?;
         }
         Ok(())
+    }
+
+    /// What sensor `sensor` measures.
+    pub fn kind(&self, sensor: usize) -> Measurement3dSpec {
+        self.sensors.get(sensor).map_or(self.measurement, |s| s.kind_under(self.measurement))
     }
 }
 
@@ -210,6 +217,14 @@ fn simulator_sensor(sensor: &Sensor3dSpec, kind: Measurement3dSpec) -> SensorSpe
         detection_probability: sensor.detection_probability,
         clutter_rate: sensor.clutter_rate,
     }
+}
+
+/// The simulator's sensors of a sensors file, each of its own kind, and which of them are telescopes (RA/Dec:
+/// they see only from a dark site, and only sunlit objects).
+fn simulator_sensors(file: &SensorsFile) -> (Vec<SensorSpec>, Vec<bool>) {
+    let kinds: Vec<Measurement3dSpec> = (0..file.sensors.len()).map(|i| file.kind(i)).collect();
+    let sensors = file.sensors.iter().zip(&kinds).map(|(s, &kind)| simulator_sensor(s, kind)).collect();
+    (sensors, kinds.iter().map(|&k| k == Measurement3dSpec::Optical).collect())
 }
 
 /// The Sun's position (km) in the inertial frame at UT1 Julian date `jd`: the Astronomical Almanac's
@@ -300,8 +315,7 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
     let epoch = catalogue::parse_omm_epoch(start).ok_or_else(bad_start)?;
     let entries = catalogue::load(request.catalogue)?;
     let sensors_file = SensorsFile::load(request.sensors)?;
-    let kind = sensors_file.measurement;
-    let sensors: Vec<SensorSpec> = sensors_file.sensors.iter().map(|s| simulator_sensor(s, kind)).collect();
+    let (sensors, optical) = simulator_sensors(&sensors_file);
 
     // The schedule: sensors in turn; a telescope only while its site is dark.
     let duration = hours * 3600.0;
@@ -315,10 +329,10 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
         )));
     }
     let dark = sensors_file.max_sun_elevation_deg.to_radians();
-    let (sites, count): (&[SensorSpec], u64) = (&sensors, sensors.len() as u64);
+    let (sites, count, optical) = (&sensors[..], sensors.len() as u64, &optical[..]);
     let scheduled = || {
         (0..slots).map(move |j| (j as f64 * slot, (j % count) as usize)).filter(move |&(t, s)| {
-            kind != Measurement3dSpec::Optical || {
+            !optical[s] || {
                 let sun = sun_position(epoch_jd + t / 86_400.0);
                 sun_elevation(&sites[s].site, time::earth_rotation_angle(epoch_jd, t), sun) < dark
             }
@@ -355,11 +369,9 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
     for i in 0..satellites.len() {
         let mut track = Vec::with_capacity(schedule.len());
         let mut seen = Vec::with_capacity(schedule.len());
-        for &(t, _) in &schedule {
+        for &(t, s) in &schedule {
             let x = state(i, t)?;
-            seen.push(
-                kind != Measurement3dSpec::Optical || sunlit([x[0], x[1], x[2]], sun_position(epoch_jd + t / 86_400.0)),
-            );
+            seen.push(!optical[s] || sunlit([x[0], x[1], x[2]], sun_position(epoch_jd + t / 86_400.0)));
             track.push(x);
         }
         tracks.push(track);
@@ -377,10 +389,14 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
                 )),
                 other => Error::input(format!("{}: {other}", request.sensors.display())),
             })?;
-    let (scenario, figures) = generate3d::to_scenario_with(
+    let (mut scenario, figures) = generate3d::to_scenario_with(
         &simulation,
         Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }),
     )?;
+    // A sensor's own birth region (network sensors files) is the file's, not the simulation's default.
+    for (spec, file) in scenario.sensors.iter_mut().zip(&sensors_file.sensors) {
+        spec.birth_region = file.birth_region.or(spec.birth_region);
+    }
     check_written_size(&scenario)?;
     Ok((scenario, figures, screened.dropped))
 }

@@ -155,7 +155,7 @@ fn file_kind(kind: SensorKind) -> Measurement3dSpec {
 /// station (single-frame angles-only births of LEO objects do not land within kilometres: its objects are
 /// born from the radars' measurements and kept by the station); radars use `birth.measured`'s LEO region
 /// and range-only kinds give none.
-fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegionSpec> {
+pub(crate) fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegionSpec> {
     let region = |region| BirthRegionSpec { region, headings: None, speeds: None, climbs: None, ranges: None };
     match kind {
         Measurement3dSpec::Optical => Some(BirthRegionSpec {

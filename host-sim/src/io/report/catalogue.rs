@@ -1,37 +1,41 @@
-//! `catalogue.json` of `experiment catalogue`: per network its tracker's figures.
+//! `catalogue.json` of `experiment catalogue`: the fused network tracker's figures.
 
 use serde::{Deserialize, Serialize};
 
-/// `catalogue.json` of `experiment catalogue`: a catalogue seen by two radars and a telescope, each
-/// network tracked by its own R-FISST tracker (one tracker takes one measurement type).
+/// `catalogue.json` of `experiment catalogue`: a catalogue seen by two radars and a telescope, tracked by one
+/// R-FISST tracker over the whole network (sensors of mixed kinds).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CatalogueReport {
     /// `catalogue`.
     pub experiment: String,
     /// Seed.
     pub seed: u64,
-    /// Objects in the catalogue (every one in both trackers' truth).
+    /// Objects in the catalogue (every one in the tracker's truth).
     pub objects: usize,
-    /// Objects missing from the prior (the same in both scenarios).
+    /// Objects missing from the prior.
     pub missing_from_prior: usize,
     /// Births: objects missing from the prior that some sensor detected, each counted once.
     pub births_total: usize,
-    /// Births that at least one tracker confirmed, each counted once.
+    /// Births the tracker confirmed, each counted once.
     pub births_confirmed: usize,
-    /// GOSPA (km) averaged over every scan of both trackers.
+    /// Confirmed tracks that follow no object (summary.json's `false_tracks`).
+    pub false_tracks: usize,
+    /// The sensor kinds of the network (`radar`, `optical`, ...), in the core's order.
+    pub sensor_kinds: Vec<String>,
+    /// GOSPA (km) averaged over every scan.
     pub mean_gospa: f64,
-    /// Wall-clock ms per scan, averaged over every accepted scan of both trackers.
+    /// Wall-clock ms per scan, averaged over every accepted scan.
     pub mean_ms_per_scan: f64,
-    /// The slowest scan of both trackers (ms).
+    /// The slowest scan (ms).
     pub max_ms_per_scan: f64,
-    /// Per tracker.
+    /// The tracker's figures (one entry: the fused network).
     pub details: Vec<CatalogueTracker>,
 }
 
 /// One tracker of `experiment catalogue`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CatalogueTracker {
-    /// `radars` or `telescope`: its run directory.
+    /// `network`: its run directory.
     pub network: String,
     /// Its sensors.
     pub sensors: Vec<String>,

@@ -75,10 +75,13 @@ impl SiteGeometry {
         self.regions[sensor].contains_look(&self.look(sensor, time, state))
     }
 
-    /// The sky-plot point of `state`: (right ascension, declination) for a telescope, (azimuth, elevation)
-    /// for every other kind.
+    /// The sky-plot point of `state`: (right ascension, declination) for a telescope, (hours since the
+    /// epoch, range km) for a kind without angles, (azimuth, elevation) for every other kind.
     pub fn sky_point(&self, sensor: usize, time: f64, state: &[f64; 6]) -> (f64, f64) {
-        if self.kinds[sensor].sky_in_ra_dec() {
+        if self.kinds[sensor].sky_in_range() {
+            let (d, _, _) = self.line_of_sight(sensor, time, state);
+            (time / 3600.0, (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt())
+        } else if self.kinds[sensor].sky_in_ra_dec() {
             self.ra_dec(sensor, time, state)
         } else {
             let look = self.look(sensor, time, state);

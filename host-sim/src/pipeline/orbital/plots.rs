@@ -1,10 +1,11 @@
-//! The figures of `run` on a version 2 scenario: a sky plot per sensor (azimuth / elevation for radars,
-//! right ascension / declination for telescopes), the expected number of objects and GOSPA over time.
+//! The figures of `run` on a version 2 scenario: a plot per sensor in its own coordinates (azimuth /
+//! elevation for radars and az/el stations, right ascension / declination for telescopes, range over time
+//! for ranging stations), the expected number of objects and GOSPA over time.
 
 use crate::error::Error;
 use crate::pipeline::run_charts;
 use crate::pipeline::world::ScanRecord;
-use crate::plots::{self, SkySeries};
+use crate::plots::{self, Scale, Series, SkySeries};
 use crate::scenario::v2::{Scenario3d, ShapeSpec};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -62,6 +63,35 @@ fn stem_of(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect()
 }
 
+/// A ranging station's plot: range (km) against time (h), truth as lines (cut where out of view),
+/// estimates as isolated markers.
+fn range_plot(stem: &Path, title: &str, truth: &[SkySeries], estimates: &SkySeries) -> Result<(), Error> {
+    let points = |series: &SkySeries| -> Vec<(f64, f64)> {
+        series.points.iter().map(|p| p.unwrap_or((f64::NAN, f64::NAN))).collect()
+    };
+    let mut series: Vec<Series> = truth
+        .iter()
+        .enumerate()
+        .map(|(i, t)| Series {
+            name: if i == 0 { "truth in view".into() } else { String::new() },
+            points: points(t),
+            markers: false,
+        })
+        .collect();
+    // A break after each estimate: markers, not a line through the tracks.
+    let marks = estimates.points.iter().flatten().flat_map(|&p| [p, (f64::NAN, f64::NAN)]).collect();
+    series.push(Series { name: "MAP estimates".into(), points: marks, markers: true });
+    Ok(plots::plot_series(
+        stem,
+        title,
+        "time since the epoch (h)",
+        "range (km)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )?)
+}
+
 pub(super) fn write_plots(
     scenario: &Scenario3d,
     records: &[ScanRecord],
@@ -77,7 +107,10 @@ pub(super) fn write_plots(
             .collect();
         let estimates = [SkySeries { name: "MAP estimates".into(), points: sky_estimates[s].clone(), color: None }];
         let stem = out.join(format!("sky_{s}_{}", stem_of(&sensor.name)));
-        if scenario.kind(s).sky_in_ra_dec() {
+        if scenario.kind(s).sky_in_range() {
+            let title = format!("{}: range over time, truth in view and MAP estimates", sensor.name);
+            range_plot(&stem, &title, &truth, &estimates[0])?;
+        } else if scenario.kind(s).sky_in_ra_dec() {
             let title = format!("{}: right ascension / declination, truth in view and MAP estimates", sensor.name);
             plots::sky_plot_ra_dec(&stem, &title, &truth, &estimates, None)?;
         } else {

@@ -18,6 +18,9 @@ pub enum Scenario {
     RadarLeo,
     /// `generate optical-geo`'s telescope and objects, observed without end ([`crate::pipeline::soak::orbital`]).
     OpticalGeo,
+    /// `generate ssa-network`'s sensors of mixed kinds and objects (births included), observed without end, by
+    /// one fused tracker ([`crate::pipeline::soak::orbital`]).
+    SsaNetwork,
 }
 
 impl Scenario {
@@ -27,6 +30,7 @@ impl Scenario {
             Scenario::Planar => "planar",
             Scenario::RadarLeo => "radar-leo",
             Scenario::OpticalGeo => "optical-geo",
+            Scenario::SsaNetwork => "ssa-network",
         }
     }
 }

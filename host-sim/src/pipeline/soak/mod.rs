@@ -19,6 +19,6 @@ use crate::io::report::SoakReport;
 pub fn run_scenario(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
     match scenario {
         Scenario::Planar => planar::run(scans, seed, quiet),
-        Scenario::RadarLeo | Scenario::OpticalGeo => orbital::run(scenario, scans, seed, quiet),
+        Scenario::RadarLeo | Scenario::OpticalGeo | Scenario::SsaNetwork => orbital::run(scenario, scans, seed, quiet),
     }
 }

@@ -1,4 +1,4 @@
-//! `host-sim soak --scenario radar-leo | optical-geo`: a 3-D preset observed without end.
+//! `host-sim soak --scenario radar-leo | optical-geo | ssa-network`: a 3-D preset observed without end.
 //!
 //! The objects, sensors, prior and tracker settings are those of `host-sim generate radar-leo` (or
 //! `optical-geo`) with the soak's seed ([`crate::ssa`], [`crate::scenario::from_simulation::to_scenario`]); the tracker is
@@ -33,7 +33,7 @@ use crate::sim::ssa::draw_scan;
 use crate::sim::time::earth_rotation_angle;
 use nalgebra::SVector;
 use std::time::Instant;
-use tracker_core::model::{OpticalRaDec, RadarRangeAzEl, SensorNetwork};
+use tracker_core::model::{MIXED_DIMENSION, MixedNetwork, OpticalRaDec, RadarRangeAzEl, SensorNetwork};
 use tracker_core::sensor::ScanGeometry;
 use tracker_core::{PriorHypothesis, StepError, StepReport, Tracker, TwoBodyJ2};
 
@@ -349,7 +349,7 @@ where
     }
 }
 
-/// Runs `scans` scans of the 3-D soak `scenario` (radar-leo or optical-geo) with `seed`.
+/// Runs `scans` scans of the 3-D soak `scenario` (radar-leo, optical-geo or ssa-network) with `seed`.
 ///
 /// # Errors
 /// [`Error::Input`] when `scans` is 0 or above [`MAX_SCANS`] or `scenario` is planar; [`Error::Internal`]
@@ -361,6 +361,11 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
     let sim = match scenario {
         Scenario::RadarLeo => crate::sim::presets::radar_leo_with(seed, &RADAR_LEO),
         Scenario::OpticalGeo => crate::sim::presets::optical_geo(seed),
+        Scenario::SsaNetwork => crate::sim::network::ssa_network(
+            seed,
+            &crate::sim::truth::Unknowns::default(),
+            &crate::sim::network::NetworkConfig::PRESET,
+        ),
         Scenario::Planar => return Err(Error::input("soak3d: the planar soak is crate::pipeline::soak::planar::run")),
     }
     .map_err(|e| Error::internal(format!("soak: simulation: {e}")))?;
@@ -383,6 +388,15 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
             { ORBITAL.embedded.measurements },
             { ORBITAL.embedded.tracks },
             { ORBITAL.embedded.birth_cells },
+        >(scenario, profile, sim, scans, quiet),
+        (Scenario::SsaNetwork, Profile::Host) => soak::<
+            MixedNetwork<f64, C>,
+            { MIXED_DIMENSION },
+            { ORBITAL.host.hypotheses },
+            { ORBITAL.host.objects },
+            { ORBITAL.host.measurements },
+            { ORBITAL.host.tracks },
+            { ORBITAL.host.birth_cells },
         >(scenario, profile, sim, scans, quiet),
         _ => Err(Error::internal(format!("soak: {} does not fit the {profile:?} profile", scenario.name()))),
     }

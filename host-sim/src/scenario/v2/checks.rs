@@ -48,6 +48,41 @@ fn angle_in(field: &str, value: f64, low: f64, high: f64) -> Result<(), Scenario
 }
 
 impl Sensor3dSpec {
+    /// What the sensor measures under the measurement type `measurement`: its own `kind`, else `measurement`.
+    pub fn kind_under(&self, measurement: Measurement3dSpec) -> Measurement3dSpec {
+        self.kind.unwrap_or(measurement)
+    }
+
+    /// Sensor `index`'s `kind` and `birth_region` against the measurement type: a kind is required under
+    /// `network`, else absent or the measurement type itself; a birth region only under `network`.
+    pub fn validate_kind(&self, index: usize, measurement: Measurement3dSpec) -> Result<(), ScenarioError> {
+        let field = format!("sensors[{index}].kind");
+        match (measurement, self.kind) {
+            (Measurement3dSpec::Network, None) => Err(error(field, "required when the measurement type is network")),
+            _ if measurement != Measurement3dSpec::Network && self.birth_region.is_some() => Err(error(
+                format!("sensors[{index}].birth_region"),
+                "only a sensor of a network (measurement type network) has its own birth region",
+            )),
+            (measurement, Some(kind)) if measurement != Measurement3dSpec::Network && kind != measurement => {
+                Err(error(
+                    field,
+                    format!(
+                        "\"{}\" differs from the measurement type \"{}\" (sensors of mixed kinds need the \
+                         measurement type network)",
+                        kind.name(),
+                        measurement.name()
+                    ),
+                ))
+            }
+            _ => match self.birth_region.map(|b| b.core()) {
+                Some(tracker_core::model::SensorBirths::Region(region)) => region
+                    .validate()
+                    .map_err(|reason| error(format!("sensors[{index}].birth_region"), reason.to_string())),
+                _ => Ok(()),
+            },
+        }
+    }
+
     /// The sensor's fields against the measurement type; errors name `field`.
     pub fn validate(&self, field: &str, kind: Measurement3dSpec) -> Result<(), ScenarioError> {
         let site = &self.site;

@@ -119,6 +119,11 @@ impl Measurement3dSpec {
         self == Measurement3dSpec::Optical
     }
 
+    /// Whether the sensor measures no angle (range, range and range-rate): its plot is range against time.
+    pub fn sky_in_range(self) -> bool {
+        matches!(self, Measurement3dSpec::Range | Measurement3dSpec::RangeRangeRate)
+    }
+
     /// The components' names, in order, with the ranges the file accepts (degrees, km, km/s).
     pub fn components(self) -> (&'static [&'static str], &'static [(f64, f64)]) {
         const TURN: (f64, f64) = crate::io::angles::ACCEPTED_TURN;

@@ -463,7 +463,7 @@ impl Scenario3d {
 
     /// What sensor `sensor` measures: its own `kind`, else the scenario's `measurement`.
     pub fn kind(&self, sensor: usize) -> Measurement3dSpec {
-        self.sensors.get(sensor).and_then(|s| s.kind).unwrap_or(self.measurement)
+        self.sensors.get(sensor).map_or(self.measurement, |s| s.kind_under(self.measurement))
     }
 
     /// The kinds of the sensors, each once, in the core's order ([`Measurement3dSpec::SENSOR_KINDS`]).
@@ -501,7 +501,7 @@ impl Scenario3d {
         }
         check_sensor_names(self.sensors.iter().map(|s| s.name.as_str()))?;
         for (i, sensor) in self.sensors.iter().enumerate() {
-            self.validate_sensor_kind(i)?;
+            sensor.validate_kind(i, self.measurement)?;
             sensor.validate(&format!("sensors[{i}]"), self.kind(i))?;
         }
         self.validate_births()?;
@@ -511,37 +511,6 @@ impl Scenario3d {
             truth.validate(&self.scans)?;
         }
         self.evaluation.validate()
-    }
-
-    /// A sensor's `kind`: required under `network`, else absent or the scenario's own.
-    fn validate_sensor_kind(&self, sensor: usize) -> Result<(), ScenarioError> {
-        let field = format!("sensors[{sensor}].kind");
-        match (self.measurement, self.sensors[sensor].kind) {
-            (Measurement3dSpec::Network, None) => Err(error(field, "required when the measurement type is network")),
-            _ if self.measurement != Measurement3dSpec::Network && self.sensors[sensor].birth_region.is_some() => {
-                Err(error(
-                    format!("sensors[{sensor}].birth_region"),
-                    "only a sensor of a network (measurement type network) has its own birth region",
-                ))
-            }
-            (measurement, Some(kind)) if measurement != Measurement3dSpec::Network && kind != measurement => {
-                Err(error(
-                    field,
-                    format!(
-                        "\"{}\" differs from the measurement type \"{}\" (sensors of mixed kinds need the \
-                         measurement type network)",
-                        kind.name(),
-                        measurement.name()
-                    ),
-                ))
-            }
-            _ => match self.sensors[sensor].birth_region.map(|b| b.core()) {
-                Some(tracker_core::model::SensorBirths::Region(region)) => region
-                    .validate()
-                    .map_err(|reason| error(format!("sensors[{sensor}].birth_region"), reason.to_string())),
-                _ => Ok(()),
-            },
-        }
     }
 
     /// Sensor `sensor`'s admissible region for births: its own, else `birth.measured`'s (`None` without
