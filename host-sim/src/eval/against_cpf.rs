@@ -80,7 +80,10 @@ pub fn report(
         range_minus_cpf_m: Stats::of(&column(|p| p.range_minus_cpf_m)),
         range_minus_tracker_m: Stats::of(&column(|p| p.range_minus_tracker_m)),
         position_vs_cpf_km: Stats::of(&errors),
-        position_vs_cpf_first_last_km: [errors.first().copied().unwrap_or(f64::NAN), errors.last().copied().unwrap_or(f64::NAN)],
+        position_vs_cpf_first_last_km: [
+            errors.first().copied().unwrap_or(f64::NAN),
+            errors.last().copied().unwrap_or(f64::NAN),
+        ],
         passes: passes(&points),
         points,
     }

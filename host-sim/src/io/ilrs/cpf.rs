@@ -4,7 +4,7 @@
 //! Read: H1 (format `CPF`, version 1 or 2, target name), H2 (the reference frame must be 0, geocentric
 //! true body-fixed: the ITRF; predictions of the centre of mass, not the retroreflector array), H5 (the
 //! centre-of-mass offset, m, optional), H9, and the position records 10 (direction flag 0, common epoch;
-//! MJD and seconds of day in UTC; x, y, z in m) strictly increasing in time, at least [`LAGRANGE_POINTS`];
+//! MJD and seconds of day in UTC; x, y, z in m) increasing in time (1 ms apart at least), at least [`LAGRANGE_POINTS`];
 //! 99 ends the file. Checked for their place and ignored: H3, H4, 00 (comments) and the records 20–70.
 //!
 //! Interpolation: Lagrange polynomials of degree 9 on the [`LAGRANGE_POINTS`] records nearest the time (the
@@ -73,7 +73,8 @@ pub fn parse(text: &str) -> Result<Cpf, IlrsError> {
             "10" => position(&f, &mut cpf.records)?,
             "99" if !header_done => return f.fail("record", "end of file before H9"),
             "99" if cpf.records.len() < LAGRANGE_POINTS => {
-                return f.fail("record", format!("{} position records, fewer than {LAGRANGE_POINTS}", cpf.records.len()));
+                return f
+                    .fail("record", format!("{} position records, fewer than {LAGRANGE_POINTS}", cpf.records.len()));
             }
             "99" => return Ok(cpf),
             _ if IGNORED.contains(&record.as_str()) => {}
@@ -131,10 +132,11 @@ fn position(f: &Fields, records: &mut Vec<(DayTime, [f64; 3])>) -> Result<(), Il
             return f.fail(name, format!("{} m is beyond 1e9 m", r[k]));
         }
     }
+    // 1 ms apart at least: the interpolation's weights stay finite (CPF steps are seconds to minutes).
     if let Some((previous, _)) = records.last()
-        && time.since(previous.day) <= previous.seconds
+        && time.since(previous.day) - previous.seconds < 1e-3
     {
-        return f.fail("seconds of day", "not after the previous record's time");
+        return f.fail("seconds of day", "not at least 1 ms after the previous record's time");
     }
     records.push((time, r));
     Ok(())
@@ -241,7 +243,7 @@ mod tests {
             ("0   300 1 1  0 0 0", "0   300 1 1  1 0 0", 2, "h2 reference frame", "ITRF"),
             ("0   300 1 1  0 0 0", "0   300 1 1  0 0 1", 2, "h2 centre of mass correction", "retroreflector"),
             ("10 0 57431 300.00000", "10 1 57431 300.00000", 5, "10 direction flag", "common epoch"),
-            ("10 0 57431 300.00000", "10 0 57431 0.00000", 5, "10 seconds of day", "not after"),
+            ("10 0 57431 300.00000", "10 0 57431 0.00000", 5, "10 seconds of day", "not at least 1 ms after"),
             ("10 0 57431 600.00000 0 ", "10 0 57431 600.00000 0 x", 6, "10 x", "not a finite number"),
             ("H9\n", "H9\nH5 0.25\n", 4, "h5 record", "after H9"),
             ("99\n", "77 x\n99\n", 24, "77 record", "unknown record type"),

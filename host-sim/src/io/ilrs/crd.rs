@@ -102,7 +102,8 @@ struct Open {
 }
 
 /// Record types checked for their place and not used.
-const IGNORED: &[&str] = &["h5", "c1", "c2", "c3", "c4", "c5", "c6", "c7", "12", "21", "30", "40", "41", "42", "50", "60"];
+const IGNORED: &[&str] =
+    &["h5", "c1", "c2", "c3", "c4", "c5", "c6", "c7", "12", "21", "30", "40", "41", "42", "50", "60"];
 
 /// Parses a CRD file of normal points.
 ///
@@ -208,7 +209,11 @@ fn header_h4(current: &Open, f: &Fields) -> Result<Pass, IlrsError> {
     let Some(day) = day_number(year, month, day) else {
         return f.fail("start day", format!("{year}-{month:02}-{day:02} is not a date"));
     };
-    let hms = [f.integer(5, "start hour", 0..=23)?, f.integer(6, "start minute", 0..=59)?, f.integer(7, "start second", 0..=60)?];
+    let hms = [
+        f.integer(5, "start hour", 0..=23)?,
+        f.integer(6, "start minute", 0..=59)?,
+        f.integer(7, "start second", 0..=60)?,
+    ];
     let flag = |i: usize, name: &str| f.integer(i, name, 0..=1).map(|v| v == 1);
     let applied = Applied {
         troposphere: flag(15, "troposphere correction applied")?,

@@ -13,8 +13,10 @@
 //!   the models leave out: relativity, the troposphere model, the tracker's two-body + J2 dynamics within a
 //!   pass); process noise q [`PROCESS_NOISE`] km²/s³, enough to cover the lunisolar and higher geopotential
 //!   accelerations two-body + J2 omits (≈ 1e-8 km/s² at LAGEOS, ≈ 0.5 km over the 5 h between passes);
-//! - field of view: the whole sky above the horizon, ranges within 0.8–1.2 times those measured; p_D 0.99,
-//!   clutter 0.01 per scan, no births or deaths, no gate: one known object, tracked.
+//! - field of view: the whole sky above the horizon, ranges within 0.8–1.2 times those measured; p_D 1 (a
+//!   normal point is the target's, formed by the station from returns about its prediction: each scan has
+//!   it, and a missed target or a clutter point are not hypotheses worth keeping), clutter 0.01 per scan,
+//!   no births or deaths, no gate: one known object, tracked.
 
 use super::cpf::Cpf;
 use super::crd::Pass;
@@ -85,21 +87,31 @@ pub struct Imported {
 /// Bad input naming the CRD line: a pass of another target than the CPF's, a station missing from the
 /// stations file, a reduction refused ([`reduce`]); no normal point within the CPF's span; two points at
 /// the same time.
-pub fn import(crd: &Path, passes: &[Pass], cpf: &Cpf, stations: &[Station], centre_of_mass_m: f64) -> Result<Imported, Error> {
+pub fn import(
+    crd: &Path,
+    passes: &[Pass],
+    cpf: &Cpf,
+    stations: &[Station],
+    centre_of_mass_m: f64,
+) -> Result<Imported, Error> {
     let epoch_day = cpf.records.first().map_or(0, |(t, _)| t.day);
     let at = |line: usize, message: String| Error::input(format!("{}:{line}: {message}", crd.display()));
     let mut imported =
         Imported { target: cpf.target.clone(), epoch_day, stations: vec![], points: vec![], read: 0, outside: 0 };
     for pass in passes {
         if !pass.target.eq_ignore_ascii_case(&cpf.target) {
-            return Err(at(pass.line, format!("h3 target name: \"{}\" is not the CPF's target \"{}\"", pass.target, cpf.target)));
+            return Err(at(
+                pass.line,
+                format!("h3 target name: \"{}\" is not the CPF's target \"{}\"", pass.target, cpf.target),
+            ));
         }
         let Some(station) = stations.iter().find(|s| s.code == pass.pad) else {
             return Err(at(pass.line, format!("h2 pad number: station {} is not in the stations file", pass.pad)));
         };
         for point in &pass.points {
             imported.read += 1;
-            let reduced = reduce(pass, point, station, cpf, epoch_day, centre_of_mass_m).map_err(|e| at(point.line, e))?;
+            let reduced =
+                reduce(pass, point, station, cpf, epoch_day, centre_of_mass_m).map_err(|e| at(point.line, e))?;
             let Some(reduced) = reduced else {
                 imported.outside += 1;
                 continue;
@@ -145,11 +157,16 @@ impl Imported {
         let epoch = Instant::parse(&self.epoch()).map_err(Error::internal)?;
         let mut out = String::from("CCSDS_TDM_VERS = 2.0\n");
         out.push_str(&format!("COMMENT host-sim track-ilrs: laser ranges of {} from {source}\n", self.target));
-        out.push_str("COMMENT RANGE = c tau / 2 - Marini-Murray troposphere + centre-of-mass offset, at the bounce time\n");
+        out.push_str(
+            "COMMENT RANGE = c tau / 2 - Marini-Murray troposphere + centre-of-mass offset, at the bounce time\n",
+        );
         out.push_str(&format!("CREATION_DATE = {}\nORIGINATOR = R-FISST host-sim\n", crate::io::ccsds::now()));
         for (i, station) in self.stations.iter().enumerate() {
             out.push_str("\nMETA_START\nTIME_SYSTEM = UTC\n");
-            out.push_str(&format!("PARTICIPANT_1 = {}\nPARTICIPANT_2 = {}\nMODE = SEQUENTIAL\n", station.name, self.target));
+            out.push_str(&format!(
+                "PARTICIPANT_1 = {}\nPARTICIPANT_2 = {}\nMODE = SEQUENTIAL\n",
+                station.name, self.target
+            ));
             out.push_str("PATH = 1,2,1\nCOMMENT times are bounce times: the range needs no light-time model\n");
             out.push_str(&format!("COMMENT {}\n", crate::io::tdm::physics::NO_LIGHT_TIME));
             out.push_str("RANGE_UNITS = km\nMETA_STOP\n\nDATA_START\n");
@@ -165,7 +182,12 @@ impl Imported {
     /// The prior's time (s since the epoch): the CPF's last record before the first point.
     pub fn prior_time(&self, cpf: &Cpf) -> f64 {
         let first = self.points.first().map_or(0.0, |p| p.reduced.time);
-        cpf.records.iter().map(|(t, _)| t.since(self.epoch_day)).take_while(|&t| t < first).last().unwrap_or(first - 1.0)
+        cpf.records
+            .iter()
+            .map(|(t, _)| t.since(self.epoch_day))
+            .take_while(|&t| t < first)
+            .last()
+            .unwrap_or(first - 1.0)
     }
 
     /// The version 2 configuration `track` reads (no scans: they come from the TDM).
@@ -176,12 +198,26 @@ impl Imported {
         let t0 = self.prior_time(cpf);
         let epoch_jd = crate::sim::time::parse_iso8601(&self.epoch()).map_err(|e| Error::internal(format!("{e:?}")))?;
         let theta = tracker_core::sensor::gmst_iau82(epoch_jd) + EARTH_ROTATION_RATE * t0;
-        let (r, v) = cpf.state_at(t0, self.epoch_day).ok_or_else(|| Error::internal("the prior's time is outside the CPF"))?;
+        let (r, v) =
+            cpf.state_at(t0, self.epoch_day).ok_or_else(|| Error::internal("the prior's time is outside the CPF"))?;
         let (r, v) = itrf_to_teme_km(r, v, theta);
         let mean = offset_ric(r, v, PRIOR_OFFSET_KM);
         let (p, w) = (PRIOR_SIGMA_KM.powi(2), PRIOR_SIGMA_KM_S.powi(2));
-        let covariance: Vec<Vec<f64>> =
-            (0..6).map(|i| (0..6).map(|j| if i != j { 0.0 } else if i < 3 { p } else { w }).collect()).collect();
+        let covariance: Vec<Vec<f64>> = (0..6)
+            .map(|i| {
+                (0..6)
+                    .map(|j| {
+                        if i != j {
+                            0.0
+                        } else if i < 3 {
+                            p
+                        } else {
+                            w
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
         let ranges = self.points.iter().map(|p| p.reduced.range_km);
         let window = [ranges.clone().fold(f64::INFINITY, f64::min) * 0.8, ranges.fold(0.0, f64::max) * 1.2];
         let sensors: Vec<serde_json::Value> =
@@ -223,7 +259,7 @@ fn sensor_json(s: &RangingStation, window: [f64; 2], range_sigma_km: f64) -> ser
             "min_elevation_deg": 0.0,
             "range_km": window
         },
-        "detection_probability": 0.99,
+        "detection_probability": 1.0,
         "clutter_rate": 0.01
     })
 }

@@ -49,9 +49,17 @@ impl IlrsError {
     }
 }
 
-/// The error at `line`.
+/// The error at `line` (the field's name cut to twice [`EXCERPT_CHARS`]: a record type may be any text).
 pub(crate) fn fail<T>(line: usize, field: &str, message: impl fmt::Display) -> Result<T, IlrsError> {
-    Err(IlrsError { line, field: field.to_string(), message: crate::scenario::one_line(&message.to_string()) })
+    let mut name: String = field.chars().take(2 * EXCERPT_CHARS).collect();
+    if field.chars().nth(2 * EXCERPT_CHARS).is_some() {
+        name.push('…');
+    }
+    Err(IlrsError {
+        line,
+        field: crate::scenario::one_line(&name),
+        message: crate::scenario::one_line(&message.to_string()),
+    })
 }
 
 /// `text` on one line, at most [`EXCERPT_CHARS`] characters (then `…`), for quoting bad input.
@@ -101,11 +109,18 @@ impl<'a> Fields<'a> {
     }
 
     /// Field `index` as a whole number within `range`.
-    pub(crate) fn integer(&self, index: usize, name: &str, range: std::ops::RangeInclusive<i64>) -> Result<i64, IlrsError> {
+    pub(crate) fn integer(
+        &self,
+        index: usize,
+        name: &str,
+        range: std::ops::RangeInclusive<i64>,
+    ) -> Result<i64, IlrsError> {
         let text = self.text(index, name)?;
         match text.parse::<i64>() {
             Ok(v) if range.contains(&v) => Ok(v),
-            Ok(v) => fail(self.line, &self.field_name(name), format!("{v} is not in [{}, {}]", range.start(), range.end())),
+            Ok(v) => {
+                fail(self.line, &self.field_name(name), format!("{v} is not in [{}, {}]", range.start(), range.end()))
+            }
             Err(_) => fail(self.line, &self.field_name(name), format!("\"{}\" is not a whole number", excerpt(text))),
         }
     }

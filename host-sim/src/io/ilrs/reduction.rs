@@ -62,12 +62,21 @@ pub fn elevation(station: [f64; 3], target: [f64; 3]) -> f64 {
 
 /// The Marini–Murray (1973) one-way tropospheric delay (m) at elevation `e` (rad), for pressure (hPa),
 /// temperature (K), relative humidity (%), wavelength (µm), station latitude (rad) and height (m).
-pub fn marini_murray(e: f64, pressure: f64, temperature: f64, humidity: f64, wavelength_um: f64, latitude: f64, height: f64) -> f64 {
+pub fn marini_murray(
+    e: f64,
+    pressure: f64,
+    temperature: f64,
+    humidity: f64,
+    wavelength_um: f64,
+    latitude: f64,
+    height: f64,
+) -> f64 {
     let celsius = temperature - 273.15;
     let vapour = humidity / 100.0 * 6.11 * 10f64.powf(7.5 * celsius / (237.3 + celsius));
     let k = 1.163 - 0.00968 * (2.0 * latitude).cos() - 0.00104 * temperature + 0.000_014_35 * pressure;
     let a = 0.002_357 * pressure + 0.000_141 * vapour;
-    let b = 1.084e-8 * pressure * temperature * k + 4.734e-8 * pressure * pressure / temperature * 2.0 / (3.0 - 1.0 / k);
+    let b =
+        1.084e-8 * pressure * temperature * k + 4.734e-8 * pressure * pressure / temperature * 2.0 / (3.0 - 1.0 / k);
     let f_lambda = 0.9650 + 0.0164 / wavelength_um.powi(2) + 0.000_228 / wavelength_um.powi(4);
     let f_site = 1.0 - 0.0026 * (2.0 * latitude).cos() - 0.000_31 * height / 1e3;
     let s = e.sin();
@@ -79,8 +88,9 @@ pub fn marini_murray(e: f64, pressure: f64, temperature: f64, humidity: f64, wav
 /// target's offset added unless the pass has it applied.
 ///
 /// # Errors
-/// A message when the pass lacks the station delay, the point's configuration has no C0 wavelength, or
-/// the pass has no meteorological record while its troposphere is not applied.
+/// A message when the pass lacks the station delay, the CPF has the target below the horizon, the
+/// point's configuration has no C0 wavelength, or the pass has no meteorological record while its
+/// troposphere is not applied.
 pub fn reduce(
     pass: &Pass,
     point: &NormalPoint,
@@ -103,6 +113,12 @@ pub fn reduce(
     let Some((cpf_m, _)) = cpf.state_at(time, epoch_day) else { return Ok(None) };
     let station_m = station.position_at(bounce);
     let e = elevation(station_m, cpf_m);
+    if e < 0.0 {
+        return Err(format!(
+            "the CPF has the target below the station's horizon ({:.1} deg) at this point",
+            e.to_degrees()
+        ));
+    }
     let mut range_m = SPEED_OF_LIGHT * tau / 2.0;
     let mut troposphere_m = 0.0;
     if !pass.applied.troposphere {
@@ -134,13 +150,60 @@ mod tests {
 
     #[test]
     fn geodetic_inverts_the_site_position() {
-        let site = crate::sim::site::Site { latitude: (-29.046_f64).to_radians(), longitude: 115.35_f64.to_radians(), height: 0.244 };
+        let site = crate::sim::site::Site {
+            latitude: (-29.046_f64).to_radians(),
+            longitude: 115.35_f64.to_radians(),
+            height: 0.244,
+        };
         let r = site.earth_fixed().map(|x| x * 1e3);
         let (lat, lon, h) = geodetic(r);
         assert!((lat - site.latitude).abs() < 1e-12 && (lon - site.longitude).abs() < 1e-12, "{lat} {lon}");
         assert!((h - 244.0).abs() < 1e-6, "{h}");
         let zenith = r.map(|x| x * 2.0);
         assert!((elevation(r, zenith).to_degrees() - 90.0).abs() < 0.2);
+    }
+
+    /// A CPF of a target fixed 6000 km above (or below) Yarragadee, the pass `crd` with its first point.
+    fn refusal(crd: &str, above: bool) -> String {
+        let station = Station {
+            code: 7090,
+            position: [-2_389_007.5, 5_043_329.4, -3_078_524.2],
+            velocity: [0.0; 3],
+            epoch: DayTime { day: 0, seconds: 0.0 },
+            line: 1,
+        };
+        let (lat, lon, _) = geodetic(station.position);
+        let up = [lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin()];
+        let sign = if above { 1.0 } else { -1.0 };
+        let target: [f64; 3] = std::array::from_fn(|k| station.position[k] + sign * 6e6 * up[k]);
+        let records =
+            (0..12).map(|k| (DayTime { day: 16_844, seconds: 49_000.0 + 60.0 * f64::from(k) }, target)).collect();
+        let cpf = Cpf { target: "lageos2".into(), centre_of_mass_m: None, records };
+        let passes = crate::io::ilrs::crd::parse(crd).expect("valid CRD");
+        let pass = &passes[0];
+        match reduce(pass, &pass.points[0], &station, &cpf, 16_844, 0.251) {
+            Err(message) => message,
+            Ok(reduced) => format!("reduced: {reduced:?}"),
+        }
+    }
+
+    const PASS: &str = "h1 CRD 1 2016 2 13 14\nh2 YARL 7090 5 13 3\nh3 lageos2 9207002 5986 22195 0 1\n\
+        h4 1 2016 2 13 13 42 16 2016 2 13 14 6 46 0 0 0 0 1 0 2 0\nc0 0 532.000 std\n\
+        20 49382.401 983.70 301.40 24. 0\n11 49382.400562600000 0.04 std 2 120.0\nh8\nh9\n";
+
+    #[test]
+    fn points_that_cannot_be_reduced_are_refused_with_the_reason() {
+        let ok = refusal(PASS, true);
+        assert!(ok.starts_with("reduced"), "{ok}");
+        assert!(refusal(PASS, false).contains("below the station's horizon"));
+        let no_delay = PASS.replace("0 0 0 0 1 0 2 0", "0 0 0 0 0 0 2 0");
+        assert!(refusal(&no_delay, true).contains("system delay is not applied"));
+        assert!(refusal(&PASS.replace("c0 0 532.000 std", "c0 0 532.000 other"), true).contains("no C0 record"));
+        let no_meteo = PASS.replace("20 49382.401 983.70 301.40 24. 0\n", "");
+        assert!(refusal(&no_meteo, true).contains("no meteorological record"));
+        // Troposphere and centre of mass applied in the data: c τ / 2 exactly.
+        let applied = refusal(&PASS.replace("0 0 0 0 1 0 2 0", "0 1 1 0 1 0 2 0"), true);
+        assert!(applied.contains(&format!("range_km: {},", SPEED_OF_LIGHT * 0.04 / 2.0 / 1e3)), "{applied}");
     }
 
     #[test]

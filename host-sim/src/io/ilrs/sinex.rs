@@ -86,7 +86,9 @@ pub fn parse(text: &str) -> Result<Vec<Station>, IlrsError> {
         .into_iter()
         .map(|p| match p.seen[..3].iter().all(|&s| s) {
             true => Ok(p.station),
-            false => fail(p.station.line, "STAX", format!("site {} lacks a coordinate (STAX, STAY, STAZ)", p.station.code)),
+            false => {
+                fail(p.station.line, "STAX", format!("site {} lacks a coordinate (STAX, STAY, STAZ)", p.station.code))
+            }
         })
         .collect()
 }
@@ -116,7 +118,8 @@ fn estimate(f: &Fields, partial: &mut Vec<Partial>) -> Result<(), IlrsError> {
     };
     let p = &mut partial[i];
     if p.solution != solution || p.seen[k] {
-        return f.fail("solution", format!("site {code} has several solutions: keep the one valid at the data's dates"));
+        return f
+            .fail("solution", format!("site {code} has several solutions: keep the one valid at the data's dates"));
     }
     if p.station.epoch != epoch {
         return f.fail("reference epoch", format!("site {code}'s estimates have different epochs"));
@@ -187,7 +190,13 @@ mod tests {
             ("m    2 -.2389", "km   2 -.2389", 7, "205 unit", "must be in m"),
             ("-.238900753398029E+07", "x.2389", 7, "205 estimated value", "not a finite number"),
             ("10:001:00000 m    2 0.5043", "10:400:00000 m    2 0.5043", 8, "206 reference epoch", "not a time"),
-            ("7090  A    1 10:001:00000 m    2 0.5043", "7090  A    2 10:001:00000 m    2 0.5043", 8, "206 solution", "several solutions"),
+            (
+                "7090  A    1 10:001:00000 m    2 0.5043",
+                "7090  A    2 10:001:00000 m    2 0.5043",
+                8,
+                "206 solution",
+                "several solutions",
+            ),
             ("-SOLUTION/ESTIMATE\n", "", 13, "-SOLUTION/ESTIMATE", "not ended"),
         ];
         for (from, to, line, field, message) in cases {
