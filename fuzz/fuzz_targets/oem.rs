@@ -36,10 +36,8 @@ fn check_error(text: &str, e: &OemError) {
 
 /// The objects sorted by label, as bits.
 fn bits(objects: &[PriorObject3dSpec]) -> Vec<(u32, [u64; 6], [[u64; 6]; 6])> {
-    let mut v: Vec<_> = objects
-        .iter()
-        .map(|o| (o.label, o.mean.map(f64::to_bits), o.covariance.map(|r| r.map(f64::to_bits))))
-        .collect();
+    let mut v: Vec<_> =
+        objects.iter().map(|o| (o.label, o.mean.map(f64::to_bits), o.covariance.map(|r| r.map(f64::to_bits)))).collect();
     v.sort_by_key(|o| o.0);
     v
 }
