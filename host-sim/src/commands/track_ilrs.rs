@@ -103,7 +103,7 @@ fn file_name(path: &Path) -> String {
 fn judge(imported: &Imported, cpf: &cpf::Cpf, track_out: &Path, settings: [f64; 2]) -> Result<IlrsReport, Error> {
     let positions = crate::eval::against_cpf::map_positions(&track_out.join("estimates.csv"))?;
     let prior = IlrsPrior {
-        time: imported.prior_time(cpf),
+        time: imported.prior_time(cpf).unwrap_or(f64::NAN),
         offset_km: PRIOR_OFFSET_KM,
         sigma_km: PRIOR_SIGMA_KM,
         sigma_km_s: PRIOR_SIGMA_KM_S,

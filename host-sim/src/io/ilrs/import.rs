@@ -179,23 +179,21 @@ impl Imported {
         Ok(out)
     }
 
-    /// The prior's time (s since the epoch): the CPF's last record before the first point.
-    pub fn prior_time(&self, cpf: &Cpf) -> f64 {
+    /// The prior's time (s since the epoch): the CPF's last record before the first point; `None` when the
+    /// first point is at the CPF's first record.
+    pub fn prior_time(&self, cpf: &Cpf) -> Option<f64> {
         let first = self.points.first().map_or(0.0, |p| p.reduced.time);
-        cpf.records
-            .iter()
-            .map(|(t, _)| t.since(self.epoch_day))
-            .take_while(|&t| t < first)
-            .last()
-            .unwrap_or(first - 1.0)
+        cpf.records.iter().map(|(t, _)| t.since(self.epoch_day)).take_while(|&t| t < first).last()
     }
 
     /// The version 2 configuration `track` reads (no scans: they come from the TDM).
     ///
     /// # Errors
-    /// The prior's time outside the CPF (it cannot happen: it is one of its records).
+    /// Bad input when the first point is at the CPF's first record (no record before it for the prior).
     pub fn config(&self, cpf: &Cpf, range_sigma_km: f64, process_noise: f64) -> Result<serde_json::Value, Error> {
-        let t0 = self.prior_time(cpf);
+        let t0 = self.prior_time(cpf).ok_or_else(|| {
+            Error::input("the first normal point is at the CPF's first record: no earlier record for the prior")
+        })?;
         let epoch_jd = crate::sim::time::parse_iso8601(&self.epoch()).map_err(|e| Error::internal(format!("{e:?}")))?;
         let theta = tracker_core::sensor::gmst_iau82(epoch_jd) + EARTH_ROTATION_RATE * t0;
         let (r, v) =
