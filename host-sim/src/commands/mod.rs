@@ -20,6 +20,7 @@ mod sgp4_check;
 mod soak;
 mod terminal;
 mod track;
+mod track_ilrs;
 
 use crate::error::Error;
 use crate::pipeline::RunOptions;
@@ -122,6 +123,10 @@ enum Command {
     /// Track CCSDS TDMs with a version 2 scenario's models, sensors, prior and tracker settings (its scans
     /// and truth are ignored); writes what `run` writes.
     Track(track::Args),
+    /// Track real laser ranging data: the normal points of an ILRS CRD file reduced to ranges (a TDM and a
+    /// configuration, as `track` takes them), tracked, and judged against the target's CPF predictions;
+    /// writes ranges.tdm, config.json, track/ and ilrs.json.
+    TrackIlrs(track_ilrs::Args),
     /// Run the bounded tracker and the unbounded reference on the same scans; writes compare.json.
     Compare(compare::Args),
     /// Reproduce a paper experiment (fifty, fifteen, scaling, debris), the ablation, the 24-hour catalogue
@@ -204,6 +209,7 @@ pub fn execute(cli: Cli) -> Result<(), CliError> {
         Command::RunCatalogue(args) => run_catalogue::execute(args, json),
         Command::ExportTdm(args) => export_tdm::execute(args),
         Command::Track(args) => track::execute(args, json),
+        Command::TrackIlrs(args) => track_ilrs::execute(args, json),
         Command::Compare(args) => compare::execute(args, json),
         Command::Experiment(args) => experiment::execute(args),
         Command::Perf(args) => perf::execute(args, json),

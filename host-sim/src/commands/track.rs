@@ -16,36 +16,44 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     /// TDM files (merged by time; PARTICIPANT_1 names the sensor).
     #[arg(long, num_args = 1.., required = true)]
-    tdm: Vec<PathBuf>,
+    pub(super) tdm: Vec<PathBuf>,
     /// Scenario file (version 2) giving everything but the scans.
     #[arg(long)]
-    config: PathBuf,
+    pub(super) config: PathBuf,
     /// An earlier run's OEM (`tracks.oem`): its segments' last states and covariances are the prior (instead
     /// of the configuration's), at its last epoch; scans at or before that epoch are skipped.
     #[arg(long)]
-    prior_oem: Option<PathBuf>,
+    pub(super) prior_oem: Option<PathBuf>,
     /// Tracker to run.
     #[arg(long, value_enum, default_value_t = TrackerKind::Rfisst)]
-    tracker: TrackerKind,
+    pub(super) tracker: TrackerKind,
     /// Output directory.
     #[arg(long)]
-    out: PathBuf,
+    pub(super) out: PathBuf,
     #[command(flatten)]
-    common: Common,
+    pub(super) common: Common,
 }
 
 /// Runs `track`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
+    let (summary, clean) = track(&args)?;
+    super::run::finish(&summary, clean, &args.out, json)
+}
+
+/// Tracks the TDMs as `args` say; the run's summary and whether the tracker took every scan.
+///
+/// # Errors
+/// Bad input (the configuration, a TDM, the prior OEM) or an output that cannot be written.
+pub(super) fn track(args: &Args) -> Result<(crate::io::report::RunSummary, bool), Error> {
     let AnyScenario::V2(config) = load_any(&args.config)? else {
-        return Err(Error::input(format!("{}: --config needs a version 2 scenario", args.config.display())).into());
+        return Err(Error::input(format!("{}: --config needs a version 2 scenario", args.config.display())));
     };
     let scenario = match &args.prior_oem {
         None => crate::io::tdm::scenario_from_tdms(&args.tdm, &config)?,
-        Some(file) => continued(&args, *config, file)?,
+        Some(file) => continued(args, *config, file)?,
     };
     let options = args.common.run_options(args.tracker)?;
-    let (summary, clean) = crate::pipeline::run(&AnyScenario::V2(Box::new(scenario)), &options, &args.out)?;
-    super::run::finish(&summary, clean, &args.out, json)
+    crate::pipeline::run(&AnyScenario::V2(Box::new(scenario)), &options, &args.out)
 }
 
 /// The scenario of a run continued from the OEM `file`: its prior, and the TDMs' scans after its epoch. The

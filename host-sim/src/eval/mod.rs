@@ -1,8 +1,9 @@
 //! Scoring runs against the truth: the [`metrics`] (OSPA, GOSPA, label switches, ...), the scoring of a
 //! run's MAP estimates ([`score`]), births and their confirmation ([`births`]), and the exactness of a
-//! bounded tracker against the unbounded reference ([`exactness`]), and judging a run without truth
-//! ([`consistency`]).
+//! bounded tracker against the unbounded reference ([`exactness`]), judging a run without truth
+//! ([`consistency`]), and a run on laser ranges against the target's predictions ([`against_cpf`]).
 
+pub mod against_cpf;
 pub mod births;
 pub mod consistency;
 pub mod exactness;

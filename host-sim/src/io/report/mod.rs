@@ -5,13 +5,14 @@
 //! into the same type.
 //!
 //! A file per output: `summary` (`summary.json`), `scans` (`scans.jsonl`), `compare`, `soak`, `sampler_check`,
-//! `experiments` (`runs.json`, `fifteen.json`, `scaling.json`, `debris.json`, the ablation), `perf` and
-//! `catalogue` (`catalogue.json`). The records are re-exported here.
+//! `experiments` (`runs.json`, `fifteen.json`, `scaling.json`, `debris.json`, the ablation), `perf`,
+//! `catalogue` (`catalogue.json`) and `ilrs` (`ilrs.json` of `track-ilrs`). The records are re-exported here.
 
 mod catalogue;
 mod compare;
 mod dropped;
 mod experiments;
+mod ilrs;
 mod perf;
 mod residuals;
 mod sampler_check;
@@ -27,6 +28,7 @@ pub use experiments::{
     DebrisReport, DebrisRfisst, DebrisScan, FifteenFigures, FifteenHomht, FifteenReport, FifteenScan, FifteenTracker,
     RunsReport, ScalingFigures, ScalingReport, ScalingSampler, ScalingSize, Spread, Timing,
 };
+pub use ilrs::{IlrsPass, IlrsPoint, IlrsPrior, IlrsReport, Stats};
 pub use perf::{
     PerfDetails, PerfExhaustive, PerfFifty, PerfGibbs, PerfGibbsCase, PerfGibbsShape, PerfMachine, PerfMurty,
     PerfMurtyCase, PerfMurtyShape, PerfReport, PerfSsa,
