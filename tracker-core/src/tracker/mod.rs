@@ -145,6 +145,8 @@ pub struct Tracker<
     materialisation: Materialisation<H, N, Z, K, B>,
     /// Birth cells made from measurements (docs/maths.md §5.8).
     pool: BirthPool<T, S, B>,
+    /// The scan's birth cells as its sensor sees them (scratch, kept here rather than on the stack).
+    birth_cells: BirthCells<T, S, D, B>,
 }
 
 impl<
@@ -285,6 +287,7 @@ where
             generation: Generation::new(sampler),
             materialisation: Materialisation::new(),
             pool: BirthPool::new(),
+            birth_cells: BirthCells::EMPTY,
         }
     }
 
@@ -538,18 +541,19 @@ where
         }
         let time = geometry.time;
         let mut placed = place_scan(&self.config, geometry, self.time, measurements, Z)?;
-        let birth_cells = score::birth_cells(&self.config, &self.pool, &mut placed, time)?;
+        score::birth_cells(&self.config, &self.pool, &mut placed, time, &mut self.birth_cells)?;
+        let birth_cells = &self.birth_cells;
         let live = self.live();
         let dt = T::of_f64(time - self.time);
         let (store, next_store) = split_pair(&mut self.stores, self.active);
         let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
 
         let numerical_drops =
-            self.scores.run(&self.config, &placed, &birth_cells, store.as_slice(), dt, measurements)?;
+            self.scores.run(&self.config, &placed, birth_cells, store.as_slice(), dt, measurements)?;
         let generated = self.generation.run(
             &self.config,
             &placed.weights,
-            &birth_cells,
+            birth_cells,
             &self.scores,
             parents.as_slice(),
             measurements.len(),
@@ -559,7 +563,7 @@ where
         let inputs = Inputs {
             config: &self.config,
             model: &placed.model,
-            birth_cells: &birth_cells,
+            birth_cells,
             scores: &self.scores,
             generation: &self.generation,
             store,
@@ -577,7 +581,7 @@ where
         let birth_pool = match &self.config.birth.measured {
             Some(measured) => {
                 let (unexplained, born) =
-                    measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
+                    measurement_use::<T, S, D, H, N, Z, B>(&self.generation, birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
                 let rows = measurements.len().min(Z);
                 let scan = ScanUse { time, measurements, unexplained: &unexplained[..rows], born: &born };
