@@ -184,7 +184,8 @@ where
     /// time in seconds.
     ///
     /// The tracker is returned by value, which can take a few times its size of stack; on a small target
-    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead.
+    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead (or with
+    /// [`Tracker::reset_with`] when the configuration can only be built at run time).
     ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry.

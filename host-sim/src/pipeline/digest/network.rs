@@ -337,7 +337,7 @@ mod tests {
     fn a_radar_scenario_is_refused() {
         let simulation = crate::sim::presets::tiny_3d(1).expect("tiny-3d");
         let scenario = crate::scenario::from_simulation::to_scenario(&simulation).expect("scenario").0;
-        let error = run(&scenario, Some(2)).err().expect("refused");
+        let error = run(&scenario, Some(2)).expect_err("refused");
         assert!(error.0.starts_with("measurement:"), "{error}");
     }
 }
