@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
-# QEMU check (issues 7 and 13): the trackers on a Cortex-M4F give bit-identical results to the host.
+# QEMU check (issues 7, 13 and 28): the trackers on a Cortex-M4F give bit-identical results to the host.
 #
-# 1. builds host-sim (release) and generates two fixed scenarios: the planar preset fifty-birth-death and
-#    the 3-D radar preset radar-leo, seed 1;
-# 2. replays the first $SCANS planar scans on the host with `host-sim digest` (SsaTracker<f32>), and the
-#    first $RADAR_SCANS radar scans (RadarTracker<f32>, prior restricted to the objects they detect);
-# 3. builds firmware/qemu-m4 with both scenarios embedded and runs it on qemu-system-arm
-#    (mps2-an386, -icount shift=0, semihosting): the planar replay, then the radar replay;
+# 1. builds host-sim (release) and generates three fixed scenarios: the planar preset fifty-birth-death,
+#    the 3-D radar preset radar-leo and the mixed-kind network preset ssa-network, seed 1;
+# 2. replays the first $SCANS planar scans on the host with `host-sim digest` (SsaTracker<f32>), the
+#    first $RADAR_SCANS radar scans (RadarTracker<f32>, prior restricted to the objects they detect) and
+#    the first $NETWORK_SCANS network scans (NetworkTracker<f32>; `--excerpt` writes the firmware's excerpt);
+# 3. builds firmware/qemu-m4 with the three embedded and runs it on qemu-system-arm
+#    (mps2-an386, -icount shift=0, semihosting): the planar replay, then the radar one, then the network one;
 # 4. compares each pair of digest texts byte for byte, prints the final digests, and exits non-zero unless
-#    both are identical (or on any failure above).
+#    all three are identical (or on any failure above).
 #
 # Needs: cargo with rustup (the thumbv7em-none-eabihf target is added if missing), qemu-system-arm.
-# Works with the default target dirs (./target, firmware/qemu-m4/target) or CARGO_TARGET_DIR.
+# Works with the default target dirs (./target, firmware/qemu-m4/target) or CARGO_TARGET_DIR (both), and
+# QEMU_CHECK_FIRMWARE_TARGET_DIR for the firmware's.
 # QEMU_CHECK_SCANS overrides the number of planar scans (default 200), QEMU_CHECK_RADAR_SCANS the number of
-# radar scans (default 200).
+# radar scans (default 200), QEMU_CHECK_NETWORK_SCANS the number of network scans (default 200).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -23,6 +25,8 @@ SEED=1
 SCANS=${QEMU_CHECK_SCANS:-200}
 RADAR_PRESET=radar-leo
 RADAR_SCANS=${QEMU_CHECK_RADAR_SCANS:-200}
+NETWORK_PRESET=ssa-network
+NETWORK_SCANS=${QEMU_CHECK_NETWORK_SCANS:-200}
 TIMEOUT_SECONDS=600
 FIRMWARE=$ROOT/firmware/qemu-m4
 
@@ -35,32 +39,44 @@ command -v qemu-system-arm >/dev/null || fail "qemu-system-arm not found (Debian
 rustup target list --installed | grep -qx thumbv7em-none-eabihf || rustup target add thumbv7em-none-eabihf
 
 HOST_TARGET=${CARGO_TARGET_DIR:-$ROOT/target}
-FIRMWARE_TARGET=${CARGO_TARGET_DIR:-$FIRMWARE/target}
+# The firmware is its own workspace: QEMU_CHECK_FIRMWARE_TARGET_DIR gives it a target dir of its own.
+FIRMWARE_TARGET=${QEMU_CHECK_FIRMWARE_TARGET_DIR:-${CARGO_TARGET_DIR:-$FIRMWARE/target}}
 WORK=$HOST_TARGET/qemu-check
 mkdir -p "$WORK"
 SCENARIO=$WORK/$PRESET-seed$SEED.json
 RADAR_SCENARIO=$WORK/$RADAR_PRESET-seed$SEED.json
+NETWORK_SCENARIO=$WORK/$NETWORK_PRESET-seed$SEED.json
+NETWORK_EXCERPT=$WORK/network-excerpt.rs
 
 echo "qemu-check: building host-sim (release)"
 cargo build --release --quiet -p host-sim
 HOST_SIM=$HOST_TARGET/release/host-sim
+# Keep the old file when nothing changed, so that the firmware is not rebuilt for nothing.
+keep_or_replace() {
+  if cmp -s "$1.new" "$1"; then rm "$1.new"; else mv "$1.new" "$1"; fi
+}
 generate() {
   "$HOST_SIM" generate "$1" --seed "$SEED" --out "$2.new" >/dev/null
-  # Keep the old file when nothing changed, so that the firmware is not rebuilt for nothing.
-  if cmp -s "$2.new" "$2"; then rm "$2.new"; else mv "$2.new" "$2"; fi
+  keep_or_replace "$2"
 }
 generate "$PRESET" "$SCENARIO"
 generate "$RADAR_PRESET" "$RADAR_SCENARIO"
+generate "$NETWORK_PRESET" "$NETWORK_SCENARIO"
 
 echo "qemu-check: host digest ($SCANS scans)"
 "$HOST_SIM" digest "$SCENARIO" --scans "$SCANS" >"$WORK/host.txt" || fail "host-sim digest failed"
 echo "qemu-check: host radar digest ($RADAR_SCANS scans)"
 "$HOST_SIM" digest "$RADAR_SCENARIO" --scans "$RADAR_SCANS" >"$WORK/host-radar.txt" ||
   fail "host-sim digest (radar) failed"
+echo "qemu-check: host network digest and excerpt ($NETWORK_SCANS scans)"
+"$HOST_SIM" digest "$NETWORK_SCENARIO" --scans "$NETWORK_SCANS" --excerpt "$NETWORK_EXCERPT.new" \
+  >"$WORK/host-network.txt" || fail "host-sim digest (network) failed"
+keep_or_replace "$NETWORK_EXCERPT"
 
 echo "qemu-check: building firmware/qemu-m4 (release, thumbv7em-none-eabihf)"
-(cd "$FIRMWARE" && RFISST_SCENARIO="$SCENARIO" RFISST_SCANS="$SCANS" RFISST_SCENARIO_3D="$RADAR_SCENARIO" \
-  RFISST_SCANS_3D="$RADAR_SCANS" cargo build --release --quiet) ||
+(cd "$FIRMWARE" && CARGO_TARGET_DIR="$FIRMWARE_TARGET" RFISST_SCENARIO="$SCENARIO" RFISST_SCANS="$SCANS" \
+  RFISST_SCENARIO_3D="$RADAR_SCENARIO" RFISST_SCANS_3D="$RADAR_SCANS" RFISST_NETWORK_EXCERPT="$NETWORK_EXCERPT" \
+  cargo build --release --quiet) ||
   fail "firmware build failed"
 ELF=$FIRMWARE_TARGET/thumbv7em-none-eabihf/release/qemu-m4
 
@@ -76,11 +92,15 @@ cat "$WORK/qemu-stderr.txt" >&2
 echo "qemu-check: QEMU wall time $(( (end - start) / 1000000 )) ms (exit status $status)"
 [ "$status" -eq 0 ] || fail "the firmware exited with status $status (124 = timeout after ${TIMEOUT_SECONDS}s)"
 
-# The digest lines before the radar header are the planar replay's, those after it the radar replay's.
-awk -v planar="$WORK/firmware-digest.txt" -v radar="$WORK/firmware-radar-digest.txt" '
-  BEGIN { printf "" > planar; printf "" > radar }
+# The digest lines before the radar header are the planar replay's, those between it and the network header
+# the radar replay's, those after that the network replay's.
+awk -v planar="$WORK/firmware-digest.txt" -v radar="$WORK/firmware-radar-digest.txt" \
+  -v network="$WORK/firmware-network-digest.txt" '
+  BEGIN { printf "" > planar; printf "" > radar; printf "" > network }
   /^qemu-m4: radar scenario / { part = 2 }
-  /^(scan|final) / { if (part == 2) print > radar; else print > planar }' "$WORK/firmware.txt"
+  /^qemu-m4: network scenario / { part = 3 }
+  /^(scan|final) / { if (part == 3) print > network; else if (part == 2) print > radar; else print > planar }' \
+  "$WORK/firmware.txt"
 
 # compare NAME HOST FIRMWARE DIFF: prints both final digests; 0 when the texts are identical.
 compare() {
@@ -99,6 +119,7 @@ compare() {
 ok=0
 compare planar "$WORK/host.txt" "$WORK/firmware-digest.txt" "$WORK/digest.diff" || ok=1
 compare radar "$WORK/host-radar.txt" "$WORK/firmware-radar-digest.txt" "$WORK/digest-radar.diff" || ok=1
+compare network "$WORK/host-network.txt" "$WORK/firmware-network-digest.txt" "$WORK/digest-network.diff" || ok=1
 [ "$ok" -eq 0 ] || fail "the firmware's digests differ from the host's (files in $WORK)"
-echo "qemu-check: PASS: planar $SCANS scans and radar $RADAR_SCANS scans, every per-scan digest and both final" \
-  "digests are identical"
+echo "qemu-check: PASS: planar $SCANS scans, radar $RADAR_SCANS scans and network $NETWORK_SCANS scans, every" \
+  "per-scan digest and the three final digests are identical"

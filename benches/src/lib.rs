@@ -18,9 +18,10 @@ use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
 use tracker_core::sensor::{EarthRotation, GroundSite, Placement, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthModel, Config, Gaussian, Measure, MotionModel, PositionMeasurement, PriorHypothesis,
-    PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real, Region, Sensor, StepError, StepReport, StoreOverflow,
-    TrackLabel, Tracker, TwoBody, TwoBodyJ2, ssa_caps,
+    BirthDetection, BirthModel, Config, Gaussian, Measure, MixedSensor, MotionModel, Network, NetworkConfig,
+    NetworkTracker, PositionMeasurement, PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Real,
+    Region, Sensor, SensorKind, StepError, StepReport, StoreOverflow, TrackLabel, Tracker, TwoBody, TwoBodyJ2,
+    ssa_caps,
 };
 
 /// The next output of the SplitMix64 stream whose state is `state` (advanced), for deterministic bench
@@ -330,18 +331,188 @@ impl<T: Real> RadarWorstCase<T> {
 /// # Panics
 /// If the configuration or the prior is rejected (a bug in this function).
 pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
+    let mut state = 0x3d_5eed_u64;
+    let (hypotheses, cells, centre) = cluster_prior::<T>(&mut state);
+    let prior: Vec<PriorHypothesis<'_, T, 6>> = hypotheses
+        .iter()
+        .enumerate()
+        .map(|(h, objects)| PriorHypothesis { weight: T::of_f64(1.0 / (1.0 + h as f64)), objects })
+        .collect();
+    let config: RadarConfig<T> = Config {
+        motion: radar_motion(),
+        measurement: radar_network(),
+        sensor: radar_network::<T>().sensors()[0].detection,
+        birth: cluster_births(cells),
+        death_probability: T::of_f64(1e-4),
+        gate: Some(T::of_f64(25.0)),
+        children: ChildGeneration::Sampled(SamplerConfig::default()),
+        selection: Selection::TopWeight,
+        store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
+        seed: 1,
+    };
+    let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
+    let geometry = ScanGeometry::single(RADAR_WORST_CASE_DT);
+    let placed = radar_network::<f64>().place(&ScanGeometry::single(RADAR_WORST_CASE_DT)).expect("placement");
+    let measurements = cluster_points(&mut state, &centre)
+        .map(|point| {
+            let z = placed.measure(&point);
+            SVector::from([T::of_f64(z[0]), T::of_f64(z[1]), T::of_f64(z[2])])
+        })
+        .collect();
+    RadarWorstCase { tracker, measurements, geometry }
+}
+
+/// The fused tracker at its caps and the scan that fills them (see [`network_worst_case`]).
+pub struct NetworkWorstCase<T: Real> {
+    /// The tracker, boxed (it is large).
+    pub tracker: Box<NetworkTracker<T>>,
+    /// Z measurements of the radar with range-rate, all inside every gate (padded to four components).
+    pub measurements: Vec<SVector<T, 4>>,
+    /// The scan's geometry (the radar with range-rate).
+    pub geometry: ScanGeometry<T>,
+}
+
+impl<T: Real> NetworkWorstCase<T> {
+    /// Processes the worst-case scan.
+    ///
+    /// # Errors
+    /// The tracker's.
+    pub fn step(&mut self) -> Result<StepReport<T>, StepError> {
+        self.tracker.step_scan(&self.geometry, &self.measurements)
+    }
+}
+
+/// The sensor of [`network_worst_case`] measuring all four components: the radar with range-rate.
+pub const NETWORK_WORST_CASE_SENSOR: usize = 1;
+
+/// A network of every kind ([`SensorKind::ALL`], in that order) at radar 0's site of [`radar_network`],
+/// each with that radar's field of view and the windows its kind measures (range-rate ±8 km/s), σ 20 m,
+/// 0.02° and 10 m/s in its own components.
+pub fn mixed_network<T: Real>() -> Network<T> {
+    let radar = radar_network::<f64>().sensors()[0];
+    let c = T::of_f64;
+    let sensors = SensorKind::ALL.map(|kind| {
+        let components = kind.components();
+        let sigma: [T; 4] = core::array::from_fn(|i| match components.get(i) {
+            Some(&"range") => c(radar.sigma[0]),
+            Some(&"range_rate") => c(0.01),
+            Some(_) => c(radar.sigma[1]),
+            None => T::zero(),
+        });
+        let Region::Look { shape: LookShape::Cone { azimuth, elevation, half_angle }, min_elevation, .. } =
+            radar.detection.field_of_view
+        else {
+            unreachable!("radar_network's field of view is a cone")
+        };
+        let axes = kind.axes();
+        let field_of_view = Region::Look {
+            shape: LookShape::Cone { azimuth: c(azimuth), elevation: c(elevation), half_angle: c(half_angle) },
+            min_elevation: c(min_elevation),
+            range: axes.range.then_some([c(200.0), c(3000.0)]),
+            range_rate: axes.range_rate.then_some([c(-8.0), c(8.0)]),
+        };
+        let Platform::Ground(site) = radar.platform else { unreachable!("radar_network's sites are on the ground") };
+        MixedSensor {
+            kind,
+            sensor: SiteSensor {
+                platform: Platform::Ground(GroundSite {
+                    latitude: c(site.latitude),
+                    longitude: c(site.longitude),
+                    height: c(site.height),
+                }),
+                sigma,
+                detection: Sensor {
+                    detection_probability: c(radar.detection.detection_probability),
+                    clutter_rate: c(radar.detection.clutter_rate),
+                    field_of_view,
+                },
+            },
+        }
+    });
+    Network::new(EarthRotation::new(c(0.3)), &sensors).expect("valid network")
+}
+
+/// The worst case of [`NetworkTracker`] at [`ssa_caps`]: the prior and birth cells of
+/// [`radar_worst_case`], a [`mixed_network`] of every kind, and Z measurements of the radar with
+/// range-rate (four components, [`NETWORK_WORST_CASE_SENSOR`]) within ±1 km of the cluster's predicted
+/// centre, so every entry is inside the gate and every matrix dense.
+///
+/// # Panics
+/// If the configuration or the prior is rejected (a bug in this function).
+pub fn network_worst_case<T: Real>() -> NetworkWorstCase<T> {
+    let mut state = 0x3d_5eed_u64;
+    let (hypotheses, cells, centre) = cluster_prior::<T>(&mut state);
+    let prior: Vec<PriorHypothesis<'_, T, 6>> = hypotheses
+        .iter()
+        .enumerate()
+        .map(|(h, objects)| PriorHypothesis { weight: T::of_f64(1.0 / (1.0 + h as f64)), objects })
+        .collect();
+    let network = mixed_network::<T>();
+    let config: NetworkConfig<T> = Config {
+        motion: radar_motion(),
+        measurement: network,
+        sensor: network.sensors()[0].sensor.detection,
+        birth: cluster_births(cells),
+        death_probability: T::of_f64(1e-4),
+        gate: Some(T::of_f64(25.0)),
+        children: ChildGeneration::Sampled(SamplerConfig::default()),
+        selection: Selection::TopWeight,
+        store_overflow: StoreOverflow::PruneChildren,
+        numerical_failure: Default::default(),
+        seed: 1,
+    };
+    let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
+    let geometry = ScanGeometry { sensor: NETWORK_WORST_CASE_SENSOR, time: RADAR_WORST_CASE_DT, observer: None };
+    let at = ScanGeometry { sensor: NETWORK_WORST_CASE_SENSOR, time: RADAR_WORST_CASE_DT, observer: None };
+    let placed = mixed_network::<f64>().place(&at).expect("placement");
+    let measurements = cluster_points(&mut state, &centre).map(|point| placed.measure(&point).map(T::of_f64)).collect();
+    NetworkWorstCase { tracker, measurements, geometry }
+}
+
+/// Z points within ±1 km of `centre` in position (its velocity), drawn from `state`.
+fn cluster_points(state: &mut u64, centre: &SVector<f64, 6>) -> impl Iterator<Item = SVector<f64, 6>> {
+    (0..ssa_caps::MEASUREMENTS)
+        .map(|_| {
+            let mut point = *centre;
+            for k in 0..3 {
+                point[k] += uniform(state) * 2.0 - 1.0;
+            }
+            point
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+}
+
+/// The birth model of the 3-D worst cases: α = 10⁻³ in each of `cells`, all detected.
+fn cluster_births<T: Real>(
+    cells: heapless::Vec<Gaussian<T, 6>, { ssa_caps::BIRTH_CELLS }>,
+) -> BirthModel<T, 6, { ssa_caps::BIRTH_CELLS }> {
+    BirthModel {
+        probability: T::of_f64(1e-3),
+        cells,
+        detection: BirthDetection::AllDetected,
+        events: Default::default(),
+        measured: None,
+    }
+}
+
+/// The prior of the 3-D worst cases (see [`radar_worst_case`]): H hypotheses of N − 1 objects, the B
+/// birth cells and the cluster's centre at the scan time.
+#[allow(clippy::type_complexity)]
+fn cluster_prior<T: Real>(
+    state: &mut u64,
+) -> (Vec<Vec<PriorObject<T, 6>>>, heapless::Vec<Gaussian<T, 6>, { ssa_caps::BIRTH_CELLS }>, SVector<f64, 6>) {
     const H: usize = ssa_caps::HYPOTHESES;
     const N: usize = ssa_caps::OBJECTS;
     const K: usize = ssa_caps::TRACKS_3D;
     const B: usize = ssa_caps::BIRTH_CELLS;
-    const Z: usize = ssa_caps::MEASUREMENTS;
     let objects = N - 1;
     let versions = (K / N).max(1);
-    let mut state = 0x3d_5eed_u64;
     let base = radar_cluster_state();
     let tracks: Vec<Vec<PriorObject<T, 6>>> = (0..objects)
         .map(|label| {
-            let offset: [f64; 3] = core::array::from_fn(|_| uniform(&mut state) * 2.0 - 1.0);
+            let offset: [f64; 3] = core::array::from_fn(|_| uniform(state) * 2.0 - 1.0);
             (0..versions)
                 .map(|version| {
                     let shift = 0.05 * version as f64;
@@ -365,11 +536,6 @@ pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
                 .collect()
         })
         .collect();
-    let prior: Vec<PriorHypothesis<'_, T, 6>> = hypotheses
-        .iter()
-        .enumerate()
-        .map(|(h, objects)| PriorHypothesis { weight: T::of_f64(1.0 / (1.0 + h as f64)), objects })
-        .collect();
     let motion = radar_motion::<f64>();
     let centre = motion.propagate(&SVector::from(base), RADAR_WORST_CASE_DT).expect("J2").state;
     let mut cells = heapless::Vec::new();
@@ -377,39 +543,7 @@ pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
         let mean: [f64; 6] = core::array::from_fn(|k| centre[k]);
         let _ = cells.push(gaussian6(mean, [100.0, 100.0, 100.0, 1e-2, 1e-2, 1e-2]));
     }
-    let config: RadarConfig<T> = Config {
-        motion: radar_motion(),
-        measurement: radar_network(),
-        sensor: radar_network::<T>().sensors()[0].detection,
-        birth: BirthModel {
-            probability: T::of_f64(1e-3),
-            cells,
-            detection: BirthDetection::AllDetected,
-            events: Default::default(),
-            measured: None,
-        },
-        death_probability: T::of_f64(1e-4),
-        gate: Some(T::of_f64(25.0)),
-        children: ChildGeneration::Sampled(SamplerConfig::default()),
-        selection: Selection::TopWeight,
-        store_overflow: StoreOverflow::PruneChildren,
-        numerical_failure: Default::default(),
-        seed: 1,
-    };
-    let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
-    let geometry = ScanGeometry::single(RADAR_WORST_CASE_DT);
-    let placed = radar_network::<f64>().place(&geometry).expect("placement");
-    let measurements = (0..Z)
-        .map(|_| {
-            let mut point = centre;
-            for k in 0..3 {
-                point[k] += uniform(&mut state) * 2.0 - 1.0;
-            }
-            let z = placed.measure(&point);
-            SVector::from([T::of_f64(z[0]), T::of_f64(z[1]), T::of_f64(z[2])])
-        })
-        .collect();
-    RadarWorstCase { tracker, measurements, geometry: ScanGeometry::single(RADAR_WORST_CASE_DT) }
+    (hypotheses, cells, centre)
 }
 
 #[cfg(test)]
@@ -427,6 +561,27 @@ mod tests {
             assert_eq!(report.numerical_drops.count, 0);
             assert!(report.sampler_steps > 0, "sampled children: {report:?}");
             assert_eq!(report.measurements, ssa_caps::MEASUREMENTS);
+        }
+        let check = || {
+            check::<f64>();
+            check::<f32>();
+        };
+        std::thread::Builder::new().stack_size(64 << 20).spawn(check).unwrap().join().unwrap();
+    }
+
+    #[test]
+    fn network_worst_case_fills_the_caps_with_dense_matrices() {
+        fn check<T: Real>() {
+            let mut case = network_worst_case::<T>();
+            assert_eq!(case.tracker.hypotheses().len(), ssa_caps::HYPOTHESES);
+            let report = case.step().unwrap();
+            assert_eq!(report.hypotheses, ssa_caps::HYPOTHESES);
+            assert_eq!(report.numerical_drops.count, 0);
+            assert!(report.sampler_steps > 0, "sampled children: {report:?}");
+            assert_eq!(report.measurements, ssa_caps::MEASUREMENTS);
+            // Every kind is in the network; the scan's measures all four components.
+            assert_eq!(case.tracker.config().measurement.kinds().count(), SensorKind::ALL.len());
+            assert!(case.measurements.iter().all(|z| z.iter().all(|v| *v != T::zero())));
         }
         let check = || {
             check::<f64>();

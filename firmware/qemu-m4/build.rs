@@ -54,6 +54,16 @@ fn run() -> Result<(), String> {
     let source = generate(&scenario, scans, &path).map_err(|e| format!("{}: {e}", path.display()))?;
     std::fs::write(out.join("scenario.rs"), source).map_err(|e| format!("scenario.rs: {e}"))?;
 
+    // The network excerpt: Rust source written by `host-sim digest --excerpt`, copied as it is.
+    println!("cargo:rerun-if-env-changed=RFISST_NETWORK_EXCERPT");
+    println!("cargo::rustc-check-cfg=cfg(rfisst_network)");
+    if let Ok(file) = std::env::var("RFISST_NETWORK_EXCERPT") {
+        let path = manifest.join(&file);
+        println!("cargo:rerun-if-changed={}", path.display());
+        std::fs::copy(&path, out.join("network.rs")).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("cargo:rustc-cfg=rfisst_network");
+    }
+
     println!("cargo:rerun-if-env-changed=RFISST_SCENARIO_3D");
     println!("cargo:rerun-if-env-changed=RFISST_SCANS_3D");
     println!("cargo::rustc-check-cfg=cfg(rfisst_radar)");

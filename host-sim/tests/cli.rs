@@ -1695,6 +1695,37 @@ fn v2_digest_replays_radar_scans_and_needs_the_truth() {
     assert_eq!(stderr(&output).trim_end().lines().count(), 1, "{}", describe(&output));
 }
 
+#[test]
+fn v2_digest_writes_the_network_excerpt_and_refuses_one_for_other_scenarios() {
+    let dir = TempDir::new("v2-excerpt");
+    let file = dir.join("tiny-network.json");
+    assert_success(&host_sim(&["generate".as_ref(), "tiny-network".as_ref(), "--out".as_ref(), file.as_os_str()]));
+    let excerpt = dir.join("network.rs");
+    let digest = |file: &Path| {
+        let args: [&std::ffi::OsStr; 6] = [
+            "digest".as_ref(),
+            file.as_os_str(),
+            "--scans".as_ref(),
+            "4".as_ref(),
+            "--excerpt".as_ref(),
+            excerpt.as_os_str(),
+        ];
+        host_sim(&args)
+    };
+    let output = digest(&file);
+    assert_success(&output);
+    assert!(stdout(&output).starts_with("scan 0 ") && stdout(&output).contains("final scans 4 digest "));
+    let source = std::fs::read_to_string(&excerpt).expect("the excerpt is written");
+    assert!(source.contains("pub const SCANS: [Scan; 4] = [") && source.contains("Network::unconfigured()"));
+    // The same digest without --excerpt.
+    let plain = host_sim(&["digest".as_ref(), file.as_os_str(), "--scans".as_ref(), "4".as_ref()]);
+    assert_eq!(stdout(&plain), stdout(&output));
+    // A radar scenario has no network excerpt: one line, exit code 2.
+    let output = digest(&tiny_3d(&dir));
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert_eq!(stderr(&output).trim_end().lines().count(), 1, "{}", describe(&output));
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Births: detections to confirmation and false tracks
 // ---------------------------------------------------------------------------------------------------

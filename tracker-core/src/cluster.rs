@@ -202,6 +202,16 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> ClusteredChildren<
         }
     }
 
+    /// Replaces the configuration in place: the generator then runs as [`ClusteredChildren::empty`]`(config)`
+    /// would (its tables are scratch that every matrix rewrites), without that value, tens of KiB at the
+    /// embedded capacities, passing through the stack.
+    pub(crate) fn configure(&mut self, config: SamplerConfig) {
+        self.config = config;
+        self.seed = 0;
+        self.move_limit = u64::MAX;
+        self.sampler.configure(config);
+    }
+
     /// Sets the seed of the next matrix's samplers.
     ///
     /// # Examples

@@ -1,5 +1,6 @@
 //! QEMU replay firmware for the Cortex-M4F (`mps2-an386`): runs a recorded host-sim scenario through
-//! tracker-core's `SsaTracker<f32>` and prints, over semihosting, the same digest text as
+//! tracker-core's `SsaTracker<f32>` (then, when built with them, a radar scenario through `RadarTracker<f32>`
+//! and a network excerpt through `NetworkTracker<f32>`) and prints, over semihosting, the same digest text as
 //! `host-sim digest` plus SysTick counts per scan and the stack high-water mark.
 //!
 //! Lines starting with `scan ` or `final ` are the digest text, compared byte for byte with the host's by
@@ -10,6 +11,8 @@
 #![no_main]
 
 mod cycles;
+#[cfg(rfisst_network)]
+mod network;
 #[cfg(rfisst_radar)]
 mod radar;
 mod scenario;
@@ -107,6 +110,10 @@ fn run() -> debug::ExitStatus {
     );
     #[cfg(rfisst_radar)]
     if radar::run() != debug::EXIT_SUCCESS {
+        return debug::EXIT_FAILURE;
+    }
+    #[cfg(rfisst_network)]
+    if network::run() != debug::EXIT_SUCCESS {
         return debug::EXIT_FAILURE;
     }
     debug::EXIT_SUCCESS

@@ -5,8 +5,10 @@
 //! the replayed scans detect), `PRIOR_OBJECTS_IN_FILE` and `SCANS`, every value as the bits host-sim's
 //! `digest3d.rs` computes.
 //!
-//! The sensor network computes its clutter volumes when it is built, which is not `const`: the tracker is
-//! therefore built at run time, into a static (`cortex_m::singleton!`), not at compile time like the planar one.
+//! The sensor network computes its clutter volumes when it is built, which is not `const`: the tracker is a
+//! compile-time static holding a placeholder configuration (a network of no sensors,
+//! `RadarNetwork::unconfigured()`), and `Tracker::reset_with` installs the run-time configuration and the
+//! prior in place, so the tracker never passes through the stack.
 
 use crate::{Record, cycles, stack};
 use cortex_m_semihosting::{debug, hprintln};
@@ -17,8 +19,8 @@ use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor, gmst_iau82};
 use tracker_core::{
     BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure,
-    PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Region, Sensor, SensorNetwork, StoreOverflow, TrackLabel,
-    TwoBodyJ2, ssa_caps,
+    PriorHypothesis, PriorObject, RadarConfig, RadarNetwork, RadarTracker, Region, Sensor, SensorNetwork,
+    StoreOverflow, TrackLabel, TwoBodyJ2, ssa_caps,
 };
 
 /// One scan: its time, sensor and measurements.
@@ -59,35 +61,42 @@ include!(concat!(env!("OUT_DIR"), "/radar.rs"));
 /// Scans replayed.
 const COUNT: usize = SCANS.len();
 
-/// The configuration: the sensor network (Earth rotation angle at the epoch computed in `f64`, rounded once)
-/// and the constants above.
-fn config() -> Result<RadarConfig<f32>, &'static str> {
-    let rotation = EarthRotation::new(gmst_iau82(EPOCH_JD) as f32);
-    let network = SensorNetwork::new(rotation, &SENSORS)?;
-    Ok(Config {
-        motion: MOTION,
-        measurement: network,
-        // As host-sim: the first sensor's (each scan uses its own sensor's).
-        sensor: SENSORS[0].detection,
-        birth: BIRTH,
-        death_probability: DEATH_PROBABILITY,
-        gate: GATE,
-        children: CHILDREN,
-        selection: SELECTION,
-        store_overflow: STORE_OVERFLOW,
-        numerical_failure: NUMERICAL_FAILURE,
-        seed: SEED,
-    })
-}
+/// The configuration with a network of no sensors: the compile-time placeholder of the static tracker.
+const PLACEHOLDER: RadarConfig<f32> = Config {
+    motion: MOTION,
+    measurement: RadarNetwork::unconfigured(),
+    // As host-sim: the first sensor's (each scan uses its own sensor's).
+    sensor: SENSORS[0].detection,
+    birth: BIRTH,
+    death_probability: DEATH_PROBABILITY,
+    gate: GATE,
+    children: CHILDREN,
+    selection: SELECTION,
+    store_overflow: STORE_OVERFLOW,
+    numerical_failure: NUMERICAL_FAILURE,
+    seed: SEED,
+};
 
-/// Builds the tracker into a static and loads the prior. Not inlined, so that its frames are given back
-/// before the scans.
+/// The tracker, built at compile time (in `.data`: its initial image is in flash too).
+static mut TRACKER: RadarTracker<f32> = RadarTracker::empty(PLACEHOLDER);
+
+/// Installs the configuration (the sensor network with the Earth rotation angle at the epoch computed in
+/// `f64`, rounded once) and the prior into the static tracker, in place. Not inlined, so that its frames
+/// are given back before the scans.
 #[inline(never)]
 fn build() -> Result<&'static mut RadarTracker<f32>, &'static str> {
-    let config = config()?;
-    let tracker = cortex_m::singleton!(: RadarTracker<f32> = RadarTracker::empty(config))
-        .ok_or("the radar tracker was already built")?;
-    tracker.reset(&PRIOR, PRIOR_TIME).map_err(|_| "tracker configuration rejected")?;
+    static TAKEN: core::sync::atomic::AtomicBool = core::sync::atomic::AtomicBool::new(false);
+    if TAKEN.swap(true, core::sync::atomic::Ordering::AcqRel) {
+        return Err("the radar tracker was already built");
+    }
+    let rotation = EarthRotation::new(gmst_iau82(EPOCH_JD) as f32);
+    let network = SensorNetwork::new(rotation, &SENSORS)?;
+    // SAFETY: `TAKEN` hands out this one `&mut` exactly once, and the firmware is single-threaded with no
+    // interrupt touching the tracker.
+    let tracker = unsafe { &mut *core::ptr::addr_of_mut!(TRACKER) };
+    tracker
+        .reset_with(Config { measurement: network, ..PLACEHOLDER }, &PRIOR, PRIOR_TIME)
+        .map_err(|_| "tracker configuration rejected")?;
     Ok(tracker)
 }
 
@@ -100,8 +109,8 @@ fn records() -> Option<&'static mut [Record; COUNT]> {
 /// Replays the radar scans and prints their digest text, ticks and stack.
 pub fn run() -> debug::ExitStatus {
     hprintln!(
-        "qemu-m4: radar scenario {:?}: replaying {} of {} scans through RadarTracker<f32> ({} bytes, static), prior \
-         restricted to the {} of {} objects they detect",
+        "qemu-m4: radar scenario {:?}: replaying {} of {} scans through RadarTracker<f32> ({} bytes, static, configured \
+         in place), prior restricted to the {} of {} objects they detect",
         NAME,
         COUNT,
         SCANS_IN_FILE,

@@ -1,6 +1,8 @@
 //! `host-sim digest`: the digest the QEMU firmware prints, on the host ([`crate::pipeline::digest`]).
 
 use super::CliError;
+use crate::error::Error;
+use crate::scenario::{AnyScenario, ScenarioError};
 use std::path::PathBuf;
 
 /// The arguments of `digest`.
@@ -11,11 +13,24 @@ pub struct Args {
     /// Scans to replay (from the start); all when omitted.
     #[arg(long)]
     scans: Option<usize>,
+    /// Also write the firmware's excerpt of these scans to this file, as Rust source (network scenarios
+    /// only; the QEMU firmware's `RFISST_NETWORK_EXCERPT`).
+    #[arg(long)]
+    excerpt: Option<PathBuf>,
 }
 
 /// Runs `digest`: the digest is the output, printed as it always was.
 pub(super) fn execute(args: Args) -> Result<(), CliError> {
     let scenario = crate::scenario::load_any(&args.file)?;
+    if let Some(path) = &args.excerpt {
+        let AnyScenario::V2(scenario) = &scenario else {
+            return Err(
+                ScenarioError("--excerpt: only network (version 2) scenarios have an excerpt file".into()).into()
+            );
+        };
+        let source = crate::pipeline::digest::excerpt::source(scenario, args.scans)?;
+        std::fs::write(path, source).map_err(|e| Error::Output(format!("{}: {e}", path.display())))?;
+    }
     println!("{}", crate::pipeline::digest(&scenario, args.scans)?);
     Ok(())
 }

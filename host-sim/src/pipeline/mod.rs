@@ -133,6 +133,9 @@ pub fn compare(scenario: &AnyScenario, options: &RunOptions, out: &Path) -> Resu
 pub fn digest(scenario: &AnyScenario, scans: Option<usize>) -> Result<String, Error> {
     Ok(match scenario {
         AnyScenario::V1(scenario) => digest::planar::run(scenario, scans)?,
+        AnyScenario::V2(scenario) if scenario.measurement == crate::scenario::v2::Measurement3dSpec::Network => {
+            digest::network::run(scenario, scans)?
+        }
         AnyScenario::V2(scenario) => digest::orbital::run(scenario, scans)?,
     })
 }

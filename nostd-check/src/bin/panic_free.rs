@@ -13,9 +13,10 @@
 //! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
 //! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
 //! sensor index and observer per scan), `NetworkTracker<f64>` and `NetworkTracker<f32>` (sensors of every
-//! kind, any sensor index per scan), and the birth geometry `BirthGeometry::birth_components` of the
-//! radar (with and without range-rate), optical, mixed-kind and planar models in f64 and f32 (any measurement, region,
-//! observer and output length).
+//! kind, any sensor index per scan; `new`, and `reset_with` that installs a configuration in place), and
+//! the birth geometry `BirthGeometry::birth_components` of the radar (with and without range-rate),
+//! optical, mixed-kind and planar models in f64 and f32 (any measurement, region, observer and output
+//! length).
 #![no_std]
 #![no_main]
 
@@ -331,6 +332,7 @@ fn network<T: Real>(argc: i32) -> u64 {
     };
     let objects = [PriorObject { label: TrackLabel(0), state: state(4200.0) }];
     let prior = [PriorHypothesis { weight: c(1.0), objects: &objects[..] }];
+    let again = black_box(config.clone());
     let Ok(mut tracker) = NetworkTracker::<T>::new(config, black_box(&prior[..]), black_box(0.0)) else { return 2 };
     let zs: [SVector<T, 4>; MEASUREMENTS] =
         core::array::from_fn(|i| SVector::from([c(800.0 + 20.0 * i as f64) * x, c(0.1 * i as f64), c(0.8), x]));
@@ -343,7 +345,15 @@ fn network<T: Real>(argc: i32) -> u64 {
         }
         digest ^= tracker.digest();
     }
-    digest
+    // In place (as a compile-time static takes its run-time configuration): `reset_with`, then a scan.
+    if tracker.reset_with(again, black_box(&prior[..]), black_box(0.0)).is_err() {
+        digest ^= 2;
+    }
+    let geometry = black_box(ScanGeometry { sensor: argc as usize % 7, time: 10.0, observer: None });
+    if tracker.step_scan(&geometry, black_box(&zs[..argc as usize % (MEASUREMENTS + 1)])).is_err() {
+        digest ^= 4;
+    }
+    digest ^ tracker.digest()
 }
 
 /// `birth_components` of every model with one, on opaque models, measurements, regions and output slices.

@@ -32,6 +32,9 @@ pub trait Placeable<T: Real, const D: usize>: Measure<T, 6, D> + BirthGeometry<T
     /// The coordinates besides the angles.
     const AXES: LookAxes;
 
+    /// A model with every number zero: what [`SensorNetwork::unconfigured`] holds before any sensor.
+    const UNPLACED: Self;
+
     /// The model for one scan.
     fn placed(observer: [T; 6], frame: [[T; 3]; 3], sigma: [T; D]) -> Self;
 
@@ -48,6 +51,7 @@ pub trait Placeable<T: Real, const D: usize>: Measure<T, 6, D> + BirthGeometry<T
 
 impl<T: Real> Placeable<T, 3> for RadarRangeAzEl<T> {
     const AXES: LookAxes = LookAxes { range: true, range_rate: false };
+    const UNPLACED: Self = Self { observer: [T::ZERO; 6], enu: [[T::ZERO; 3]; 3], sigma: [T::ZERO; 3] };
 
     fn placed(observer: [T; 6], frame: [[T; 3]; 3], sigma: [T; 3]) -> Self {
         Self { observer, enu: frame, sigma }
@@ -60,6 +64,7 @@ impl<T: Real> Placeable<T, 3> for RadarRangeAzEl<T> {
 
 impl<T: Real> Placeable<T, 4> for RadarRangeRate<T> {
     const AXES: LookAxes = LookAxes { range: true, range_rate: true };
+    const UNPLACED: Self = Self { observer: [T::ZERO; 6], enu: [[T::ZERO; 3]; 3], sigma: [T::ZERO; 4] };
 
     fn placed(observer: [T; 6], frame: [[T; 3]; 3], sigma: [T; 4]) -> Self {
         Self { observer, enu: frame, sigma }
@@ -72,6 +77,7 @@ impl<T: Real> Placeable<T, 4> for RadarRangeRate<T> {
 
 impl<T: Real> Placeable<T, 2> for OpticalRaDec<T> {
     const AXES: LookAxes = LookAxes { range: false, range_rate: false };
+    const UNPLACED: Self = Self { observer: [T::ZERO; 6], sigma: [T::ZERO; 2] };
 
     fn placed(observer: [T; 6], _frame: [[T; 3]; 3], sigma: [T; 2]) -> Self {
         Self { observer, sigma }
@@ -155,6 +161,26 @@ pub(super) fn inertial_frame<T: Real>() -> [[T; 3]; 3] {
 }
 
 impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> SensorNetwork<T, X, D, C> {
+    /// A network with no sensors, built in a `const` context: the measurement model of a placeholder
+    /// configuration, so that a tracker can be a compile-time `static` ([`crate::Tracker::empty`]) whose
+    /// run-time configuration is installed in place by [`crate::Tracker::reset_with`]. A tracker refuses
+    /// it ([`crate::ConfigError::Sensor`]) and every scan of it fails with an unknown sensor.
+    pub const fn unconfigured() -> Self {
+        let sensor =
+            SiteSensor { platform: Platform::Spacecraft, sigma: [T::ZERO; D], detection: Sensor::UNCONFIGURED };
+        Self {
+            rotation: EarthRotation { angle_at_epoch: T::ZERO, rate: T::ZERO },
+            sensors: [sensor; C],
+            volumes: [T::ZERO; C],
+            count: 0,
+            current: 0,
+            frame: [[T::ZERO; 3]; 3],
+            placed: X::UNPLACED,
+            light_time: [LightTime::Off; C],
+            observer: [T::ZERO; 6],
+        }
+    }
+
     /// A network of `sensors`, placed at the first one at time 0.
     ///
     /// # Errors

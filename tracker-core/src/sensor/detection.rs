@@ -45,6 +45,14 @@ pub struct Sensor<T> {
 }
 
 impl<T: Real> Sensor<T> {
+    /// A sensor that detects nothing (p_D = 0, which no check accepts): the detection model of a
+    /// placeholder configuration, before the run-time one is installed ([`crate::Tracker::reset_with`]).
+    pub const UNCONFIGURED: Self = Sensor {
+        detection_probability: T::ZERO,
+        clutter_rate: T::ZERO,
+        field_of_view: Region::Everywhere { volume: T::ZERO },
+    };
+
     /// Checks the sensor from its parts: the measurement dimension, the model's look axes (`None`
     /// without a sensor frame) and the field of view's clutter volume in measurement coordinates.
     pub(crate) fn validate_parts(

@@ -326,7 +326,8 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
     /// Restarts the sampled generator with `config`'s sampler (after a reset).
     pub(super) fn reset(&mut self, children: ChildGeneration) {
         if let ChildGeneration::Sampled(sampler) = children {
-            self.clustered = ClusteredChildren::empty(sampler);
+            // In place: a new generator would pass through the stack (about 30 KB at `ssa_caps`).
+            self.clustered.configure(sampler);
         }
     }
 }

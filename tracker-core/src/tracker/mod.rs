@@ -145,6 +145,8 @@ pub struct Tracker<
     materialisation: Materialisation<H, N, Z, K, B>,
     /// Birth cells made from measurements (docs/maths.md §5.8).
     pool: BirthPool<T, S, B>,
+    /// The scan's birth cells as its sensor sees them (scratch, kept here rather than on the stack).
+    birth_cells: BirthCells<T, S, D, B>,
 }
 
 impl<
@@ -182,7 +184,8 @@ where
     /// time in seconds.
     ///
     /// The tracker is returned by value, which can take a few times its size of stack; on a small target
-    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead.
+    /// put it in a `static` with [`Tracker::empty`] and load it with [`Tracker::reset`] instead (or with
+    /// [`Tracker::reset_with`] when the configuration can only be built at run time).
     ///
     /// # Errors
     /// [`ConfigError`] naming the first invalid parameter or prior entry.
@@ -285,6 +288,7 @@ where
             generation: Generation::new(sampler),
             materialisation: Materialisation::new(),
             pool: BirthPool::new(),
+            birth_cells: BirthCells::EMPTY,
         }
     }
 
@@ -314,12 +318,67 @@ where
     /// ```
     pub fn reset(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<(), ConfigError> {
         prior::check_config::<T, M, G, S, D, N, B>(&self.config)?;
+        let next_label = self.load_prior(prior, time)?;
+        self.commit_prior(next_label, time);
+        Ok(())
+    }
+
+    /// As [`Tracker::reset`], with `config` installed in place of the current configuration: a tracker
+    /// that is a compile-time `static` ([`Tracker::empty`] of a `const` placeholder, such as a sensor
+    /// network's `unconfigured()`) takes a configuration built at run time (clutter volumes, the Earth
+    /// rotation angle) without ever passing through the stack. `config` is checked exactly as
+    /// [`Tracker::new`] checks it.
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the first invalid parameter or prior entry; the tracker, its configuration
+    /// included, is then unchanged.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::SVector;
+    /// # use tracker_core::LinearTracker;
+    /// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
+    /// # use tracker_core::{ConfigError, PriorHypothesis, PriorObject, TrackLabel};
+    /// let objects = [PriorObject { label: TrackLabel(0), state: object }];
+    /// let prior = [PriorHypothesis { weight: 1.0, objects: &objects }];
+    /// let mut tracker = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(config.clone(), &prior, 0.0)?;
+    /// // A bad configuration leaves the tracker as it was.
+    /// let before = tracker.digest();
+    /// let bad = tracker_core::LinearConfig { death_probability: 2.0, ..config.clone() };
+    /// assert_eq!(tracker.reset_with(bad, &prior, 5.0), Err(ConfigError::DeathProbability));
+    /// assert_eq!((tracker.digest(), tracker.time()), (before, 0.0));
+    /// // A good one is the tracker `new` builds.
+    /// let other = tracker_core::LinearConfig { seed: 9, ..config.clone() };
+    /// tracker.reset_with(other.clone(), &prior, 5.0)?;
+    /// let fresh = LinearTracker::<f64, 8, 4, 4, 16, 1>::new(other, &prior, 5.0)?;
+    /// assert_eq!(tracker.digest(), fresh.digest());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn reset_with(
+        &mut self,
+        config: Config<T, M, G, S, B>,
+        prior: &[PriorHypothesis<'_, T, S>],
+        time: f64,
+    ) -> Result<(), ConfigError> {
+        prior::check_config::<T, M, G, S, D, N, B>(&config)?;
+        let next_label = self.load_prior(prior, time)?;
+        self.config = config;
+        self.commit_prior(next_label, time);
+        Ok(())
+    }
+
+    /// Checks `time` and writes `prior` into the inactive buffers (the live ones are untouched); returns
+    /// the next free label.
+    fn load_prior(&mut self, prior: &[PriorHypothesis<'_, T, S>], time: f64) -> Result<u32, ConfigError> {
         if !time.is_finite() {
             return Err(ConfigError::PriorTime);
         }
-        // Into the inactive buffers; swapped in only on success.
         let inactive = usize::from(!self.active);
-        let next_label = prior::load_prior(prior, self.stores.at_mut(inactive), self.hypotheses.at_mut(inactive))?;
+        prior::load_prior(prior, self.stores.at_mut(inactive), self.hypotheses.at_mut(inactive))
+    }
+
+    /// Swaps in the prior [`Tracker::load_prior`] wrote and restarts the scan count at `time`.
+    fn commit_prior(&mut self, next_label: u32, time: f64) {
         self.active = !self.active;
         self.time = time;
         self.scans = 0;
@@ -327,7 +386,6 @@ where
         self.initialised = true;
         self.pool.clear();
         self.generation.reset(self.config.children);
-        Ok(())
     }
 
     /// Builds a tracker whose prior is one hypothesis (weight 1) holding `objects`, labelled 0, 1, ...
@@ -484,18 +542,19 @@ where
         }
         let time = geometry.time;
         let mut placed = place_scan(&self.config, geometry, self.time, measurements, Z)?;
-        let birth_cells = score::birth_cells(&self.config, &self.pool, &mut placed, time)?;
+        score::birth_cells(&self.config, &self.pool, &mut placed, time, &mut self.birth_cells)?;
+        let birth_cells = &self.birth_cells;
         let live = self.live();
         let dt = T::of_f64(time - self.time);
         let (store, next_store) = split_pair(&mut self.stores, self.active);
         let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
 
         let numerical_drops =
-            self.scores.run(&self.config, &placed, &birth_cells, store.as_slice(), dt, measurements)?;
+            self.scores.run(&self.config, &placed, birth_cells, store.as_slice(), dt, measurements)?;
         let generated = self.generation.run(
             &self.config,
             &placed.weights,
-            &birth_cells,
+            birth_cells,
             &self.scores,
             parents.as_slice(),
             measurements.len(),
@@ -505,7 +564,7 @@ where
         let inputs = Inputs {
             config: &self.config,
             model: &placed.model,
-            birth_cells: &birth_cells,
+            birth_cells,
             scores: &self.scores,
             generation: &self.generation,
             store,
@@ -523,7 +582,7 @@ where
         let birth_pool = match &self.config.birth.measured {
             Some(measured) => {
                 let (unexplained, born) =
-                    measurement_use::<T, S, D, H, N, Z, B>(&self.generation, &birth_cells, measurements.len());
+                    measurement_use::<T, S, D, H, N, Z, B>(&self.generation, birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
                 let rows = measurements.len().min(Z);
                 let scan = ScanUse { time, measurements, unexplained: &unexplained[..rows], born: &born };

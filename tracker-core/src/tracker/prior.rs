@@ -24,6 +24,10 @@ where
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D>,
 {
+    // A network with no sensors is a placeholder (`unconfigured`), not a configuration.
+    if config.measurement.sensor_count() == 0 {
+        return Err(ConfigError::Sensor("sensor network: no sensors"));
+    }
     config.motion.validate().map_err(ConfigError::Motion)?;
     // A model whose sensors carry their own detection models checked them when it was built.
     if config.measurement.detection().is_none() {

@@ -204,12 +204,18 @@ pub(super) fn birth_cells<T: Real, M, G, const S: usize, const D: usize, const B
     pool: &BirthPool<T, S, B>,
     placed: &mut PlacedScan<T, G>,
     time: f64,
-) -> Result<BirthCells<T, S, D, B>, StepError>
+    cells: &mut BirthCells<T, S, D, B>,
+) -> Result<(), StepError>
 where
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D>,
 {
-    let mut cells = BirthCells::EMPTY;
+    // In place (the tracker's scratch, a few KiB that would otherwise sit on the stack): the entries past
+    // `count` are never read; the small tables are reset to their empty values.
+    cells.count = 0;
+    cells.in_field_of_view = [false; B];
+    cells.probabilities = [T::ZERO; B];
+    cells.pool_cell = [NONE; B];
     let fixed =
         config.birth.cells.iter().enumerate().map(|(cell, state)| (NONE, cell, *state, config.birth.probability));
     let from_pool =
@@ -237,7 +243,7 @@ where
     if config.birth.measured.is_some() {
         placed.weights.set_birth_cells(cells.count, no_birth);
     }
-    Ok(cells)
+    Ok(())
 }
 
 /// δ of one track or birth cell against every measurement, `-inf` everywhere when it is out of view; the

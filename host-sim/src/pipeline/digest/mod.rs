@@ -1,7 +1,10 @@
 //! `host-sim digest`: the QEMU firmware's digest, replayed on the host with the embedded (f32) tracker of
-//! the planar world ([`planar`]) or the radar network ([`orbital`]). Both print the same text, written
-//! once here ([`text`]).
+//! the planar world ([`planar`]), the radar network ([`orbital`]) or a network of mixed kinds
+//! ([`network`], whose firmware excerpt [`excerpt`] writes). All print the same text, written once here
+//! ([`text`]).
 
+pub mod excerpt;
+pub mod network;
 pub mod orbital;
 pub mod planar;
 

@@ -528,6 +528,36 @@ pub struct MixedNetwork<T, const C: usize> {
 }
 
 impl<T: Real, const C: usize> MixedNetwork<T, C> {
+    /// A network with no sensors, built in a `const` context: the measurement model of a placeholder
+    /// configuration, so that a tracker can be a compile-time `static` ([`crate::Tracker::empty`]) whose
+    /// run-time configuration is installed in place by [`crate::Tracker::reset_with`]. A tracker refuses
+    /// it ([`crate::ConfigError::Sensor`]) and every scan of it fails with an unknown sensor.
+    pub const fn unconfigured() -> Self {
+        let sensor = MixedSensor {
+            kind: SensorKind::Radar,
+            sensor: SiteSensor {
+                platform: Platform::Spacecraft,
+                sigma: [T::ZERO; MIXED_DIMENSION],
+                detection: Sensor::UNCONFIGURED,
+            },
+        };
+        Self {
+            rotation: EarthRotation { angle_at_epoch: T::ZERO, rate: T::ZERO },
+            sensors: [sensor; C],
+            volumes: [T::ZERO; C],
+            births: [SensorBirths::Off; C],
+            count: 0,
+            current: 0,
+            placed: MixedLook {
+                kind: SensorKind::Radar,
+                observer: [T::ZERO; 6],
+                frame: [[T::ZERO; 3]; 3],
+                sigma: [T::ZERO; MIXED_DIMENSION],
+                births: SensorBirths::Off,
+            },
+        }
+    }
+
     /// A network of `sensors`, placed at the first one at time 0.
     ///
     /// # Errors

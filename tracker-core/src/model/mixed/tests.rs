@@ -483,3 +483,89 @@ fn a_radar_object_is_not_weakened_by_telescope_scans_it_is_outside_of() {
     // Inside and never detected: each miss moves weight to the object's death.
     assert!(inside.iter().all(|&w| w < 0.95), "{inside:?}");
 }
+
+/// Every kind in turn, one object: the per-scan digests of `tracker` from its prior.
+fn every_kind_digests(tracker: &mut Tracker4<MixedNetwork<f64, 6>>, network: &MixedNetwork<f64, 6>) -> Vec<u64> {
+    let mut state = truth(&EarthRotation::new(0.3));
+    (1..=12u32)
+        .map(|scan| {
+            state = motion().propagate(&state, 10.0).unwrap().state;
+            let geometry = ScanGeometry { sensor: scan as usize % 6, time: 10.0 * f64::from(scan), observer: None };
+            let placed = network.place(&geometry).unwrap();
+            let (kind, exact) = (placed.placed().kind, placed.measure(&state));
+            let z = SVector::<f64, 4>::from_fn(|k, _| {
+                if k < kind.dimension() { exact[k] + sigma(kind)[k] * wobble(scan, k) } else { 0.0 }
+            });
+            tracker.step_scan(&geometry, &[z]).unwrap();
+            tracker.digest()
+        })
+        .collect()
+}
+
+#[test]
+fn a_placeholder_tracker_takes_its_configuration_in_place_and_then_runs_as_a_new_one() {
+    // The compile-time placeholder: no sensors, nothing detected, exhaustive children.
+    const PLACEHOLDER: Config<f64, TwoBodyJ2<f64>, MixedNetwork<f64, 6>, 6, 1> = Config {
+        motion: TwoBodyJ2 {
+            mu: 1.0,
+            j2: 0.0,
+            radius: 1.0,
+            min_radius: 1.0,
+            noise: ProcessNoise::Isotropic(0.0),
+            max_step: 1.0,
+            max_substeps: 1,
+        },
+        measurement: MixedNetwork::unconfigured(),
+        sensor: Sensor::UNCONFIGURED,
+        birth: BirthModel {
+            probability: 0.0,
+            cells: heapless::Vec::new(),
+            detection: crate::BirthDetection::AllDetected,
+            events: crate::BirthEvents::FirstOrder,
+            measured: None,
+        },
+        death_probability: 0.0,
+        gate: None,
+        children: crate::ChildGeneration::Exhaustive { max_children_per_scan: 1000 },
+        selection: crate::config::Selection::TopWeight,
+        store_overflow: crate::StoreOverflow::PruneChildren,
+        numerical_failure: crate::NumericalFailure::DropTrack,
+        seed: 0,
+    };
+    static TRACKER: std::sync::Mutex<Tracker4<MixedNetwork<f64, 6>>> =
+        std::sync::Mutex::new(Tracker::empty(PLACEHOLDER));
+    let mut tracker = TRACKER.lock().unwrap();
+
+    let network = every_kind(EarthRotation::new(0.3));
+    let mut start = truth(&EarthRotation::new(0.3));
+    start[0] += 0.3;
+    let objects =
+        [PriorObject { label: TrackLabel(0), state: Gaussian { mean: start, covariance: prior_covariance() } }];
+    let prior = [PriorHypothesis { weight: 1.0, objects: &objects }];
+    // The placeholder is no configuration: refused, and nothing runs.
+    assert_eq!(tracker.reset(&prior, 0.0), Err(crate::ConfigError::Sensor("sensor network: no sensors")));
+    let geometry = ScanGeometry { sensor: 0, time: 10.0, observer: None };
+    assert_eq!(tracker.step_scan(&geometry, &[]), Err(StepError::NotInitialised));
+    assert_eq!(network.place(&geometry).map(|_| ()), Ok(()));
+    assert!(MixedNetwork::<f64, 6>::unconfigured().place(&geometry).is_err());
+
+    // Sampled children (the placeholder's are exhaustive), so the generator is reconfigured in place.
+    let sampled = crate::sampler::SamplerConfig { steps: 200, exhaustive_limit: 0, ..Default::default() };
+    let real = Config {
+        children: crate::ChildGeneration::Sampled(sampled),
+        ..config(network, network.sensors()[0].sensor.detection)
+    };
+    // A bad configuration or prior changes nothing.
+    let bad = Config { death_probability: -1.0, ..real.clone() };
+    assert_eq!(tracker.reset_with(bad, &prior, 0.0), Err(crate::ConfigError::DeathProbability));
+    assert_eq!(tracker.reset_with(real.clone(), &[], 0.0), Err(crate::ConfigError::PriorEmpty));
+    assert_eq!(tracker.reset(&prior, 0.0), Err(crate::ConfigError::Sensor("sensor network: no sensors")));
+
+    tracker.reset_with(real.clone(), &prior, 0.0).unwrap();
+    let mut fresh: Tracker4<MixedNetwork<f64, 6>> = Tracker::new(real.clone(), &prior, 0.0).unwrap();
+    let expected = every_kind_digests(&mut fresh, &network);
+    assert_eq!(every_kind_digests(&mut tracker, &network), expected);
+    // Again after those scans: the scratch they left behind changes nothing.
+    tracker.reset_with(real, &prior, 0.0).unwrap();
+    assert_eq!(every_kind_digests(&mut tracker, &network), expected);
+}

@@ -201,6 +201,13 @@ impl<T: Real, const N: usize, const Z: usize, const C: usize> MetropolisSampler<
         self.rng = Some(Xoshiro256PlusPlus::seed_from_u64(seed));
     }
 
+    /// Replaces the configuration in place. The tables are scratch that every matrix rewrites, so the
+    /// sampler then runs as [`MetropolisSampler::empty`]`(config)` would, without that value passing
+    /// through the stack.
+    pub(crate) fn configure(&mut self, config: SamplerConfig) {
+        self.config = config;
+    }
+
     /// The configuration.
     ///
     /// # Examples
