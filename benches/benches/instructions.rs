@@ -11,16 +11,19 @@
 //!   for the scan (`Tracker::step_with_budget`; the unlimited scan makes 604,800). `radar_f64` and
 //!   `radar_f32` are the 3-D `RadarTracker<f64>` / `RadarTracker<f32>` (two-body + J2, two ground radars,
 //!   K = 192) on [`benches::radar_worst_case`]: the same construction in one radar's field of view.
-//!   The fused tracker's worst case, [`benches::network_worst_case`] (every sensor kind in the network, Z
-//!   measurements of its radar with range-rate), is built and tested in `benches` but not counted here
-//!   yet: its baseline was not measured (issue 28 item 6).
+//!   `network_f64` and `network_f32` are the fused `NetworkTracker<f64>` / `NetworkTracker<f32>` on
+//!   [`benches::network_worst_case`]: every sensor kind in the network, Z measurements of its radar with
+//!   range-rate (issue 28 item 6).
 //! - `chain`: one Metropolis chain of 20,000 steps with the default (informed) proposal on the 32 × 64
 //!   crossing matrix of the `sampler` bench (tables, greedy start, climb, steps, duplicate removal).
 //! - `ekf`: two-body predict (dt = 60 s) and update, f64.
 //!
 //! Setup (building the tracker and the scan) is not counted. Run:
 //! `cargo bench -p benches --bench instructions` (needs valgrind and gungraun-runner 0.20.0).
-use benches::{RadarWorstCase, WorstCase, crossing_matrix, radar_worst_case, ssa_motion, worst_case};
+use benches::{
+    NetworkWorstCase, RadarWorstCase, WorstCase, crossing_matrix, network_worst_case, radar_worst_case, ssa_motion,
+    worst_case,
+};
 use gungraun::prelude::*;
 use nalgebra::{SMatrix, SVector};
 use std::hint::black_box;
@@ -48,6 +51,18 @@ impl<T: Real> Scan for RadarWorstCase<T> {
     }
 }
 
+impl<T: Real> Scan for NetworkWorstCase<T> {
+    fn run(&mut self) -> usize {
+        self.step().map(|report| report.hypotheses).unwrap_or(0)
+    }
+}
+
+fn network_f64() -> Box<dyn Scan> {
+    Box::new(network_worst_case::<f64>())
+}
+fn network_f32() -> Box<dyn Scan> {
+    Box::new(network_worst_case::<f32>())
+}
 fn radar_f64() -> Box<dyn Scan> {
     Box::new(radar_worst_case::<f64>())
 }
@@ -104,6 +119,8 @@ fn ssa_f64_budget(moves: u64) -> Box<dyn Scan> {
 #[bench::ssa_f64_budget_300k(args = (300_000), setup = ssa_f64_budget)]
 #[bench::radar_f64(setup = radar_f64)]
 #[bench::radar_f32(setup = radar_f32)]
+#[bench::network_f64(setup = network_f64)]
+#[bench::network_f32(setup = network_f32)]
 fn step(mut scan: Box<dyn Scan>) -> usize {
     black_box(scan.run())
 }
