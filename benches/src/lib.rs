@@ -139,6 +139,7 @@ pub fn worst_case_config<T: Real, const B: usize>(cells: usize) -> Config<T, Two
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     }
 }
@@ -394,6 +395,7 @@ pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     };
     let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));

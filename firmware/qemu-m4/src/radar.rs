@@ -76,6 +76,7 @@ fn config() -> Result<RadarConfig<f32>, &'static str> {
         selection: SELECTION,
         store_overflow: STORE_OVERFLOW,
         numerical_failure: NUMERICAL_FAILURE,
+        track_loss: Default::default(),
         seed: SEED,
     })
 }

@@ -87,6 +87,7 @@ fn config<G>(measurement: G, detection: Sensor<f64>) -> Config<f64, TwoBodyJ2<f6
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 3,
     }
 }
