@@ -245,7 +245,6 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
     summary.numerical_drops = numerical_drops(&records);
-    summary.lost_tracks = records.iter().map(|r| r.lost_tracks).sum();
     summary.refused_scans = refused_scans(&*world, &records);
     if world.judged() {
         judged(&mut summary, &judge);
@@ -310,7 +309,7 @@ fn summarise(
         sensors: heading.sensors,
         sensor_kinds: heading.sensor_kinds.clone(),
         numerical_drops: NumericalDropsSummary::default(),
-        lost_tracks: 0,
+        lost_tracks: records.iter().map(|r| r.lost_tracks).sum(),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,
         residuals: None,

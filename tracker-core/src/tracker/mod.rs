@@ -253,7 +253,7 @@ where
     ///     selection: Selection::TopWeight,
     ///     store_overflow: StoreOverflow::PruneChildren,
     ///     numerical_failure: tracker_core::NumericalFailure::DropTrack,
-    ///     track_loss: Default::default(),
+    ///     track_loss: tracker_core::TrackLoss::Never,
     ///     seed: 1,
     /// };
     /// static TRACKER: Mutex<LinearTracker<f64, 8, 4, 4, 16, 1>> = Mutex::new(LinearTracker::empty(CONFIG));
