@@ -140,6 +140,7 @@ pub fn worst_case_config<T: Real, const B: usize>(cells: usize) -> Config<T, Two
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     }
 }
@@ -349,6 +350,7 @@ pub fn radar_worst_case<T: Real>() -> RadarWorstCase<T> {
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     };
     let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));
@@ -460,6 +462,7 @@ pub fn network_worst_case<T: Real>() -> NetworkWorstCase<T> {
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     };
     let tracker = Box::new(Tracker::new(config, &prior, 0.0).expect("worst-case prior"));

@@ -190,6 +190,7 @@ fn generate(s: &Value, scans: Option<usize>, path: &Path) -> Result<String, Stri
         other => return Err(format!("tracker.numerical_failure: unknown value \"{other}\"")),
     };
     w(&mut o, format!("        numerical_failure: tracker_core::NumericalFailure::{numerical},\n"));
+    w(&mut o, "        track_loss: tracker_core::TrackLoss::Never,\n".into());
     w(&mut o, format!("        seed: {},\n", unsigned(tracker, "tracker.seed", u64::MAX)?));
     w(&mut o, "    }\n};\n".into());
 

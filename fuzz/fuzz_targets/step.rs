@@ -231,6 +231,7 @@ fn config<T: Real, M>(input: &Input, motion: M) -> Config<T, M, PositionMeasurem
         } else {
             tracker_core::NumericalFailure::DropTrack
         },
+        track_loss: Default::default(),
         seed: input.seed,
     }
 }

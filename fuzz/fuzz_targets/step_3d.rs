@@ -228,6 +228,7 @@ fn config<T: Real>(input: &Input) -> Config<T, TwoBodyJ2<T>, Radars<T>, 6, B> {
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: input.seed,
     }
 }

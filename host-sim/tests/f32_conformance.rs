@@ -126,6 +126,7 @@ fn linear<T: Real>(scenario: &Scenario) -> LinearTracker<T, 32, 8, 16, 256, 2> {
         selection: f64_config.selection,
         store_overflow: f64_config.store_overflow,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: f64_config.seed,
     };
     let prior: Vec<(T, Vec<PriorObject<T, 4>>)> = setup::prior(scenario)

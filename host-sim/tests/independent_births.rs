@@ -83,6 +83,7 @@ fn config(children: ChildGeneration) -> Linear {
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 5,
     }
 }
@@ -112,6 +113,7 @@ fn measured_config(children: ChildGeneration) -> Config<f64, ConstantVelocity<f6
         selection: linear.selection,
         store_overflow: linear.store_overflow,
         numerical_failure: linear.numerical_failure,
+        track_loss: Default::default(),
         seed: linear.seed,
     }
 }

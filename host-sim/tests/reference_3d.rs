@@ -145,6 +145,7 @@ fn config(network: Network, children: ChildGeneration) -> Radar3d {
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 7,
     }
 }

@@ -68,6 +68,7 @@ fn run() -> Result<f64, tracker_core::StepError> {
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     };
     let objects = [

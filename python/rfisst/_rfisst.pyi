@@ -39,6 +39,7 @@ class StepReport(TypedDict):
     sampler_steps: int
     numerical_drops: int
     numerical_drop_first: str | None
+    lost_tracks: int
     expected_cardinality: float
     birth_pool: BirthPool
 

@@ -225,6 +225,7 @@ fn report_dict<'py>(py: Python<'py>, report: &StepReport<f64>) -> PyResult<Bound
     out.set_item("numerical_drops", report.numerical_drops.count)?;
     let first = report.numerical_drops.first.map(|(label, e)| format!("track {}: {e}", label.0));
     out.set_item("numerical_drop_first", first)?;
+    out.set_item("lost_tracks", report.lost_tracks)?;
     out.set_item("expected_cardinality", report.expected_cardinality)?;
     let pool = PyDict::new(py);
     pool.set_item("added", report.birth_pool.added)?;

@@ -32,6 +32,7 @@ pub fn linear_config<const B: usize>(
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 7,
     }
 }

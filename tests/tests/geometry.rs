@@ -132,6 +132,7 @@ fn config<T: Real>(measurement: Radars<T>) -> Config<T, TwoBodyJ2<T>, Radars<T>,
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 7,
     }
 }
@@ -471,6 +472,7 @@ fn look_angle_region_with_a_planar_model_is_a_sensor_error() {
             selection: Default::default(),
             store_overflow: Default::default(),
             numerical_failure: Default::default(),
+            track_loss: Default::default(),
             seed: 1,
         };
         let object = Gaussian { mean: SVector::<T, 4>::zeros(), covariance: SMatrix::identity() };

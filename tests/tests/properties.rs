@@ -130,6 +130,7 @@ impl Case {
             selection: Selection::TopWeight,
             store_overflow: StoreOverflow::PruneChildren,
             numerical_failure: Default::default(),
+            track_loss: Default::default(),
             seed: self.seed,
         }
     }

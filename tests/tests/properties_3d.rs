@@ -188,6 +188,7 @@ fn tracker<T: Real>(case: &Case) -> Box<Small3d<T>> {
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: case.seed,
     };
     let mut covariance = SMatrix::<T, 6, 6>::zeros();

@@ -83,6 +83,7 @@ fn config<T: Real, const B: usize>(children: ChildGeneration) -> LinearConfig<T,
         // Strict, so that a numerical failure is a rejected scan these tests can check; the default policy
         // (drop the track) has its own tests below.
         numerical_failure: NumericalFailure::Error,
+        track_loss: Default::default(),
         seed: 11,
     }
 }
@@ -296,6 +297,7 @@ fn ssa_tracker_rejects_a_gap_beyond_its_integrator_budget() {
                 selection: Selection::TopWeight,
                 store_overflow: StoreOverflow::PruneChildren,
                 numerical_failure: NumericalFailure::Error,
+                track_loss: Default::default(),
                 seed: 3,
             };
             let r: f64 = 7000.0;
@@ -723,6 +725,7 @@ fn invalid_configuration_is_a_typed_error() {
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     };
     with_large_stack(move || {

@@ -212,6 +212,49 @@ pub enum NumericalFailure {
     Error,
 }
 
+/// Track management beyond the recursion: when a track is declared *lost* and leaves every hypothesis
+/// (docs/maths.md §5.9). A track is *unseen* in a scan when its predicted measurement lies in the scan's
+/// field of view and no measurement of the scan lies in its gate (every entry δ of its row is −∞); a
+/// scan out of view leaves its count as it is, a measurement in its gate resets it. The count belongs to
+/// the track (its association history), so every hypothesis that holds the track agrees on it.
+///
+/// With β = 0 (objects never die) nothing else removes a track whose estimate has left its object — a
+/// short-arc birth that coasted for an hour, say: it stays in every hypothesis, the object's next pass
+/// starts a new label, and the old track is reported for ever.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum TrackLoss {
+    /// Tracks are never declared lost: the exact recursion. **The default.**
+    #[default]
+    Never,
+    /// A track unseen in this many consecutive scans is dropped from every hypothesis before the scan's
+    /// children are generated, as a track dropped for a numerical failure is (no column, no missed
+    /// factor, hypothesis weights unchanged; identical children merge), and counted in
+    /// [`crate::StepReport::lost_tracks`]. Needs a gate ([`Config::gate`]): without one, only a scan
+    /// with no measurement at all leaves a track in view unseen.
+    AfterUnseenScans(core::num::NonZeroU16),
+}
+
+impl TrackLoss {
+    /// Whether a track unseen in `unseen` consecutive scans is lost.
+    ///
+    /// # Examples
+    /// ```
+    /// use core::num::NonZeroU16;
+    /// use tracker_core::TrackLoss;
+    /// let rule = TrackLoss::AfterUnseenScans(NonZeroU16::new(3).unwrap());
+    /// assert!(!rule.is_lost(2) && rule.is_lost(3));
+    /// assert!(!TrackLoss::Never.is_lost(u16::MAX));
+    /// ```
+    pub fn is_lost(self, unseen: u16) -> bool {
+        match self {
+            TrackLoss::Never => false,
+            TrackLoss::AfterUnseenScans(after) => unseen >= after.get(),
+        }
+    }
+}
+
 /// How the H∞ hypotheses are chosen among the children (paper 003 §III-A).
 ///
 /// # Examples
@@ -267,6 +310,7 @@ pub enum Selection {
 ///     selection: Default::default(),
 ///     store_overflow: Default::default(),
 ///     numerical_failure: Default::default(),
+///     track_loss: Default::default(),
 ///     seed: 7,
 /// };
 /// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -302,6 +346,9 @@ pub struct Config<T: Real, M, G, const S: usize, const B: usize> {
     pub store_overflow: StoreOverflow,
     /// What a numerical failure of one track does to the scan: drop that track (the default) or fail.
     pub numerical_failure: NumericalFailure,
+    /// When a track is declared lost ([`TrackLoss`]; by default never).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub track_loss: TrackLoss,
     /// Seed of every random choice (the Metropolis sampler); results depend only on it and the inputs.
     pub seed: u64,
 }
@@ -357,6 +404,7 @@ mod tests {
             selection: Selection::SampledByWeight,
             store_overflow: StoreOverflow::Error,
             numerical_failure: Default::default(),
+            track_loss: Default::default(),
             seed: 42,
         };
         let text = serde_json::to_string(&config).unwrap();

@@ -33,6 +33,7 @@ pub fn config() -> LinearConfig<f64, 1> {
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 1,
     }
 }

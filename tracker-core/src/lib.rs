@@ -76,7 +76,9 @@ pub mod store;
 pub mod tracker;
 pub mod weight;
 
-pub use config::{BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow};
+pub use config::{
+    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, NumericalFailure, StoreOverflow, TrackLoss,
+};
 pub use ekf::NumericalError;
 pub use error::{ConfigError, StepError};
 pub use gaussian::Gaussian;

@@ -61,6 +61,8 @@ pub struct StepReport<T> {
     pub sampler_steps: u64,
     /// Tracks dropped for a numerical failure ([`crate::config::NumericalFailure::DropTrack`]).
     pub numerical_drops: NumericalDrops,
+    /// Tracks declared lost and dropped from every hypothesis ([`crate::TrackLoss`]).
+    pub lost_tracks: usize,
     /// Expected number of objects after the scan.
     pub expected_cardinality: T,
 }

@@ -37,6 +37,9 @@ pub struct Track<T: Real, const S: usize> {
     pub state: Gaussian<T, S>,
     /// Existence probability of this track: the total weight of the hypotheses that hold it.
     pub existence: T,
+    /// Consecutive scans in which the track was in view with no measurement in its gate
+    /// ([`crate::TrackLoss`]).
+    pub unseen_scans: u16,
 }
 
 impl<T: Real, const S: usize> Default for Track<T, S> {
@@ -46,7 +49,7 @@ impl<T: Real, const S: usize> Default for Track<T, S> {
 }
 
 impl<T: Real, const S: usize> Track<T, S> {
-    const EMPTY: Self = Self { label: TrackLabel(0), state: Gaussian::ZERO, existence: T::ZERO };
+    const EMPTY: Self = Self { label: TrackLabel(0), state: Gaussian::ZERO, existence: T::ZERO, unseen_scans: 0 };
 }
 
 /// The tracks of a scan, at most `K`; a track's slot is its index.

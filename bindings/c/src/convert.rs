@@ -256,6 +256,8 @@ fn common<T: Real, M, G, const S: usize>(
             choice::RFISST_NUMERICAL_FAILURE_ERROR => NumericalFailure::Error,
             _ => return Err(Failure::invalid("numerical_failure: unknown RFISST_NUMERICAL_FAILURE_* code")),
         },
+        // Not in the C interface yet: the exact recursion.
+        track_loss: tracker_core::TrackLoss::Never,
         seed: c.seed,
     })
 }

@@ -79,6 +79,7 @@ fn config() -> tracker_core::SsaConfig<f64> {
         selection: Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: NumericalFailure::DropTrack,
+        track_loss: Default::default(),
         seed: 7,
     }
 }

@@ -19,7 +19,7 @@ use tracker_core::sensor::{EarthRotation, GroundSite, LookShape, Platform, ScanG
 use tracker_core::{
     BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, MixedSensor, Network, NetworkConfig,
     NetworkTracker, NumericalFailure, PriorHypothesis, PriorObject, Region, Sensor, SensorKind, StoreOverflow,
-    TrackLabel, TwoBodyJ2,
+    TrackLabel, TrackLoss, TwoBodyJ2,
 };
 
 /// One scan: its time, sensor and measurements.

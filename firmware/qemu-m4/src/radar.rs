@@ -74,6 +74,7 @@ const PLACEHOLDER: RadarConfig<f32> = Config {
     selection: SELECTION,
     store_overflow: STORE_OVERFLOW,
     numerical_failure: NUMERICAL_FAILURE,
+    track_loss: tracker_core::TrackLoss::Never,
     seed: SEED,
 };
 

@@ -27,6 +27,8 @@ pub struct NetworkRun {
     pub false_tracks: Option<usize>,
     /// Mean GOSPA (km).
     pub mean_gospa: Option<f64>,
+    /// Tracks declared lost (`tracker.lost_after_unseen_scans`).
+    pub lost_tracks: usize,
 }
 
 impl NetworkRun {
@@ -37,6 +39,7 @@ impl NetworkRun {
             births_confirmed: summary.births.births_confirmed,
             false_tracks: summary.births.false_tracks,
             mean_gospa: summary.mean_gospa,
+            lost_tracks: summary.lost_tracks,
         }
     }
 }
@@ -51,7 +54,7 @@ pub struct NetworkFigures {
     /// Objects.
     pub objects: usize,
     /// The fused tracker's figures (flattened: `births_total`, `births_confirmed`, `false_tracks`,
-    /// `mean_gospa`, `scans`).
+    /// `mean_gospa`, `lost_tracks`, `scans`).
     #[serde(flatten)]
     pub fused: NetworkRun,
     /// False tracks per 1,000 scans of the fused tracker.

@@ -115,6 +115,7 @@ fn random_case(seed: u64, index: u64) -> Case {
             selection: tracker_core::config::Selection::TopWeight,
             store_overflow: StoreOverflow::PruneChildren,
             numerical_failure: Default::default(),
+            track_loss: Default::default(),
             seed: seed ^ index,
         };
         let _ = area;

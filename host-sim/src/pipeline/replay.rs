@@ -234,6 +234,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             error,
             refused,
             numerical_drops,
+            lost_tracks: info.map_or(0, |i| i.lost_tracks),
         });
     }
     bar.finish_and_clear();
@@ -308,6 +309,7 @@ fn summarise(
         sensors: heading.sensors,
         sensor_kinds: heading.sensor_kinds.clone(),
         numerical_drops: NumericalDropsSummary::default(),
+        lost_tracks: records.iter().map(|r| r.lost_tracks).sum(),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,
         residuals: None,

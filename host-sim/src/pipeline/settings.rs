@@ -11,6 +11,7 @@ use tracker_core::config::Selection;
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::{
     BirthDetection, ChildGeneration, Gaussian, NumericalFailure, PriorObject, Real, StoreOverflow, TrackLabel,
+    TrackLoss,
 };
 
 /// A Gaussian from a mean and a covariance given by rows, each value rounded once to `T`.
@@ -100,8 +101,9 @@ pub fn birth_detection(spec: BirthDetectionSpec) -> BirthDetection {
     }
 }
 
-/// The core's policies of tracker settings: hypothesis selection, track-store overflow, numerical failure.
-pub fn policies(tracker: &TrackerSpec) -> (Selection, StoreOverflow, NumericalFailure) {
+/// The core's policies of tracker settings: hypothesis selection, track-store overflow, numerical failure,
+/// track loss.
+pub fn policies(tracker: &TrackerSpec) -> (Selection, StoreOverflow, NumericalFailure, TrackLoss) {
     (
         match tracker.selection {
             SelectionSpec::TopWeight => Selection::TopWeight,
@@ -115,5 +117,6 @@ pub fn policies(tracker: &TrackerSpec) -> (Selection, StoreOverflow, NumericalFa
             NumericalFailureSpec::DropTrack => NumericalFailure::DropTrack,
             NumericalFailureSpec::Error => NumericalFailure::Error,
         },
+        tracker.lost_after_unseen_scans.map_or(TrackLoss::Never, TrackLoss::AfterUnseenScans),
     )
 }

@@ -36,6 +36,8 @@ pub struct StepInfo {
     /// Tracks the core dropped for a numerical failure (its count and the first one with its reason);
     /// none for the reference, which has no drop policy.
     pub numerical_drops: tracker_core::report::NumericalDrops,
+    /// Tracks the core declared lost (`tracker_core::TrackLoss`); none for the reference's own count.
+    pub lost_tracks: usize,
 }
 
 /// Whether the core refused the scan for its own input (a measurement outside the field of view or not

@@ -168,6 +168,8 @@ pub struct ScanRecord {
     pub refused: bool,
     /// Tracks the core dropped for a numerical failure at this scan.
     pub numerical_drops: tracker_core::report::NumericalDrops,
+    /// Tracks the core declared lost at this scan (`tracker_core::TrackLoss`).
+    pub lost_tracks: usize,
 }
 
 /// Writes one line of `estimates.csv`: the scan's columns, then label, mean, existence and the bound.

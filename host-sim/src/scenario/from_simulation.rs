@@ -88,6 +88,8 @@ struct Settings {
     q: f64,
     evaluation: EvaluationSpec,
     births: MeasuredBirthsSpec,
+    /// Track loss (`tracker.lost_after_unseen_scans`).
+    lost_after_unseen_scans: Option<core::num::NonZeroU16>,
 }
 
 fn settings(measurement: Measurement3dSpec) -> Settings {
@@ -107,6 +109,7 @@ fn settings(measurement: Measurement3dSpec) -> Settings {
                 confirmation_existence: 0.5,
             },
             births: RADAR_LEO_BIRTHS,
+            lost_after_unseen_scans: None,
         },
         // A network of LEO, GEO and Molniya objects: the radar prior, the telescope's error bound and
         // cut-off (its GEO objects' range is weakly observed), cells that live until the sensor's next scan
@@ -122,6 +125,9 @@ fn settings(measurement: Measurement3dSpec) -> Settings {
                 confirmation_existence: 0.5,
             },
             births: MeasuredBirthsSpec { lifetime: 300.0, ..RADAR_LEO_BIRTHS },
+            // A track in view of 5 scans in a row with no measurement in its gate has left its object
+            // (p_D ≥ 0.8: a true track misses 5 in a row with probability ≤ 0.2⁵ = 3e-4).
+            lost_after_unseen_scans: core::num::NonZeroU16::new(5),
         },
         // GEO telescope: angles only, range weakly observed: a looser prior and cut-off.
         Measurement3dSpec::Optical | Measurement3dSpec::AzEl => Settings {
@@ -135,6 +141,7 @@ fn settings(measurement: Measurement3dSpec) -> Settings {
                 confirmation_existence: 0.5,
             },
             births: TELESCOPE_GEO_BIRTHS,
+            lost_after_unseen_scans: None,
         },
     }
 }
@@ -298,6 +305,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
             max_children_per_scan: 2_000_000,
             store_overflow: StoreOverflowSpec::PruneChildren,
             numerical_failure: NumericalFailureSpec::DropTrack,
+            lost_after_unseen_scans: settings.lost_after_unseen_scans,
             seed: sim.seed,
             sampler: SamplerSpec::default(),
             selection: SelectionSpec::default(),

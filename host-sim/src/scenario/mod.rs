@@ -305,6 +305,10 @@ pub struct TrackerSpec {
     /// Numerical failure policy.
     #[serde(default)]
     pub numerical_failure: NumericalFailureSpec,
+    /// Declare a track lost after this many consecutive scans in view with no measurement in its gate
+    /// (`tracker_core::TrackLoss`); absent: never.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lost_after_unseen_scans: Option<core::num::NonZeroU16>,
     /// Seed of every random choice.
     #[serde(deserialize_with = "quote::seed")]
     pub seed: u64,

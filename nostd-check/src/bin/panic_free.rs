@@ -128,6 +128,7 @@ fn ssa<T: Real>(argc: i32) -> u64 {
         selection: selection(argc),
         store_overflow: store_overflow(argc),
         numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        track_loss: Default::default(),
         seed: argc as u64,
     });
     let state = |position: f64| Gaussian {
@@ -177,6 +178,7 @@ fn linear(argc: i32) -> u64 {
         selection: selection(argc),
         store_overflow: store_overflow(argc),
         numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        track_loss: Default::default(),
         seed: argc as u64,
     });
     let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };
@@ -248,6 +250,7 @@ fn radar<T: Real>(argc: i32) -> u64 {
         selection: selection(argc),
         store_overflow: store_overflow(argc),
         numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        track_loss: Default::default(),
         seed: argc as u64,
     });
     let state = |z: f64| Gaussian {
@@ -324,6 +327,7 @@ fn network<T: Real>(argc: i32) -> u64 {
         selection: selection(argc),
         store_overflow: store_overflow(argc),
         numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        track_loss: Default::default(),
         seed: argc as u64,
     });
     let state = |z: f64| Gaussian {

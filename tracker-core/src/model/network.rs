@@ -679,6 +679,7 @@ mod tests {
             selection: Default::default(),
             store_overflow: Default::default(),
             numerical_failure: Default::default(),
+            track_loss: Default::default(),
             seed: 3,
         };
         let objects = [PriorObject { label: TrackLabel(0), state: Gaussian { mean: start, covariance } }];

@@ -259,6 +259,10 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         G: MeasurementModel<T, S, D>,
     {
         let (label, prior, innovation) = self.source_state(inputs, source, row, next_label)?;
+        let unseen_scans = match source {
+            Source::Track(old) => inputs.scores.predicted(usize::from(old)).unseen_scans,
+            Source::Birth(_) => 0,
+        };
         // Missed: the prediction; else the update with the measurement.
         let state = match inputs.measurements.get(usize::from(row)) {
             None => prior,
@@ -267,7 +271,7 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         };
         // Room was checked before; the error path is unreachable but kept panic-free.
         let new_slot = next_store
-            .push(Track { label, state, existence: T::zero() })
+            .push(Track { label, state, existence: T::zero(), unseen_scans })
             .map_err(|_| StepError::TrackStoreFull { capacity: K })?;
         let head = match source {
             Source::Track(old) => Some(self.source_head.at_mut(usize::from(old))),

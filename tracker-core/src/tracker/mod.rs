@@ -43,7 +43,7 @@ mod score;
 mod view;
 
 pub use scan::{PlacedScan, check_scan, place_scan};
-pub use score::in_field_of_view;
+pub use score::{in_field_of_view, unseen_scans};
 pub use view::HypothesisView;
 
 use crate::association::Column;
@@ -109,6 +109,7 @@ pub struct PriorHypothesis<'a, T: Real, const S: usize> {
 ///     selection: Selection::default(),
 ///     store_overflow: StoreOverflow::default(),
 ///     numerical_failure: Default::default(),
+///     track_loss: Default::default(),
 ///     seed: 1,
 /// };
 /// let object = Gaussian { mean: SVector::from([0.0, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() };
@@ -255,6 +256,7 @@ where
     ///     selection: Selection::TopWeight,
     ///     store_overflow: StoreOverflow::PruneChildren,
     ///     numerical_failure: tracker_core::NumericalFailure::DropTrack,
+    ///     track_loss: tracker_core::TrackLoss::Never,
     ///     seed: 1,
     /// };
     /// static TRACKER: Mutex<LinearTracker<f64, 8, 4, 4, 16, 1>> = Mutex::new(LinearTracker::empty(CONFIG));
@@ -486,6 +488,7 @@ where
     ///     selection: Selection::default(),
     ///     store_overflow: StoreOverflow::default(),
     ///     numerical_failure: Default::default(),
+    ///     track_loss: Default::default(),
     ///     seed: 1,
     /// };
     /// let objects = [0.0, 3.0].map(|x| Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() });
@@ -549,7 +552,7 @@ where
         let (store, next_store) = split_pair(&mut self.stores, self.active);
         let (parents, next_set) = split_pair(&mut self.hypotheses, self.active);
 
-        let numerical_drops =
+        let (numerical_drops, lost_tracks) =
             self.scores.run(&self.config, &placed, birth_cells, store.as_slice(), dt, measurements)?;
         let generated = self.generation.run(
             &self.config,
@@ -605,6 +608,7 @@ where
             birth_pool,
             sampler_steps: generated.sampler_moves,
             numerical_drops,
+            lost_tracks,
             expected_cardinality: self.expected_cardinality(),
         })
     }

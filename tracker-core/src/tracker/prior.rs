@@ -136,7 +136,7 @@ pub(super) fn load_prior<T: Real, const S: usize, const N: usize, const H: usize
             *slot = match existing {
                 Some(slot) => slot as u16,
                 None => store
-                    .push(Track { label: object.label, state: *state, existence: T::zero() })
+                    .push(Track { label: object.label, state: *state, existence: T::zero(), unseen_scans: 0 })
                     .map_err(|_| ConfigError::PriorTrackStoreFull)?,
             };
         }

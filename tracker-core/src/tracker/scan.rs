@@ -103,6 +103,7 @@ pub struct PlacedScan<T: Real, G> {
 ///     selection: Default::default(),
 ///     store_overflow: Default::default(),
 ///     numerical_failure: Default::default(),
+///     track_loss: Default::default(),
 ///     seed: 1,
 /// };
 /// let z = [SVector::from([1.0, 2.0])];

@@ -23,8 +23,11 @@ pub(super) struct Predicted<T: Real, const S: usize, const D: usize> {
     pub(super) state: Gaussian<T, S>,
     pub(super) innovation: Innovation<T, D>,
     pub(super) in_field_of_view: bool,
-    /// Dropped for a numerical failure ([`NumericalFailure::DropTrack`]): in no child of this scan.
+    /// Dropped for a numerical failure ([`NumericalFailure::DropTrack`]) or lost
+    /// ([`crate::TrackLoss`]): in no child of this scan.
     pub(super) dropped: bool,
+    /// The track's unseen scans, this one counted ([`crate::TrackLoss`]).
+    pub(super) unseen_scans: u16,
 }
 
 /// The scan's birth cells as its sensor sees them: the configuration's cells, then the pool's cells
@@ -76,6 +79,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
                 innovation: Innovation::EMPTY,
                 in_field_of_view: false,
                 dropped: false,
+                unseen_scans: 0,
             }; K],
             entries: [[T::NEG_INFINITY; Z]; K],
             birth_entries: [[T::NEG_INFINITY; Z]; B],
@@ -85,7 +89,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
     /// Predicts every track in `tracks` by `dt` and scores it, and every birth cell, against every
     /// measurement (`-inf` outside the gate or the field of view). A track whose prediction, innovation
     /// or (in view) update gain fails is dropped from the scan or fails it, as `config.numerical_failure`
-    /// says; the dropped ones are returned.
+    /// says; the dropped ones are returned, with the number of tracks lost by `config.track_loss`.
     ///
     /// # Errors
     /// With [`NumericalFailure::Error`], [`StepError::Numerical`] naming the first track that fails.
@@ -97,12 +101,13 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
         tracks: &[Track<T, S>],
         dt: T,
         measurements: &[SVector<T, D>],
-    ) -> Result<NumericalDrops, StepError>
+    ) -> Result<(NumericalDrops, usize), StepError>
     where
         M: MotionModel<T, S>,
         G: MeasurementModel<T, S, D>,
     {
         let mut drops = NumericalDrops::default();
+        let mut lost = 0;
         let slots = self.predicted.iter_mut().zip(self.entries.iter_mut());
         for (track, (predicted, entries)) in tracks.iter().zip(slots) {
             *predicted = match predict_track(&config.motion, placed, track, dt) {
@@ -118,10 +123,19 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
                         innovation: Innovation::EMPTY,
                         in_field_of_view: false,
                         dropped: true,
+                        unseen_scans: track.unseen_scans,
                     }
                 }
             };
             score_row(entries, placed, &predicted.innovation, predicted.in_field_of_view, measurements);
+            let rows = measurements.len().min(Z);
+            predicted.unseen_scans = unseen_scans(track.unseen_scans, predicted.in_field_of_view, &entries[..rows]);
+            if !predicted.dropped && config.track_loss.is_lost(predicted.unseen_scans) {
+                lost += 1;
+                predicted.dropped = true;
+                predicted.in_field_of_view = false;
+                entries.fill(T::NEG_INFINITY);
+            }
         }
         let cells = birth_cells.innovations.iter().zip(&birth_cells.in_field_of_view).zip(&birth_cells.probabilities);
         for (entries, ((innovation, &in_field_of_view), &alpha)) in
@@ -132,7 +146,7 @@ impl<T: Real, const S: usize, const D: usize, const Z: usize, const K: usize, co
                 *entry = placed.weights.birth_entry_with(*entry, alpha);
             }
         }
-        Ok(drops)
+        Ok((drops, lost))
     }
 
     /// The prediction of the track in `slot`.
@@ -170,6 +184,19 @@ pub fn in_field_of_view<T: Real, G: MeasurementModel<T, S, D>, const S: usize, c
     }
 }
 
+/// A track's unseen scans after this scan ([`crate::TrackLoss`]): one more when it is in view and no
+/// entry of its row is possible (no measurement in its gate), none when some is, as before out of view.
+/// The tracker and the host's reference count them here.
+pub fn unseen_scans<T: Real>(before: u16, in_field_of_view: bool, entries: &[T]) -> u16 {
+    if !in_field_of_view {
+        before
+    } else if entries.iter().any(|&e| e > T::NEG_INFINITY) {
+        0
+    } else {
+        before.saturating_add(1)
+    }
+}
+
 /// Predicts `track` by `dt`: its state, innovation and whether it is in view; for a track in view, also
 /// checks that an update is possible (its gain and posterior covariance), so that a failure drops or fails
 /// the track before any child holds it.
@@ -190,7 +217,7 @@ where
     if in_field_of_view {
         ekf::correction(&placed.model, &state, &innovation)?;
     }
-    Ok(Predicted { state, innovation, in_field_of_view, dropped: false })
+    Ok(Predicted { state, innovation, in_field_of_view, dropped: false, unseen_scans: track.unseen_scans })
 }
 
 /// The scan's birth cells as its sensor sees them (the configuration's, then `pool`'s predicted to `time`),
@@ -267,7 +294,7 @@ fn score_row<T: Real, G: MeasurementModel<T, S, D>, const S: usize, const D: usi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::{BirthModel, ChildGeneration, Selection, StoreOverflow};
+    use crate::config::{BirthModel, ChildGeneration, Selection, StoreOverflow, TrackLoss};
     use crate::model::{ConstantVelocity, PositionMeasurement};
     use crate::sensor::{Region, Sensor};
     use crate::store::TrackLabel;
@@ -291,6 +318,7 @@ mod tests {
             selection: Selection::default(),
             store_overflow: StoreOverflow::default(),
             numerical_failure,
+            track_loss: TrackLoss::Never,
             seed: 1,
         }
     }
@@ -305,7 +333,7 @@ mod tests {
 
     fn track(label: u32, x: f64, variance: f64) -> Track<f64, 4> {
         let state = Gaussian { mean: SVector::from([x, 0.0, 1.0, 0.0]), covariance: SMatrix::identity() * variance };
-        Track { label: TrackLabel(label), state, existence: 1.0 }
+        Track { label: TrackLabel(label), state, existence: 1.0, unseen_scans: 0 }
     }
 
     #[test]
@@ -315,8 +343,8 @@ mod tests {
         let mut scores = Scores::<f64, 4, 2, 2, 4, 1>::new();
         let tracks = [track(0, 0.0, 1.0), track(1, 50.0, 1.0)];
         let zs = [SVector::from([1.0, 0.0]), SVector::from([-9.0, 9.0])];
-        let drops = scores.run(&config, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
-        assert_eq!(drops.count, 0);
+        let (drops, lost) = scores.run(&config, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        assert_eq!((drops.count, lost), (0, 0));
         assert!(scores.predicted(0).in_field_of_view && !scores.predicted(1).in_field_of_view);
         let near = scores.entries(0, 2);
         assert!(near[0].is_finite() && near[1] == f64::NEG_INFINITY, "{near:?}: the second is outside the gate");
@@ -334,10 +362,39 @@ mod tests {
 
         let lenient = config(NumericalFailure::DropTrack);
         let model = placed(&lenient);
-        let drops = scores.run(&lenient, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        let (drops, _) = scores.run(&lenient, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
         assert_eq!(drops.count, 1);
         assert_eq!(drops.first.map(|(label, _)| label), Some(TrackLabel(7)));
         assert!(scores.predicted(1).dropped && !scores.predicted(1).in_field_of_view);
         assert!(!scores.predicted(0).dropped && scores.entries(0, 1)[0].is_finite());
+    }
+
+    #[test]
+    fn a_track_in_view_without_a_measurement_in_its_gate_is_unseen_and_lost_after_the_configured_scans() {
+        // Track 0 has a measurement in its gate, track 1 (at x = 50, out of the sector) is out of view,
+        // track 2 (at x = 8) is in view and no measurement is in its gate; each has been unseen twice.
+        let rule = TrackLoss::AfterUnseenScans(core::num::NonZeroU16::new(3).unwrap());
+        let managed = Cv { track_loss: rule, ..config(NumericalFailure::Error) };
+        let model = placed(&managed);
+        let mut scores = Scores::<f64, 4, 2, 2, 4, 1>::new();
+        let mut tracks = [track(0, 0.0, 1.0), track(1, 50.0, 1.0), track(2, 8.0, 1.0)];
+        for t in &mut tracks {
+            t.unseen_scans = 2;
+        }
+        let zs = [SVector::from([1.0, 0.0])];
+        let (_, lost) = scores.run(&managed, &model, &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        let unseen: Vec<u16> = (0..3).map(|slot| scores.predicted(slot).unseen_scans).collect();
+        assert_eq!(unseen, [0, 2, 3]);
+        assert_eq!(lost, 1);
+        assert!(scores.predicted(2).dropped && !scores.predicted(2).in_field_of_view);
+        assert!(scores.entries(2, 1).iter().all(|&e| e == f64::NEG_INFINITY));
+        assert!(!scores.predicted(0).dropped && !scores.predicted(1).dropped);
+        // Never: the same track is counted but kept.
+        let exact = config(NumericalFailure::Error);
+        let (_, lost) = scores.run(&exact, &placed(&exact), &BirthCells::EMPTY, &tracks, 1.0, &zs).unwrap();
+        assert_eq!((lost, scores.predicted(2).unseen_scans, scores.predicted(2).dropped), (0, 3, false));
+        // A stale entry beyond this scan's measurements does not count as a measurement in the gate.
+        assert_eq!(unseen_scans(4, true, &[f64::NEG_INFINITY]), 5);
+        assert_eq!(unseen_scans(4, false, &[f64::NEG_INFINITY]), 4);
     }
 }

@@ -68,6 +68,10 @@ pub struct RunSummary {
     /// Tracks the core dropped for a numerical failure (issue 33).
     #[serde(default)]
     pub numerical_drops: super::NumericalDropsSummary,
+    /// Tracks the core declared lost and dropped (`tracker.lost_after_unseen_scans`, docs/maths.md §5.9).
+    /// Absent when none.
+    #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
+    pub lost_tracks: usize,
     /// Scans the core refused for their input; the run went on (issue 29).
     #[serde(default)]
     pub refused_scans: super::RefusedScans,

@@ -96,6 +96,8 @@ type TrackKey = (bool, u32, u32);
 struct Track<const S: usize> {
     label: u32,
     state: Gaussian<f64, S>,
+    /// Consecutive scans in view with no measurement in the gate (`tracker_core::TrackLoss`).
+    unseen: u16,
 }
 
 /// A hypothesis: its tracks are `objects[start..start + len]`, sorted by label.
@@ -110,7 +112,12 @@ struct Hypothesis {
 struct Predicted<const S: usize, const D: usize> {
     state: Gaussian<f64, S>,
     innovation: Innovation<f64, D>,
+    /// In view and not lost.
     in_view: bool,
+    /// Unseen scans, this one counted.
+    unseen: u16,
+    /// Lost (`tracker_core::TrackLoss`): in no child, as in the core.
+    lost: bool,
 }
 
 /// One scan's sensor: the measurement model placed at the scan ([`place_scan`]), and each birth cell's
@@ -295,7 +302,7 @@ where
                     .iter()
                     .position(|t| t.label == object.label.0 && t.state == object.state)
                     .unwrap_or_else(|| {
-                        tracks.push(Track { label: object.label.0, state: object.state });
+                        tracks.push(Track { label: object.label.0, state: object.state, unseen: 0 });
                         tracks.len() - 1
                     });
                 objects.push(index as u32);

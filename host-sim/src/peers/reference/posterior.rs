@@ -60,7 +60,11 @@ where
         sources.clear();
         let mut column = 0;
         for (position, &track) in self.members(&self.hypotheses[head.parent as usize]).iter().enumerate() {
-            let row = if tables.predicted[tables.slot[track as usize] as usize].in_view {
+            let predicted = &tables.predicted[tables.slot[track as usize] as usize];
+            if predicted.lost {
+                continue;
+            }
+            let row = if predicted.in_view {
                 column += 1;
                 row_of[column - 1]
             } else {
@@ -217,17 +221,17 @@ impl<const S: usize> Posterior<S> {
         key: TrackKey,
     ) -> Result<u32, ReferenceError> {
         let (is_birth, source, row) = key;
-        let (label, prior, innovation) = if is_birth {
+        let (label, prior, innovation, unseen) = if is_birth {
             let birth_key = if row == CLUTTER { (false, source) } else { (true, row) };
             let next_label = &mut self.next_label;
             let label = *self.birth_labels.entry(birth_key).or_insert_with(|| {
                 *next_label += 1;
                 *next_label - 1
             });
-            (label, tables.scan.cells[source as usize].0, tables.scan.births[source as usize].0)
+            (label, tables.scan.cells[source as usize].0, tables.scan.births[source as usize].0, 0)
         } else {
             let p = &tables.predicted[tables.slot[source as usize] as usize];
-            (tracker.tracks[source as usize].label, p.state, p.innovation)
+            (tracker.tracks[source as usize].label, p.state, p.innovation, p.unseen)
         };
         let state = if row == CLUTTER {
             prior
@@ -235,7 +239,7 @@ impl<const S: usize> Posterior<S> {
             ekf::update(&tables.scan.placed.model, &prior, &innovation, &measurements[row as usize])
                 .map_err(|error| StepError::Numerical { label: TrackLabel(label), error })?
         };
-        self.tracks.push(Track { label, state });
+        self.tracks.push(Track { label, state, unseen });
         let index = (self.tracks.len() - 1) as u32;
         self.keys.insert(key, index);
         Ok(index)

@@ -2,7 +2,7 @@
 //! recursive enumeration of every parent's children.
 
 use super::*;
-use tracker_core::tracker::in_field_of_view;
+use tracker_core::tracker::{in_field_of_view, unseen_scans};
 
 impl<M, G, const S: usize, const D: usize, const B: usize> ReferenceTracker<M, G, S, D, B>
 where
@@ -118,8 +118,21 @@ where
             let state = ekf::predict(&self.config.motion, &track.state, dt).map_err(numerical)?;
             let innovation = ekf::innovation(model, &state).map_err(numerical)?;
             let in_view = in_field_of_view(&detection.field_of_view, model, &state, &innovation.predicted);
-            column(&innovation, in_view, None);
-            predicted.push(Predicted { state, innovation, in_view });
+            // Track loss as the core decides it: unseen when in view with no measurement in the gate.
+            let row: Vec<f64> = measurements
+                .iter()
+                .map(|z| {
+                    if in_view {
+                        weights.entry_of_residual(&innovation, &model.residual(z, &innovation.predicted))
+                    } else {
+                        f64::NEG_INFINITY
+                    }
+                })
+                .collect();
+            let unseen = unseen_scans(track.unseen, in_view, &row);
+            let lost = self.config.track_loss.is_lost(unseen);
+            column(&innovation, in_view && !lost, None);
+            predicted.push(Predicted { state, innovation, in_view: in_view && !lost, unseen, lost });
         }
         for ((innovation, in_view), &(_, alpha, _)) in scan.births.iter().zip(&scan.cells) {
             column(innovation, *in_view, Some(alpha));

@@ -219,13 +219,19 @@ fn config(parts: &Parts) -> String {
             s.burn_in, s.steps, s.proposal, s.clusters, s.exhaustive_limit, s.exact_start
         ),
     };
+    let track_loss = match c.track_loss {
+        tracker_core::TrackLoss::Never => "TrackLoss::Never".to_string(),
+        tracker_core::TrackLoss::AfterUnseenScans(n) => {
+            format!("TrackLoss::AfterUnseenScans(core::num::NonZeroU16::new({n}).unwrap())")
+        }
+    };
     format!(
         "Config {{\n    motion: TwoBodyJ2 {{ mu: {}, j2: {}, radius: {}, min_radius: {}, noise: {noise}, max_step: {}, \
          max_substeps: {} }},\n    measurement: Network::unconfigured(),\n    sensor: SENSORS[0].sensor.detection,\n    \
          birth: BirthModel {{ probability: {}, cells: {cells}, detection: BirthDetection::{:?}, events: \
          BirthEvents::{:?}, measured: {measured} }},\n    death_probability: {},\n    gate: {},\n    children: \
          {children},\n    selection: Selection::{:?},\n    store_overflow: StoreOverflow::{:?},\n    \
-         numerical_failure: NumericalFailure::{:?},\n    seed: {},\n}}",
+         numerical_failure: NumericalFailure::{:?},\n    track_loss: {track_loss},\n    seed: {},\n}}",
         f(motion.mu),
         f(motion.j2),
         f(motion.radius),

@@ -179,6 +179,7 @@ pub fn parts(scenario: &Scenario3d) -> Result<Parts, ScenarioError> {
         selection: host.selection,
         store_overflow: host.store_overflow,
         numerical_failure: host.numerical_failure,
+        track_loss: host.track_loss,
         seed: host.seed,
     };
     let prior = settings::prior(

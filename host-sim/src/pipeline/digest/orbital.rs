@@ -148,7 +148,7 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         }
     };
     let spec = &scenario.tracker;
-    let (selection, store_overflow, numerical_failure) = settings::policies(spec);
+    let (selection, store_overflow, numerical_failure, track_loss) = settings::policies(spec);
     // As `run3d`: the configuration's own sensor is the first sensor's (each scan uses its sensor's).
     let sensor = *sensors.first().map(|s| &s.detection).ok_or_else(|| ScenarioError("sensors: none".into()))?;
     Ok(Config {
@@ -168,6 +168,7 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         selection,
         store_overflow,
         numerical_failure,
+        track_loss,
         seed: spec.seed,
     })
 }

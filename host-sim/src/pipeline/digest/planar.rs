@@ -107,6 +107,7 @@ pub fn ssa_config<T: Real>(
         selection: config.selection,
         store_overflow: config.store_overflow,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: config.seed,
     }
 }

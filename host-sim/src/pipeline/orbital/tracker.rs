@@ -144,6 +144,7 @@ where
             captured_mass: report.captured_mass,
             budget_reached: false,
             numerical_drops: report.numerical_drops,
+            lost_tracks: report.lost_tracks,
         })
     }
 
@@ -235,7 +236,7 @@ where
         settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "this tracker's capacity")
             .map_err(Error::input)?;
     let spec = &scenario.tracker;
-    let (selection, store_overflow, numerical_failure) = settings::policies(spec);
+    let (selection, store_overflow, numerical_failure, track_loss) = settings::policies(spec);
     let first = network.detection();
     let config = Config {
         motion: scenario.motion_model(),
@@ -255,6 +256,7 @@ where
         selection,
         store_overflow,
         numerical_failure,
+        track_loss,
         seed: spec.seed,
     };
     let prior = settings::prior(

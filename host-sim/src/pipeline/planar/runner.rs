@@ -51,6 +51,7 @@ where
             captured_mass: report.captured_mass,
             budget_reached: false,
             numerical_drops: report.numerical_drops,
+            lost_tracks: report.lost_tracks,
         })
     }
 
@@ -101,6 +102,7 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
             captured_mass: report.captured_mass,
             budget_reached: report.budget_reached,
             numerical_drops: tracker_core::report::NumericalDrops::default(),
+            lost_tracks: 0,
         })
     }
 

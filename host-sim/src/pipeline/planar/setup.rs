@@ -74,7 +74,7 @@ pub fn config<M, const B: usize>(
     let cells =
         settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "this tracker's capacity")
             .map_err(ScenarioError)?;
-    let (selection, store_overflow, numerical_failure) = settings::policies(&scenario.tracker);
+    let (selection, store_overflow, numerical_failure, track_loss) = settings::policies(&scenario.tracker);
     Ok(Config {
         motion,
         measurement: measurement(&scenario.measurement),
@@ -92,6 +92,7 @@ pub fn config<M, const B: usize>(
         selection,
         store_overflow,
         numerical_failure,
+        track_loss,
         seed: scenario.tracker.seed,
     })
 }

@@ -34,6 +34,7 @@
 //!     selection: Default::default(),
 //!     store_overflow: StoreOverflow::default(),
 //!     numerical_failure: Default::default(),
+//!     track_loss: Default::default(),
 //!     seed: 1,
 //! };
 //! // H = 0 hypotheses.
@@ -56,6 +57,7 @@
 //!     selection: Default::default(),
 //!     store_overflow: StoreOverflow::default(),
 //!     numerical_failure: Default::default(),
+//!     track_loss: Default::default(),
 //!     seed: 1,
 //! };
 //! assert!(LinearTracker::<f64, 1, 1, 1, 1, 0>::with_objects(config, &[], 0.0).is_ok());
@@ -151,6 +153,7 @@ fn tracker(seed: u64, alive: &[Object]) -> Result<(Box<SsaTracker<f64>>, usize),
         selection: tracker_core::config::Selection::TopWeight,
         store_overflow: StoreOverflow::PruneChildren,
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed,
     };
     // The prior: the true states with a small error, as the presets do.

@@ -87,6 +87,7 @@ fn config<G>(measurement: G, detection: Sensor<f64>) -> Config<f64, TwoBodyJ2<f6
         selection: Default::default(),
         store_overflow: Default::default(),
         numerical_failure: Default::default(),
+        track_loss: Default::default(),
         seed: 3,
     }
 }
@@ -530,6 +531,7 @@ fn a_placeholder_tracker_takes_its_configuration_in_place_and_then_runs_as_a_new
         selection: crate::config::Selection::TopWeight,
         store_overflow: crate::StoreOverflow::PruneChildren,
         numerical_failure: crate::NumericalFailure::DropTrack,
+        track_loss: crate::TrackLoss::Never,
         seed: 0,
     };
     static TRACKER: std::sync::Mutex<Tracker4<MixedNetwork<f64, 6>>> =
