@@ -321,6 +321,16 @@ h9
         assert_eq!(p.meteo_at(p.points[1].time.since(day) + 1.0, day).map(|m| m.time.seconds), Some(103.601));
     }
 
+    #[test]
+    fn control_characters_in_a_record_keep_the_message_short() {
+        // Found by the fuzz target `ilrs`: 72 control characters in a record type, each escaped as
+        // `\u{e}`, made a message of over 400 characters when the record was cut before it was escaped.
+        let text = format!("h{}1 CPF  1 SGF\n", "\u{e}".repeat(72));
+        let message = parse(&text).expect_err("not a record").to_string();
+        assert!(message.chars().count() < 200 && !message.contains('\n'), "{message}");
+        assert!(message.contains("\\u{e}") && message.contains('…'), "{message}");
+    }
+
     fn error_of(from: &str, to: &str) -> IlrsError {
         let text = PASS.replacen(from, to, 1);
         assert_ne!(text, PASS, "{from} is in the sample");

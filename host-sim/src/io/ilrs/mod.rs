@@ -49,26 +49,25 @@ impl IlrsError {
     }
 }
 
-/// The error at `line` (the field's name cut to twice [`EXCERPT_CHARS`]: a record type may be any text).
+/// The error at `line` (the field's name on one line, then cut to twice [`EXCERPT_CHARS`]: a record type
+/// may be any text, and a control character is written as an escape of several characters).
 pub(crate) fn fail<T>(line: usize, field: &str, message: impl fmt::Display) -> Result<T, IlrsError> {
-    let mut name: String = field.chars().take(2 * EXCERPT_CHARS).collect();
-    if field.chars().nth(2 * EXCERPT_CHARS).is_some() {
+    let escaped = crate::scenario::one_line(field);
+    let mut name: String = escaped.chars().take(2 * EXCERPT_CHARS).collect();
+    if escaped.chars().nth(2 * EXCERPT_CHARS).is_some() {
         name.push('…');
     }
-    Err(IlrsError {
-        line,
-        field: crate::scenario::one_line(&name),
-        message: crate::scenario::one_line(&message.to_string()),
-    })
+    Err(IlrsError { line, field: name, message: crate::scenario::one_line(&message.to_string()) })
 }
 
 /// `text` on one line, at most [`EXCERPT_CHARS`] characters (then `…`), for quoting bad input.
 fn excerpt(text: &str) -> String {
-    let mut short: String = text.chars().take(EXCERPT_CHARS).collect();
-    if text.chars().nth(EXCERPT_CHARS).is_some() {
+    let escaped = crate::scenario::one_line(text);
+    let mut short: String = escaped.chars().take(EXCERPT_CHARS).collect();
+    if escaped.chars().nth(EXCERPT_CHARS).is_some() {
         short.push('…');
     }
-    crate::scenario::one_line(&short)
+    short
 }
 
 /// The blank-separated fields of one record line, read by position with the record's name in errors.
