@@ -5,7 +5,8 @@
 //! scenarios and are stated in docs/embedded.md; the full 785-scan SSA run is an ignored test:
 //! `cargo test --release -p host-sim --test f32_conformance -- --ignored --nocapture`.
 
-use host_sim::pipeline::digest::planar::{gaussian, region, tracker};
+use host_sim::pipeline::digest::convert::{gaussian, region};
+use host_sim::pipeline::digest::planar::tracker;
 use host_sim::pipeline::planar::setup;
 use host_sim::scenario::Scenario;
 use host_sim::sim::planar;

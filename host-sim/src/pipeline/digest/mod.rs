@@ -3,6 +3,7 @@
 //! ([`network`], whose firmware excerpt [`excerpt`] writes). All print the same text, written once here
 //! ([`text`]).
 
+pub mod convert;
 pub mod excerpt;
 pub mod network;
 pub mod orbital;

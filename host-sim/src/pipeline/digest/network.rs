@@ -15,20 +15,20 @@
 //! **The excerpt file** ([`super::excerpt::source`]) writes these `f32` values as bits in Rust source for
 //! the firmware, so that both sides start from the same bits without a second converter.
 
+use super::convert;
 use crate::pipeline::orbital::C;
 use crate::pipeline::orbital::corrections::corrected_measurements;
 use crate::pipeline::orbital::tracker::config3d;
 use crate::pipeline::settings;
 use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::ScenarioError;
-use crate::scenario::v2::{Measurement3dSpec, Motion3dSpec, ProcessNoiseSpec, Scenario3d};
+use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use nalgebra::SVector;
-use tracker_core::model::{AdmissibleRegion, MixedNetwork, ProcessNoise, SensorBirths};
-use tracker_core::pool::MeasuredBirths;
-use tracker_core::sensor::{EarthRotation, GroundSite, LookShape, Platform, ScanGeometry, SiteSensor};
+use tracker_core::model::{MixedNetwork, SensorBirths};
+use tracker_core::sensor::{EarthRotation, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, Config, MixedSensor, Network, NetworkConfig, NetworkTracker, PriorHypothesis, PriorObject, Real,
-    Region, Sensor, TwoBodyJ2, model::MIXED_DIMENSION, ssa_caps,
+    model::MIXED_DIMENSION, ssa_caps,
 };
 
 /// The embedded tracker's parts, in `f32`: what the firmware's excerpt holds.
@@ -149,29 +149,24 @@ pub fn parts(scenario: &Scenario3d) -> Result<Parts, ScenarioError> {
         .map(|s| MixedSensor {
             kind: s.kind,
             sensor: SiteSensor {
-                platform: platform(s.sensor.platform),
+                platform: convert::platform(s.sensor.platform),
                 sigma: s.sensor.sigma.map(of),
-                detection: sensor(&s.sensor.detection),
+                detection: convert::sensor(&s.sensor.detection),
             },
         })
         .collect();
-    let births = (0..sensors.len()).map(|i| sensor_births(host.measurement.births(i))).collect();
+    let births = (0..sensors.len()).map(|i| convert::sensor_births(host.measurement.births(i))).collect();
     let first = sensors.first().map(|s| s.sensor.detection).ok_or_else(|| ScenarioError("sensors: none".into()))?;
     let config = Config {
-        motion: motion(scenario),
+        motion: convert::motion(scenario),
         measurement: MixedNetwork::unconfigured(),
         sensor: first,
         birth: BirthModel {
             probability: of(host.birth.probability),
-            cells: host
-                .birth
-                .cells
-                .iter()
-                .map(|c| tracker_core::Gaussian { mean: c.mean.map(of), covariance: c.covariance.map(of) })
-                .collect(),
+            cells: host.birth.cells.iter().map(convert::gaussian).collect(),
             detection: host.birth.detection,
             events: host.birth.events,
-            measured: host.birth.measured.map(|m| measured(&m)),
+            measured: host.birth.measured.map(|m| convert::measured(&m)),
         },
         death_probability: of(host.death_probability),
         gate: host.gate.map(of),
@@ -190,103 +185,6 @@ pub fn parts(scenario: &Scenario3d) -> Result<Parts, ScenarioError> {
             .map(|h| (h.weight, h.objects.iter().map(|o| (o.label, &o.mean, &o.covariance)))),
     );
     Ok(Parts { rotation: of(scenario.earth_rotation_at_epoch()), sensors, births, config, prior })
-}
-
-/// The motion model: the f32 Earth constants, the scenario's noise and steps rounded once.
-fn motion(scenario: &Scenario3d) -> TwoBodyJ2<f32> {
-    let of = f32::of_f64;
-    let Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
-    let noise = match process_noise {
-        ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
-        ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
-            ProcessNoise::Ric { radial: of(radial), in_track: of(in_track), cross_track: of(cross_track) }
-        }
-    };
-    TwoBodyJ2::<f32>::earth(noise, of(max_step), max_substeps)
-}
-
-fn platform(platform: Platform<f64>) -> Platform<f32> {
-    let of = f32::of_f64;
-    match platform {
-        Platform::Ground(site) => Platform::Ground(GroundSite {
-            latitude: of(site.latitude),
-            longitude: of(site.longitude),
-            height: of(site.height),
-        }),
-        Platform::Spacecraft => Platform::Spacecraft,
-    }
-}
-
-fn sensor(sensor: &Sensor<f64>) -> Sensor<f32> {
-    let of = f32::of_f64;
-    Sensor {
-        detection_probability: of(sensor.detection_probability),
-        clutter_rate: of(sensor.clutter_rate),
-        field_of_view: region(&sensor.field_of_view),
-    }
-}
-
-fn region(region: &Region<f64>) -> Region<f32> {
-    let of = f32::of_f64;
-    let pair = |p: [f64; 2]| p.map(of);
-    match *region {
-        Region::Everywhere { volume } => Region::Everywhere { volume: of(volume) },
-        Region::Rectangle { min, max } => Region::Rectangle { min: pair(min), max: pair(max) },
-        Region::Look { shape, min_elevation, range, range_rate } => Region::Look {
-            shape: match shape {
-                LookShape::Cone { azimuth, elevation, half_angle } => {
-                    LookShape::Cone { azimuth: of(azimuth), elevation: of(elevation), half_angle: of(half_angle) }
-                }
-                LookShape::Box { azimuth, half_width, elevation } => {
-                    LookShape::Box { azimuth: of(azimuth), half_width: of(half_width), elevation: pair(elevation) }
-                }
-            },
-            min_elevation: of(min_elevation),
-            range: range.map(pair),
-            range_rate: range_rate.map(pair),
-        },
-        Region::Sector { origin, look_direction, half_angle, max_range } => Region::Sector {
-            origin: pair(origin),
-            look_direction: of(look_direction),
-            half_angle: of(half_angle),
-            max_range: of(max_range),
-        },
-    }
-}
-
-fn admissible(region: &AdmissibleRegion<f64>) -> AdmissibleRegion<f32> {
-    let of = f32::of_f64;
-    AdmissibleRegion {
-        mu: of(region.mu),
-        min_perigee_radius: of(region.min_perigee_radius),
-        max_apogee_radius: of(region.max_apogee_radius),
-        max_inclination: of(region.max_inclination),
-        shell: region.shell.map(of),
-        headings: region.headings,
-        speeds: region.speeds,
-        climbs: region.climbs,
-        ranges: region.ranges,
-        velocity_sigma: of(region.velocity_sigma),
-    }
-}
-
-fn sensor_births(births: SensorBirths<f64>) -> SensorBirths<f32> {
-    match births {
-        SensorBirths::FromModel => SensorBirths::FromModel,
-        SensorBirths::Region(region) => SensorBirths::Region(admissible(&region)),
-        SensorBirths::Off => SensorBirths::Off,
-    }
-}
-
-fn measured(measured: &MeasuredBirths<f64>) -> MeasuredBirths<f32> {
-    let of = f32::of_f64;
-    MeasuredBirths {
-        region: admissible(&measured.region),
-        expected_births: of(measured.expected_births),
-        max_probability: of(measured.max_probability),
-        min_unexplained: of(measured.min_unexplained),
-        lifetime: measured.lifetime,
-    }
 }
 
 #[cfg(test)]
@@ -327,7 +225,9 @@ mod tests {
         assert_eq!(parts.sensors.len(), scenario.sensors.len());
         let host = &scenario.sensors[0];
         let latitude = host.site.latitude_deg.to_radians() as f32;
-        assert!(matches!(parts.sensors[0].sensor.platform, Platform::Ground(site) if site.latitude == latitude));
+        assert!(
+            matches!(parts.sensors[0].sensor.platform, tracker_core::sensor::Platform::Ground(site) if site.latitude == latitude)
+        );
         assert!(parts.config.birth.measured.is_some() == scenario.birth.measured.is_some());
         // The placeholder network is refused on its own.
         let mut tracker = Box::new(NetworkTracker::<f32>::empty(parts.config.clone()));

@@ -13,17 +13,16 @@
 //! arcseconds to radians, the Earth rotation angle at the epoch) and rounded once with `value as f32`;
 //! times stay `f64`. The firmware's build script does the same, so both trackers start from the same bits.
 
-use crate::pipeline::digest::planar::region;
+use crate::pipeline::digest::convert;
 use crate::pipeline::settings;
 use crate::scenario::ScenarioError;
 use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use nalgebra::SVector;
 use std::collections::HashSet;
-use tracker_core::model::{ProcessNoise, SensorNetwork};
+use tracker_core::model::SensorNetwork;
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{
     BirthModel, ChildGeneration, Config, PriorHypothesis, PriorObject, RadarConfig, RadarTracker, Real, Sensor,
-    TwoBodyJ2,
 };
 
 /// Replays the first `scans` scans of the radar scenario `scenario` (all when `None`) through
@@ -115,23 +114,20 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
         .iter()
         .map(|s| {
             let sigma = s.noise.sigma(scenario.measurement);
+            let site = GroundSite {
+                latitude: s.site.latitude_deg.to_radians(),
+                longitude: s.site.longitude_deg.to_radians(),
+                height: s.site.height_km,
+            };
             let detection = Sensor {
                 detection_probability: s.detection_probability,
                 clutter_rate: s.clutter_rate,
                 field_of_view: s.field_of_view.region(),
             };
             SiteSensor {
-                platform: Platform::Ground(GroundSite {
-                    latitude: of(s.site.latitude_deg.to_radians()),
-                    longitude: of(s.site.longitude_deg.to_radians()),
-                    height: of(s.site.height_km),
-                }),
+                platform: convert::platform(Platform::Ground(site)),
                 sigma: core::array::from_fn(|i| of(sigma.get(i).copied().unwrap_or(f64::NAN))),
-                detection: Sensor {
-                    detection_probability: of(detection.detection_probability),
-                    clutter_rate: of(detection.clutter_rate),
-                    field_of_view: region(&detection.field_of_view),
-                },
+                detection: convert::sensor(&detection),
             }
         })
         .collect();
@@ -140,19 +136,12 @@ pub fn config(scenario: &Scenario3d) -> Result<RadarConfig<f32>, ScenarioError> 
     let cells =
         settings::birth_cells(scenario.birth.cells.iter().map(|c| (&c.mean, &c.covariance)), "the embedded capacity")
             .map_err(ScenarioError)?;
-    let crate::scenario::v2::Motion3dSpec::TwoBodyJ2 { process_noise, max_step, max_substeps } = scenario.motion;
-    let noise = match process_noise {
-        crate::scenario::v2::ProcessNoiseSpec::Isotropic { q } => ProcessNoise::Isotropic(of(q)),
-        crate::scenario::v2::ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
-            ProcessNoise::Ric { radial: of(radial), in_track: of(in_track), cross_track: of(cross_track) }
-        }
-    };
     let spec = &scenario.tracker;
     let (selection, store_overflow, numerical_failure, track_loss) = settings::policies(spec);
     // As `run3d`: the configuration's own sensor is the first sensor's (each scan uses its sensor's).
     let sensor = *sensors.first().map(|s| &s.detection).ok_or_else(|| ScenarioError("sensors: none".into()))?;
     Ok(Config {
-        motion: TwoBodyJ2::<f32>::earth(noise, of(max_step), max_substeps),
+        motion: convert::motion(scenario),
         measurement: network,
         sensor,
         birth: BirthModel {

@@ -17,12 +17,13 @@
 //! `digest` is [`tracker_core::Tracker::digest`] after the scan (after a rejected scan the tracker is
 //! unchanged); the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 
+use super::convert;
 use crate::pipeline::planar::setup;
 use crate::scenario::{Scenario, ScenarioError};
 use nalgebra::SVector;
 use tracker_core::{
-    BirthModel, Config, Gaussian, LookShape, PositionMeasurement, PriorHypothesis, PriorObject, Real, Region, Sensor,
-    SsaConfig, SsaTracker, TwoBody, ssa_caps,
+    BirthModel, Config, PositionMeasurement, PriorHypothesis, PriorObject, Real, Sensor, SsaConfig, SsaTracker,
+    TwoBody, ssa_caps,
 };
 
 /// Replays the first `scans` scans of `scenario` (all when `None`) through `SsaTracker<f32>` and returns the
@@ -60,7 +61,8 @@ pub fn tracker<T: Real>(scenario: &Scenario) -> Result<SsaTracker<T>, ScenarioEr
     let prior: Vec<(T, Vec<PriorObject<T, 4>>)> = setup::prior(scenario)
         .iter()
         .map(|(weight, objects)| {
-            let objects = objects.iter().map(|o| PriorObject { label: o.label, state: gaussian(&o.state) }).collect();
+            let objects =
+                objects.iter().map(|o| PriorObject { label: o.label, state: convert::gaussian(&o.state) }).collect();
             (T::of_f64(*weight), objects)
         })
         .collect();
@@ -78,7 +80,7 @@ pub fn ssa_config<T: Real>(
     let mut cells = heapless::Vec::new();
     for cell in &config.birth.cells {
         // Same capacity on both sides: cannot overflow.
-        let _ = cells.push(gaussian(cell));
+        let _ = cells.push(convert::gaussian(cell));
     }
     Config {
         motion: TwoBody {
@@ -92,7 +94,7 @@ pub fn ssa_config<T: Real>(
         sensor: Sensor {
             detection_probability: of(config.sensor.detection_probability),
             clutter_rate: of(config.sensor.clutter_rate),
-            field_of_view: region(&config.sensor.field_of_view),
+            field_of_view: convert::region(&config.sensor.field_of_view),
         },
         birth: BirthModel {
             probability: of(config.birth.probability),
@@ -110,39 +112,6 @@ pub fn ssa_config<T: Real>(
         track_loss: Default::default(),
         seed: config.seed,
     }
-}
-
-/// An `f64` region in scalar `T`.
-pub fn region<T: Real>(region: &Region<f64>) -> Region<T> {
-    let of = T::of_f64;
-    match *region {
-        Region::Everywhere { volume } => Region::Everywhere { volume: of(volume) },
-        Region::Rectangle { min, max } => Region::Rectangle { min: min.map(of), max: max.map(of) },
-        Region::Sector { origin, look_direction, half_angle, max_range } => Region::Sector {
-            origin: origin.map(of),
-            look_direction: of(look_direction),
-            half_angle: of(half_angle),
-            max_range: of(max_range),
-        },
-        Region::Look { shape, min_elevation, range, range_rate } => Region::Look {
-            shape: match shape {
-                LookShape::Cone { azimuth, elevation, half_angle } => {
-                    LookShape::Cone { azimuth: of(azimuth), elevation: of(elevation), half_angle: of(half_angle) }
-                }
-                LookShape::Box { azimuth, half_width, elevation } => {
-                    LookShape::Box { azimuth: of(azimuth), half_width: of(half_width), elevation: elevation.map(of) }
-                }
-            },
-            min_elevation: of(min_elevation),
-            range: range.map(|window| window.map(of)),
-            range_rate: range_rate.map(|window| window.map(of)),
-        },
-    }
-}
-
-/// An `f64` Gaussian in scalar `T`.
-pub fn gaussian<T: Real>(gaussian: &Gaussian<f64, 4>) -> Gaussian<T, 4> {
-    Gaussian { mean: gaussian.mean.map(T::of_f64), covariance: gaussian.covariance.map(T::of_f64) }
 }
 
 #[cfg(test)]
