@@ -44,6 +44,9 @@ mod two_body_j2;
 /// The Earth's equatorial radius, with the other Earth constants (it lives with the WGS-84 ellipsoid in
 /// [`crate::sensor::frames`]).
 pub use crate::sensor::EARTH_RADIUS;
+pub use admissible::tracklet::{
+    Attributable, LinkLimits, MAX_TRACKLET_FRAMES, TrackletError, TrackletFrame, tracklet_births,
+};
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
 pub use light_time::LightTime;

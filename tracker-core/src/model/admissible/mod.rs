@@ -25,6 +25,8 @@
 //! that misses the shell, a range-rate too large for a bound orbit, a latitude above the largest
 //! inclination) is [`BirthError::Degenerate`]: nothing is written and the caller keeps the measurement.
 
+pub mod tracklet;
+
 use super::{EARTH_MU, EARTH_RADIUS};
 use crate::gaussian::Gaussian;
 use crate::real::{Real, atan2, c, cos, sin, sqrt};
