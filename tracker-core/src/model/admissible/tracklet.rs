@@ -528,6 +528,30 @@ mod tests {
         }
     }
 
+    /// The fraction of 10,000 random triples uniform in a square field that link.
+    fn three_frame_links(field_deg: f64, spacing: f64) -> f64 {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+        let field = field_deg.to_radians();
+        let mut uniform = || rng.next_u64() as f64 / u64::MAX as f64;
+        let linked = (0..10_000)
+            .filter(|_| {
+                let frames: [TrackletFrame<f64>; 3] = core::array::from_fn(|k| TrackletFrame {
+                    time: spacing * k as f64,
+                    angles: [1.0 + field * uniform(), 0.2 + field * uniform()],
+                });
+                Attributable::fit(&frames, [SIGMA; 2], &LIMITS).is_ok()
+            })
+            .count();
+        linked as f64 / 1e4
+    }
+
+    #[test]
+    fn three_frame_links_in_clutter_depend_on_the_rate_and_acceleration_bounds_only() {
+        // Three frames fit exactly: with LEO bounds slow clutter links (docs/maths.md §5.10).
+        assert!(three_frame_links(2.0, 10.0) > 0.99);
+        assert!(three_frame_links(5.0, 1.0) < 0.001);
+    }
+
     #[test]
     fn random_triples_of_clutter_do_not_link() {
         // Clutter uniform in a 2° × 2° field, four frames: a quadratic through four random points misses
