@@ -75,6 +75,7 @@ impl MeasuredBirthsSpec {
             max_probability: self.max_probability,
             min_unexplained: self.min_unexplained,
             lifetime: self.lifetime,
+            tracklets: None,
         }
     }
 

@@ -30,7 +30,7 @@
 //!   right ascension and declination, azimuth and elevation only, range only, range and range-rate) in
 //!   one tracker; each kind measures its own components, padded to the tracker's `D = 4`.
 
-mod admissible;
+pub(crate) mod admissible;
 mod constant_velocity;
 pub mod light_time;
 mod mixed;
@@ -45,7 +45,7 @@ mod two_body_j2;
 /// [`crate::sensor::frames`]).
 pub use crate::sensor::EARTH_RADIUS;
 pub use admissible::tracklet::{
-    Attributable, LinkLimits, MAX_TRACKLET_FRAMES, TrackletError, TrackletFrame, tracklet_births,
+    Attributable, LinkLimits, MAX_TRACKLET_FRAMES, SkyPoint, TrackletError, TrackletFrame, tracklet_births,
 };
 pub use admissible::{AdmissibleRegion, BirthComponent, BirthError, GEO_RADIUS, MAX_BIRTH_COMPONENTS};
 pub use constant_velocity::ConstantVelocity;
@@ -241,6 +241,27 @@ pub trait BirthGeometry<T: Real, const S: usize, const D: usize> {
         &self,
         _z: &SVector<T, D>,
         _region: &AdmissibleRegion<T>,
+        _out: &mut [BirthComponent<T, S>],
+    ) -> Result<usize, BirthError> {
+        Err(BirthError::Unsupported)
+    }
+
+    /// Measurement `z` at the current placement as a direction on the sky, for tracklet births
+    /// (docs/maths.md §5.10). The default, `None`, is for kinds that measure no direction.
+    fn sky_point(&self, _z: &SVector<T, D>) -> Option<SkyPoint<T>> {
+        None
+    }
+
+    /// The birth density of a tracklet's `attributable` seen from `observer` (docs/maths.md §5.10), written
+    /// to `out` as [`tracklet_births`] does; the default has none.
+    ///
+    /// # Errors
+    /// [`BirthError::Unsupported`] by default; else as [`tracklet_births`].
+    fn tracklet_components(
+        &self,
+        _attributable: &Attributable<T>,
+        _observer: &[T; 6],
+        _settings: &crate::pool::TrackletBirths<T>,
         _out: &mut [BirthComponent<T, S>],
     ) -> Result<usize, BirthError> {
         Err(BirthError::Unsupported)

@@ -16,7 +16,8 @@
 
 use super::light_time::{self, LightTime};
 use super::{
-    AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, RadarRangeAzEl, RadarRangeRate,
+    AdmissibleRegion, Attributable, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, RadarRangeAzEl,
+    RadarRangeRate, SkyPoint,
 };
 use crate::real::{Real, c, cos, sin, sqrt};
 use crate::sensor::frames::{EarthRotation, look_angles, wrap_angle};
@@ -451,6 +452,20 @@ impl<T: Real, X: Placeable<T, D>, const D: usize, const C: usize> BirthGeometry<
         out: &mut [BirthComponent<T, 6>],
     ) -> Result<usize, BirthError> {
         self.placed.birth_components(z, region, out)
+    }
+
+    fn sky_point(&self, z: &SVector<T, D>) -> Option<SkyPoint<T>> {
+        self.placed.sky_point(z)
+    }
+
+    fn tracklet_components(
+        &self,
+        attributable: &Attributable<T>,
+        observer: &[T; 6],
+        settings: &crate::pool::TrackletBirths<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        self.placed.tracklet_components(attributable, observer, settings, out)
     }
 }
 

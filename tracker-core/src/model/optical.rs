@@ -18,7 +18,9 @@
 
 use super::admissible::optical_births;
 use super::radar::topocentric;
-use super::{AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure};
+use super::{
+    AdmissibleRegion, Attributable, BirthComponent, BirthError, BirthGeometry, Measure, SkyPoint, tracklet_births,
+};
 use crate::real::Real;
 use crate::sensor::Placement;
 use crate::sensor::frames::wrap_angle;
@@ -116,6 +118,20 @@ impl<T: Real> BirthGeometry<T, 6, 2> for OpticalRaDec<T> {
         out: &mut [BirthComponent<T, 6>],
     ) -> Result<usize, BirthError> {
         optical_births(&self.observer, [z[0], z[1]], self.sigma, region, out)
+    }
+
+    fn sky_point(&self, z: &SVector<T, 2>) -> Option<SkyPoint<T>> {
+        Some(SkyPoint { angles: [z[0], z[1]], sigma: self.sigma, observer: self.observer })
+    }
+
+    fn tracklet_components(
+        &self,
+        attributable: &Attributable<T>,
+        observer: &[T; 6],
+        settings: &crate::pool::TrackletBirths<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        tracklet_births(attributable, observer, &settings.region, settings.cells, out)
     }
 }
 

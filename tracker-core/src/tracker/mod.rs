@@ -588,7 +588,13 @@ where
                     measurement_use::<T, S, D, H, N, Z, B>(&self.generation, birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
                 let rows = measurements.len().min(Z);
-                let scan = ScanUse { time, measurements, unexplained: &unexplained[..rows], born: &born };
+                let scan = ScanUse {
+                    time,
+                    sensor: geometry.sensor,
+                    measurements,
+                    unexplained: &unexplained[..rows],
+                    born: &born,
+                };
                 self.pool.update(measured, capacity, &placed.model, &scan)
             }
             None => PoolUpdate::default(),

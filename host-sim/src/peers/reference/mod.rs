@@ -416,7 +416,13 @@ where
         if let Some(measured) = &self.config.birth.measured {
             let capacity = B.saturating_sub(self.config.birth.cells.len());
             let model = &tables.scan.placed.model;
-            let scan = ScanUse { time, measurements, unexplained: &posterior.unexplained, born: &posterior.born };
+            let scan = ScanUse {
+                time,
+                sensor: geometry.sensor,
+                measurements,
+                unexplained: &posterior.unexplained,
+                born: &posterior.born,
+            };
             self.pool.update(measured, capacity, model, &scan);
         }
         self.tracks = posterior.tracks;

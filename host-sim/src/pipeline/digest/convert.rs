@@ -110,5 +110,17 @@ pub fn measured<T: Real>(measured: &MeasuredBirths<f64>) -> MeasuredBirths<T> {
         max_probability: of(measured.max_probability),
         min_unexplained: of(measured.min_unexplained),
         lifetime: measured.lifetime,
+        tracklets: measured.tracklets.map(|t| tracker_core::pool::TrackletBirths {
+            frames: t.frames,
+            max_span: t.max_span,
+            limits: tracker_core::model::LinkLimits {
+                max_chi_squared: of(t.limits.max_chi_squared),
+                max_rate: of(t.limits.max_rate),
+                max_acceleration: of(t.limits.max_acceleration),
+                max_jerk: of(t.limits.max_jerk),
+            },
+            region: admissible(&t.region),
+            cells: t.cells,
+        }),
     }
 }

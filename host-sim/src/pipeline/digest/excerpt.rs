@@ -200,12 +200,13 @@ fn config(parts: &Parts) -> String {
         |m| {
             format!(
                 "Some(MeasuredBirths {{ region: {}, expected_births: {}, max_probability: {}, min_unexplained: {}, \
-                 lifetime: {} }})",
+                 lifetime: {}, tracklets: {} }})",
                 admissible(&m.region),
                 f(m.expected_births),
                 f(m.max_probability),
                 f(m.min_unexplained),
-                d(m.lifetime)
+                d(m.lifetime),
+                m.tracklets.map_or("None", |_| "compile_error!(\"tracklet births: the excerpt writes none\")")
             )
         },
     );

@@ -46,11 +46,23 @@ pub struct TrackletFrame<T> {
     pub angles: [T; 2],
 }
 
+/// One measurement as a direction on the sky, for tracklets: what a sensor that measures angles gives the
+/// birth pool ([`crate::model::BirthGeometry::sky_point`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SkyPoint<T> {
+    /// Topocentric right ascension and declination (rad).
+    pub angles: [T; 2],
+    /// Their noise σ (rad).
+    pub sigma: [T; 2],
+    /// The observer's inertial state (km, km/s) at the measurement.
+    pub observer: [T; 6],
+}
+
 /// Angles and angle rates of one object at a reference time, with their covariance, from a linked short
 /// arc.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Attributable<T: Real> {
-    /// The reference time: the mean time of the frames (s).
+    /// The reference time (s): the frames' mean time ([`Attributable::fit`]) or the caller's.
     pub time: f64,
     /// (α, δ, α̇, δ̇): rad and rad/s.
     pub values: [T; 4],
@@ -58,6 +70,8 @@ pub struct Attributable<T: Real> {
     pub covariance: SMatrix<T, 4, 4>,
     /// The fit's χ² (2 (n − 3) degrees of freedom).
     pub chi_squared: T,
+    /// The fitted accelerations on the sky, α̈ cos δ and δ̈ (rad/s²).
+    pub accelerations: [T; 2],
     /// Frames fitted.
     pub frames: usize,
 }
@@ -113,24 +127,38 @@ fn angle_difference<T: Real>(a: T, b: T) -> T {
 }
 
 impl<T: Real> Attributable<T> {
-    /// Fits `frames` (in any order) with a quadratic in time per angle, centred on their mean time;
-    /// `sigma` is the noise of (α, δ) per frame. The frames are a tracklet when the fit passes `limits`.
+    /// Fits `frames` (in any order) with a quadratic in time per angle about their mean time; `sigma` is
+    /// the noise of (α, δ) per frame. The frames are a tracklet when the fit passes `limits`.
     ///
     /// # Errors
     /// [`TrackletError`].
     pub fn fit(frames: &[TrackletFrame<T>], sigma: [T; 2], limits: &LinkLimits<T>) -> Result<Self, TrackletError> {
+        let mean = frames.iter().map(|f| f.time).sum::<f64>() / frames.len().max(1) as f64;
+        Self::fit_at(frames, mean, sigma, limits)
+    }
+
+    /// As [`Attributable::fit`], with the attributable at `time` (the birth pool takes the latest frame's,
+    /// where its observer is placed).
+    ///
+    /// # Errors
+    /// [`TrackletError`]; a non-finite `time` is [`TrackletError::NonFinite`].
+    pub fn fit_at(
+        frames: &[TrackletFrame<T>],
+        time: f64,
+        sigma: [T; 2],
+        limits: &LinkLimits<T>,
+    ) -> Result<Self, TrackletError> {
         let n = frames.len();
         if !(3..=MAX_TRACKLET_FRAMES).contains(&n) {
             return Err(TrackletError::Frames);
         }
         let finite = frames.iter().all(|f| f.time.is_finite() && f.angles.iter().all(|a| a.is_finite_value()));
-        if !finite || !sigma.iter().all(|s| s.is_finite_value() && *s > T::zero()) {
+        if !finite || !time.is_finite() || !sigma.iter().all(|s| s.is_finite_value() && *s > T::zero()) {
             return Err(TrackletError::NonFinite);
         }
         if frames.iter().enumerate().any(|(i, a)| frames[..i].iter().any(|b| b.time == a.time)) {
             return Err(TrackletError::Frames);
         }
-        let time = frames.iter().map(|f| f.time).sum::<f64>() / n as f64;
         let row = |f: &TrackletFrame<T>| {
             let dt = T::of_f64(f.time - time);
             SVector::<T, 3>::from([T::one(), dt, dt * dt * c(0.5)])
@@ -184,7 +212,7 @@ impl<T: Real> Attributable<T> {
             covariance[(axis + 2, axis)] += b0 * b1;
             covariance[(axis + 2, axis + 2)] += b1 * b1;
         }
-        Ok(Self { time, values, covariance, chi_squared, frames: n })
+        Ok(Self { time, values, covariance, chi_squared, accelerations, frames: n })
     }
 }
 
@@ -378,7 +406,7 @@ pub fn tracklet_births<T: Real>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::{EARTH_MU, EARTH_RADIUS};
     use crate::sensor::EARTH_ROTATION_RATE;
@@ -386,10 +414,10 @@ mod tests {
     use rand_xoshiro::Xoshiro256PlusPlus;
     use rand_xoshiro::rand_core::SeedableRng;
 
-    type S6 = SVector<f64, 6>;
+    pub(crate) type S6 = SVector<f64, 6>;
 
     /// Two-body acceleration and an RK4 step of `h` seconds.
-    fn step(x: &S6, h: f64) -> S6 {
+    pub(crate) fn step(x: &S6, h: f64) -> S6 {
         let f = |x: &S6| {
             let r = V3::from([x[0], x[1], x[2]]);
             let a = r * (-EARTH_MU / r.norm().powi(3));
@@ -403,7 +431,7 @@ mod tests {
     }
 
     /// The state at `t` s from `x` at 0 (1 s steps, then the rest).
-    fn propagate(x: &S6, t: f64) -> S6 {
+    pub(crate) fn propagate(x: &S6, t: f64) -> S6 {
         let mut state = *x;
         let whole = t.floor();
         for _ in 0..whole as usize {
@@ -413,7 +441,7 @@ mod tests {
     }
 
     /// A ground site's inertial state at `t` (latitude, longitude at t = 0, rad).
-    fn site(latitude: f64, longitude: f64, t: f64) -> [f64; 6] {
+    pub(crate) fn site(latitude: f64, longitude: f64, t: f64) -> [f64; 6] {
         let theta = longitude + EARTH_ROTATION_RATE * t;
         let r = V3::from([latitude.cos() * theta.cos(), latitude.cos() * theta.sin(), latitude.sin()]) * EARTH_RADIUS;
         let v = V3::from([0.0, 0.0, EARTH_ROTATION_RATE]).cross(&r);
@@ -421,7 +449,7 @@ mod tests {
     }
 
     /// An orbit's state at perifocal anomaly `nu` (rad): semi-major axis, eccentricity, inclination, RAAN.
-    fn orbit(a: f64, e: f64, inclination: f64, raan: f64, nu: f64) -> S6 {
+    pub(crate) fn orbit(a: f64, e: f64, inclination: f64, raan: f64, nu: f64) -> S6 {
         let p = a * (1.0 - e * e);
         let r = p / (1.0 + e * nu.cos());
         let (pos, vel) = (
@@ -438,12 +466,12 @@ mod tests {
     }
 
     /// Topocentric right ascension and declination of `x` from the site state `q`.
-    fn angles(x: &S6, q: &[f64; 6]) -> [f64; 2] {
+    pub(crate) fn angles(x: &S6, q: &[f64; 6]) -> [f64; 2] {
         let d = V3::from([x[0] - q[0], x[1] - q[1], x[2] - q[2]]);
         [d[1].atan2(d[0]), (d[2] / d.norm()).asin()]
     }
 
-    fn normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
+    pub(crate) fn normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
         // Box–Muller from two uniforms in (0, 1].
         let u = |rng: &mut Xoshiro256PlusPlus| ((rng.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64;
         let (u1, u2) = (u(rng), u(rng));
@@ -451,13 +479,13 @@ mod tests {
     }
 
     /// The site latitude and longitude (rad) under which `x` is at its highest, for the test geometry.
-    fn site_below(x: &S6) -> (f64, f64) {
+    pub(crate) fn site_below(x: &S6) -> (f64, f64) {
         let r = V3::from([x[0], x[1], x[2]]);
         ((r[2] / r.norm()).asin() * 0.9, r[1].atan2(r[0]) + 0.05)
     }
 
     /// Every bound orbit from LEO to beyond GEO: perigee ≥ R_E + 150 km, apogee ≤ 50,000 km.
-    fn bound() -> AdmissibleRegion<f64> {
+    pub(crate) fn bound() -> AdmissibleRegion<f64> {
         AdmissibleRegion {
             min_perigee_radius: EARTH_RADIUS + 150.0,
             max_apogee_radius: 50_000.0,
@@ -466,9 +494,9 @@ mod tests {
         }
     }
 
-    const SIGMA: f64 = 2.4e-5; // 5″
-    const CELLS: [usize; 2] = [24, 4];
-    const LIMITS: LinkLimits<f64> =
+    pub(crate) const SIGMA: f64 = 2.4e-5; // 5″
+    pub(crate) const CELLS: [usize; 2] = [24, 4];
+    pub(crate) const LIMITS: LinkLimits<f64> =
         LinkLimits { max_chi_squared: 18.5, max_rate: 0.05, max_acceleration: 1e-3, max_jerk: 2e-5 };
 
     /// Four noisy frames of `x0` `spacing` s apart from a site under it; the attributable, the site's
@@ -487,7 +515,7 @@ mod tests {
     }
 
     /// The smallest Mahalanobis distance² of `truth` to a component, and the components' count.
-    fn nearest(attributable: &Attributable<f64>, observer: &[f64; 6], truth: &S6) -> (f64, usize) {
+    pub(crate) fn nearest(attributable: &Attributable<f64>, observer: &[f64; 6], truth: &S6) -> (f64, usize) {
         let mut out = [BirthComponent::<f64, 6>::ZERO; 96];
         let n = tracklet_births(attributable, observer, &bound(), CELLS, &mut out).expect("births");
         let total: f64 = out[..n].iter().map(|c| c.weight).sum();

@@ -33,8 +33,8 @@
 
 use super::network::{angular_volume, check_platform, first_of_network, inertial_frame, observer_and_frame};
 use super::{
-    AdmissibleRegion, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, Placeable, RadarRangeAzEl,
-    RadarRangeRate,
+    AdmissibleRegion, Attributable, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, Placeable,
+    RadarRangeAzEl, RadarRangeRate, SkyPoint, tracklet_births,
 };
 use crate::real::{Real, atan2, cos, sin, sqrt};
 use crate::sensor::frames::{EarthRotation, wrap_angle};
@@ -460,6 +460,31 @@ impl<T: Real> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedLook<T> {
             SensorKind::Range | SensorKind::RangeRangeRate => Err(BirthError::Unsupported),
         }
     }
+
+    fn sky_point(&self, z: &Vector4<T>) -> Option<SkyPoint<T>> {
+        if matches!(self.births, SensorBirths::Off) {
+            return None;
+        }
+        let (angles, sigma) = match self.kind {
+            SensorKind::OpticalRaDec => ([z[0], z[1]], self.optical().sigma),
+            SensorKind::AzEl => {
+                let (direction, sigma) = self.az_el_as_ra_dec(z[0], z[1]);
+                ([direction[0], direction[1]], sigma)
+            }
+            _ => return None,
+        };
+        Some(SkyPoint { angles, sigma, observer: self.observer })
+    }
+
+    fn tracklet_components(
+        &self,
+        attributable: &Attributable<T>,
+        observer: &[T; 6],
+        settings: &crate::pool::TrackletBirths<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        tracklet_births(attributable, observer, &settings.region, settings.cells, out)
+    }
 }
 
 impl<T: Real> MixedLook<T> {
@@ -770,6 +795,20 @@ impl<T: Real, const C: usize> BirthGeometry<T, 6, MIXED_DIMENSION> for MixedNetw
         out: &mut [BirthComponent<T, 6>],
     ) -> Result<usize, BirthError> {
         self.placed.birth_components(z, region, out)
+    }
+
+    fn sky_point(&self, z: &Vector4<T>) -> Option<SkyPoint<T>> {
+        self.placed.sky_point(z)
+    }
+
+    fn tracklet_components(
+        &self,
+        attributable: &Attributable<T>,
+        observer: &[T; 6],
+        settings: &crate::pool::TrackletBirths<T>,
+        out: &mut [BirthComponent<T, 6>],
+    ) -> Result<usize, BirthError> {
+        self.placed.tracklet_components(attributable, observer, settings, out)
     }
 }
 

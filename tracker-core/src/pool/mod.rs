@@ -17,11 +17,14 @@
 //! `lifetime` seconds after its measurement; each scan its α is multiplied by the probability that it gave
 //! no birth in that scan. When the pool is full the cells with the smallest α give way.
 
+pub mod tracklets;
+
 use crate::ekf;
 use crate::gaussian::Gaussian;
 use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionModel};
 use crate::real::Real;
 use nalgebra::SVector;
+pub use tracklets::{MAX_LINKED_FRAMES, TRACKLET_FRAMES, TRACKLET_POINTS, TrackletBirths, TrackletBuffer};
 
 /// The settings of measurement-driven births.
 ///
@@ -47,6 +50,11 @@ pub struct MeasuredBirths<T> {
     pub min_unexplained: T,
     /// Seconds a cell lives after its measurement.
     pub lifetime: f64,
+    /// Births from tracklets for sensors that measure directions (docs/maths.md §5.10): a measurement
+    /// that links with earlier frames gives the cells of its tracklet's admissible region instead of its
+    /// own. `None`: single-frame cells only.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub tracklets: Option<TrackletBirths<T>>,
 }
 
 impl<T: Real> MeasuredBirths<T> {
@@ -58,6 +66,7 @@ impl<T: Real> MeasuredBirths<T> {
             max_probability: T::of_f64(0.1),
             min_unexplained: T::of_f64(0.5),
             lifetime: 600.0,
+            tracklets: None,
         }
     }
 
@@ -79,7 +88,10 @@ impl<T: Real> MeasuredBirths<T> {
         if !(self.lifetime.is_finite() && self.lifetime > 0.0) {
             return Err("measured births: lifetime must be finite and > 0");
         }
-        Ok(())
+        match &self.tracklets {
+            Some(tracklets) => tracklets.validate(),
+            None => Ok(()),
+        }
     }
 }
 
@@ -109,6 +121,8 @@ pub struct PoolUpdate {
     /// Unexplained measurements that gave no birth density (an empty admissible region, a non-finite
     /// result, more components than the pool holds).
     pub without_density: usize,
+    /// Unexplained measurements whose cells came from a tracklet (docs/maths.md §5.10).
+    pub tracklets: usize,
 }
 
 /// What one scan tells the pool: its time and measurements, each measurement's r_U and each pool cell's
@@ -117,6 +131,8 @@ pub struct PoolUpdate {
 pub struct ScanUse<'a, T, const D: usize> {
     /// Time of the scan (seconds since the tracker's epoch).
     pub time: f64,
+    /// The scan's sensor (its index in the network; 0 for a single sensor).
+    pub sensor: usize,
     /// The scan's measurements.
     pub measurements: &'a [SVector<T, D>],
     /// Per measurement, r_U.
@@ -129,6 +145,8 @@ pub struct ScanUse<'a, T, const D: usize> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct BirthPool<T: Real, const S: usize, const B: usize> {
     cells: heapless::Vec<PoolCell<T, S>, B>,
+    /// The earlier frames' unexplained directions, for tracklets.
+    tracklets: TrackletBuffer<T>,
 }
 
 impl<T: Real, const S: usize, const B: usize> Default for BirthPool<T, S, B> {
@@ -140,7 +158,7 @@ impl<T: Real, const S: usize, const B: usize> Default for BirthPool<T, S, B> {
 impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     /// An empty pool.
     pub const fn new() -> Self {
-        Self { cells: heapless::Vec::new() }
+        Self { cells: heapless::Vec::new(), tracklets: TrackletBuffer::new() }
     }
 
     /// The cells, oldest first.
@@ -148,9 +166,15 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         &self.cells
     }
 
-    /// Removes every cell.
+    /// The earlier frames kept for tracklets.
+    pub fn tracklet_frames(&self) -> &TrackletBuffer<T> {
+        &self.tracklets
+    }
+
+    /// Removes every cell and tracklet frame.
     pub fn clear(&mut self) {
         self.cells.clear();
+        self.tracklets.clear();
     }
 
     /// The cells predicted to `time` with `motion`, with their α; a cell whose prediction fails is left
@@ -178,7 +202,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         model: &G,
         scan: &ScanUse<'_, T, D>,
     ) -> PoolUpdate {
-        let ScanUse { time, measurements, unexplained, born } = *scan;
+        let ScanUse { time, sensor, measurements, unexplained, born } = *scan;
         let capacity = capacity.min(B);
         let mut update = PoolUpdate::default();
         // Age the old cells.
@@ -207,6 +231,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             .take(measurements.len())
             .fold(T::zero(), |sum, &r_u| if r_u >= minimum && r_u > T::zero() { sum + r_u } else { sum });
         if !(total > T::zero()) {
+            self.record_frame(settings, sensor, model, scan);
             return update;
         }
         let mut components = [BirthComponent::<T, S>::ZERO; B];
@@ -216,7 +241,10 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             }
             let share = settings.expected_births * r_u / total;
             let alpha = if share < settings.max_probability { share } else { settings.max_probability };
-            let count = match model.birth_components(z, &settings.region, &mut components) {
+            let linked = self.tracklet_components(settings, sensor, time, model, z, &mut components);
+            update.tracklets += usize::from(linked.is_some());
+            let own = || model.birth_components(z, &settings.region, &mut components);
+            let count = match linked.map_or_else(own, Ok) {
                 Ok(count) if count > 0 => count.min(B),
                 _ => {
                     update.without_density += 1;
@@ -233,7 +261,55 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
                 update.evicted += usize::from(gave_way);
             }
         }
+        self.record_frame(settings, sensor, model, scan);
         update
+    }
+
+    /// The cells of the best tracklet through `z` (docs/maths.md §5.10), written to `out`: `Some(count)`
+    /// when tracklets are on, `z` is a direction and it links with the sensor's earlier frames and its
+    /// region gives cells; `None` otherwise (the caller falls back to `z`'s own cells).
+    fn tracklet_components<G: MeasurementModel<T, S, D>, const D: usize>(
+        &self,
+        settings: &MeasuredBirths<T>,
+        sensor: usize,
+        time: f64,
+        model: &G,
+        z: &SVector<T, D>,
+        out: &mut [BirthComponent<T, S>],
+    ) -> Option<usize> {
+        let tracklets = settings.tracklets.as_ref()?;
+        let point = model.sky_point(z)?;
+        let attributable = self.tracklets.link(sensor, time, &point, tracklets)?;
+        let count = model.tracklet_components(&attributable, &point.observer, tracklets, out).ok()?;
+        (count > 0).then_some(count)
+    }
+
+    /// Keeps this scan's unexplained directions (r_U at least the minimum) for later tracklets, and
+    /// forgets frames older than the tracklets' span. Nothing when tracklets are off.
+    fn record_frame<G: MeasurementModel<T, S, D>, const D: usize>(
+        &mut self,
+        settings: &MeasuredBirths<T>,
+        sensor: usize,
+        model: &G,
+        scan: &ScanUse<'_, T, D>,
+    ) {
+        let Some(tracklets) = &settings.tracklets else {
+            return;
+        };
+        self.tracklets.expire(scan.time, tracklets.max_span);
+        let minimum = settings.min_unexplained;
+        let unexplained = |(z, &r_u): (&SVector<T, D>, &T)| {
+            if !(r_u >= minimum && r_u > T::zero()) {
+                return None;
+            }
+            model.sky_point(z).map(|point| (point, r_u))
+        };
+        let pairs = || scan.measurements.iter().zip(scan.unexplained).filter_map(unexplained);
+        // One σ per frame: the first direction's (a sensor's directions share it, up to the 1/cos δ of
+        // az/el converted to right ascension).
+        if let Some((first, _)) = pairs().next() {
+            self.tracklets.record(sensor, scan.time, first.sigma, pairs().map(|(point, r_u)| (point.angles, r_u)));
+        }
     }
 
     /// Adds `cell`, making room by removing the (oldest) cell of smallest α unless that α is larger than
@@ -306,7 +382,7 @@ mod tests {
     }
 
     fn scan<'a>(time: f64, zs: &'a [SVector<f64, 2>], r_u: &'a [f64], born: &'a [f64]) -> ScanUse<'a, f64, 2> {
-        ScanUse { time, measurements: zs, unexplained: r_u, born }
+        ScanUse { time, sensor: 0, measurements: zs, unexplained: r_u, born }
     }
 
     #[test]
