@@ -235,6 +235,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             refused,
             numerical_drops,
             lost_tracks: info.map_or(0, |i| i.lost_tracks),
+            tracklet_births: info.map_or(0, |i| i.tracklet_births),
         });
     }
     bar.finish_and_clear();
@@ -310,6 +311,7 @@ fn summarise(
         sensor_kinds: heading.sensor_kinds.clone(),
         numerical_drops: NumericalDropsSummary::default(),
         lost_tracks: records.iter().map(|r| r.lost_tracks).sum(),
+        tracklet_births: records.iter().map(|r| r.tracklet_births).sum(),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,
         residuals: None,

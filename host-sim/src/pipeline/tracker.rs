@@ -38,6 +38,8 @@ pub struct StepInfo {
     pub numerical_drops: tracker_core::report::NumericalDrops,
     /// Tracks the core declared lost (`tracker_core::TrackLoss`); none for the reference's own count.
     pub lost_tracks: usize,
+    /// Unexplained measurements whose birth cells came from a tracklet (docs/maths.md §5.10).
+    pub tracklet_births: usize,
 }
 
 /// Whether the core refused the scan for its own input (a measurement outside the field of view or not

@@ -170,6 +170,8 @@ pub struct ScanRecord {
     pub numerical_drops: tracker_core::report::NumericalDrops,
     /// Tracks the core declared lost at this scan (`tracker_core::TrackLoss`).
     pub lost_tracks: usize,
+    /// Unexplained measurements whose birth cells came from a tracklet (docs/maths.md §5.10).
+    pub tracklet_births: usize,
 }
 
 /// Writes one line of `estimates.csv`: the scan's columns, then label, mean, existence and the bound.

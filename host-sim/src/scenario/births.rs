@@ -15,6 +15,73 @@ pub enum AdmissiblePresetSpec {
     Leo,
     /// The GEO belt (near-circular, inclination ≤ 15°).
     Geo,
+    /// Every bound orbit: perigee ≥ R_E + 150 km, apogee ≤ 50,000 km (LEO to beyond GEO, GTO, Molniya).
+    Bound,
+}
+
+impl AdmissiblePresetSpec {
+    /// The core's region.
+    pub fn region(self, velocity_sigma: f64) -> tracker_core::model::AdmissibleRegion<f64> {
+        use tracker_core::model::AdmissibleRegion;
+        match self {
+            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(velocity_sigma),
+            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
+            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
+            AdmissiblePresetSpec::Bound => AdmissibleRegion::bound(),
+        }
+    }
+}
+
+/// Tracklet births (`birth.measured.tracklets`, `tracker_core::pool::TrackletBirths`, docs/maths.md
+/// §5.10): angles of successive frames of one sensor linked into short arcs whose admissible region in
+/// (range, range-rate) gives the birth cells. Rates in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrackletSpec {
+    /// Frames per tracklet, the current one included: 3 or 4.
+    pub frames: usize,
+    /// The longest time from a tracklet's first frame to its last (s).
+    pub max_span: f64,
+    /// The largest χ² of the fit (2 (frames − 3) degrees of freedom).
+    pub max_chi_squared: f64,
+    /// The largest angular rate (°/s).
+    pub max_rate_deg_s: f64,
+    /// The largest angular acceleration per axis (°/s²).
+    pub max_acceleration_deg_s2: f64,
+    /// The largest angular jerk per axis the fit neglects (°/s³).
+    #[serde(default)]
+    pub max_jerk_deg_s3: f64,
+    /// The admissible region of the tracklets' range and range-rate.
+    #[serde(default = "bound_region")]
+    pub region: AdmissiblePresetSpec,
+    /// Cells in ln(range) and in range-rate.
+    pub cells: [usize; 2],
+    /// Whether a direction that links with nothing yet makes its own single-frame cells (default: no).
+    #[serde(default)]
+    pub single_frame: bool,
+}
+
+fn bound_region() -> AdmissiblePresetSpec {
+    AdmissiblePresetSpec::Bound
+}
+
+impl TrackletSpec {
+    /// The core's settings.
+    pub fn core(&self) -> tracker_core::pool::TrackletBirths<f64> {
+        tracker_core::pool::TrackletBirths {
+            frames: self.frames,
+            max_span: self.max_span,
+            limits: tracker_core::model::LinkLimits {
+                max_chi_squared: self.max_chi_squared,
+                max_rate: self.max_rate_deg_s.to_radians(),
+                max_acceleration: self.max_acceleration_deg_s2.to_radians(),
+                max_jerk: self.max_jerk_deg_s3.to_radians(),
+            },
+            region: self.region.region(1.0),
+            cells: self.cells,
+            single_frame: self.single_frame,
+        }
+    }
 }
 
 /// Birth cells made from unexplained measurements (`tracker_core::pool::MeasuredBirths`,
@@ -49,6 +116,9 @@ pub struct MeasuredBirthsSpec {
     pub min_unexplained: f64,
     /// Seconds a cell lives.
     pub lifetime: f64,
+    /// Tracklet births for sensors that measure directions (none: single-frame cells only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracklets: Option<TrackletSpec>,
 }
 
 fn default_velocity_sigma() -> f64 {
@@ -62,12 +132,7 @@ fn default_min_unexplained() -> f64 {
 impl MeasuredBirthsSpec {
     /// The core's settings.
     pub fn core(&self) -> tracker_core::pool::MeasuredBirths<f64> {
-        use tracker_core::model::AdmissibleRegion;
-        let preset = match self.region {
-            AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(self.velocity_sigma),
-            AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
-            AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
-        };
+        let preset = self.region.region(self.velocity_sigma);
         let region = with_cells(preset, [self.headings, self.speeds, self.climbs, self.ranges]);
         tracker_core::pool::MeasuredBirths {
             region,
@@ -75,7 +140,7 @@ impl MeasuredBirthsSpec {
             max_probability: self.max_probability,
             min_unexplained: self.min_unexplained,
             lifetime: self.lifetime,
-            tracklets: None,
+            tracklets: self.tracklets.map(|t| t.core()),
         }
     }
 

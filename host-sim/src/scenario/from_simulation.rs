@@ -190,6 +190,7 @@ pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     max_probability: 1e-3,
     min_unexplained: 0.5,
     lifetime: 60.0,
+    tracklets: None,
 };
 
 /// The birth pool a telescope preset writes when objects are unknown to the prior: the GEO belt, one
@@ -206,6 +207,7 @@ pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     max_probability: 1e-2,
     min_unexplained: 0.5,
     lifetime: 1200.0,
+    tracklets: None,
 };
 
 /// Figures of a generated file.

@@ -243,6 +243,10 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             let alpha = if share < settings.max_probability { share } else { settings.max_probability };
             let linked = self.tracklet_components(settings, sensor, time, model, z, &mut components);
             update.tracklets += usize::from(linked.is_some());
+            let awaits_link = settings.tracklets.is_some_and(|t| !t.single_frame) && model.sky_point(z).is_some();
+            if linked.is_none() && awaits_link {
+                continue;
+            }
             let own = || model.birth_components(z, &settings.region, &mut components);
             let count = match linked.map_or_else(own, Ok) {
                 Ok(count) if count > 0 => count.min(B),

@@ -31,6 +31,10 @@ pub struct TrackletBirths<T> {
     pub region: AdmissibleRegion<T>,
     /// Cells of the region: in ln ρ, in ρ̇.
     pub cells: [usize; 2],
+    /// Whether a direction that links with nothing yet makes its own single-frame cells (§5.7). Without
+    /// them an object's first frames stay unexplained until they link, and its births are one tracklet's.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub single_frame: bool,
 }
 
 impl<T: Real> TrackletBirths<T> {
@@ -223,6 +227,7 @@ mod tests {
                 limits: LIMITS,
                 region: bound(),
                 cells: [24, 4],
+                single_frame: true,
             }),
             ..MeasuredBirths::new(AdmissibleRegion::geo())
         }

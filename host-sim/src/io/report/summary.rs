@@ -72,6 +72,10 @@ pub struct RunSummary {
     /// Absent when none.
     #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
     pub lost_tracks: usize,
+    /// Unexplained measurements whose birth cells came from a tracklet (`birth.measured.tracklets`,
+    /// docs/maths.md §5.10). Absent when none.
+    #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
+    pub tracklet_births: usize,
     /// Scans the core refused for their input; the run went on (issue 29).
     #[serde(default)]
     pub refused_scans: super::RefusedScans,

@@ -121,6 +121,7 @@ pub fn measured<T: Real>(measured: &MeasuredBirths<f64>) -> MeasuredBirths<T> {
             },
             region: admissible(&t.region),
             cells: t.cells,
+            single_frame: t.single_frame,
         }),
     }
 }

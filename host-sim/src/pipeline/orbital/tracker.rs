@@ -145,6 +145,7 @@ where
             budget_reached: false,
             numerical_drops: report.numerical_drops,
             lost_tracks: report.lost_tracks,
+            tracklet_births: report.birth_pool.tracklets,
         })
     }
 

@@ -191,6 +191,14 @@ impl<T: Real> AdmissibleRegion<T> {
         }
     }
 
+    /// Every bound orbit from LEO to beyond GEO, GTO and Molniya included: perigee ≥ R_E + 150 km, apogee
+    /// ≤ 50,000 km, any inclination; single-frame cells as [`AdmissibleRegion::leo`], shell the whole band.
+    /// The region of tracklet births (docs/maths.md §5.10).
+    pub fn bound() -> Self {
+        let (low, high) = (c(EARTH_RADIUS + 150.0), c(50_000.0));
+        Self { min_perigee_radius: low, max_apogee_radius: high, shell: [low, high], ..Self::leo() }
+    }
+
     /// For planar position models: velocity N(0, `velocity_sigma`² I) (the orbital fields are those of
     /// [`AdmissibleRegion::leo`]).
     pub fn planar(velocity_sigma: T) -> Self {

@@ -486,12 +486,7 @@ pub(crate) mod tests {
 
     /// Every bound orbit from LEO to beyond GEO: perigee ≥ R_E + 150 km, apogee ≤ 50,000 km.
     pub(crate) fn bound() -> AdmissibleRegion<f64> {
-        AdmissibleRegion {
-            min_perigee_radius: EARTH_RADIUS + 150.0,
-            max_apogee_radius: 50_000.0,
-            shell: [EARTH_RADIUS + 150.0, 50_000.0],
-            ..AdmissibleRegion::leo()
-        }
+        AdmissibleRegion::bound()
     }
 
     pub(crate) const SIGMA: f64 = 2.4e-5; // 5″
