@@ -144,6 +144,8 @@ fn head<T: Real, const K: usize>(z: &Vector4<T>) -> SVector<T, K> {
 struct Instant<'a, T>(&'a MixedLook<T>);
 
 impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for Instant<'_, T> {
+    // Inlined, so that a sensor without light time runs the code of a network without the setting.
+    #[inline(always)]
     fn measure(&self, state: &SVector<T, 6>) -> Vector4<T> {
         let (o, look) = (T::zero(), self.0);
         match look.kind {
@@ -165,6 +167,7 @@ impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for Instant<'_, T> {
         }
     }
 
+    #[inline(always)]
     fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, 4, 6> {
         let look = self.0;
         match look.kind {
