@@ -362,6 +362,10 @@ typedef struct RfisstConfig {
   uint32_t store_overflow;
   // `RFISST_NUMERICAL_FAILURE_DROP_TRACK` or `RFISST_NUMERICAL_FAILURE_ERROR`.
   uint32_t numerical_failure;
+  // The lost-track rule: 0, tracks are never declared lost (the exact recursion, the default); n in
+  // 1..=65535, a track unseen in n consecutive scans is dropped (`TrackLoss::AfterUnseenScans`; needs a
+  // gate, docs/maths.md).
+  uint32_t lost_after_unseen_scans;
   // The tracker's random seed.
   uint64_t seed;
 } RfisstConfig;

@@ -151,13 +151,16 @@ pub(crate) unsafe fn init(
     prior_time: f64,
 ) -> Result<(), Failure> {
     with_kind!(kind, Tr => {
+        /// The empty tracker of a placeholder configuration, built at compile time (in `.rodata`).
+        static IMAGE: Tr = <Tr as handle::Build>::PLACEHOLDER;
         // SAFETY: as this function's.
-        unsafe { init_as::<Tr>(storage, kind, config, prior, prior_time) }
+        unsafe { init_as::<Tr>(storage, kind, config, prior, prior_time, &IMAGE) }
     })
 }
 
 /// [`init`] for the tracker type `Tr` (one function per type, so that a call's stack frame holds one
-/// tracker type's temporaries only).
+/// tracker type's temporaries only): `image` copied into the storage, then the configuration and the prior
+/// installed in place, so that no tracker passes through the stack.
 ///
 /// # Safety
 /// As [`init`], with `Tr` the type of `kind`.
@@ -168,6 +171,7 @@ unsafe fn init_as<Tr: handle::Build>(
     config: &RfisstConfig,
     prior: &[RfisstPriorHypothesis],
     prior_time: f64,
+    image: &Tr,
 ) -> Result<(), Failure> {
     let config = match Tr::config(config) {
         Ok(config) => config,
@@ -178,15 +182,15 @@ unsafe fn init_as<Tr: handle::Build>(
         }
     };
     let slot = storage.cast::<Slot<Tr>>();
-    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment). Field by field, so that
-    // the tracker is built in the storage rather than on the stack and copied.
+    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment), and `image` is a valid
+    // `Tr` outside the storage. Field by field, the tracker copied from its image memory to memory.
     unsafe {
         core::ptr::addr_of_mut!((*slot).header).write(Header::new(FAILED, kind));
-        core::ptr::addr_of_mut!((*slot).tracker).write(Tr::empty(config));
+        core::ptr::copy_nonoverlapping(image, core::ptr::addr_of_mut!((*slot).tracker), 1);
     }
     // SAFETY: just initialised.
     let slot = unsafe { &mut *slot };
-    match Ops::reset(&mut slot.tracker, prior, prior_time) {
+    match slot.tracker.configure(config, prior, prior_time) {
         Ok(()) => {
             slot.header.magic = READY;
             Ok(())

@@ -208,6 +208,10 @@ pub struct RfisstConfig {
     pub store_overflow: u32,
     /// `RFISST_NUMERICAL_FAILURE_DROP_TRACK` or `RFISST_NUMERICAL_FAILURE_ERROR`.
     pub numerical_failure: u32,
+    /// The lost-track rule: 0, tracks are never declared lost (the exact recursion, the default); n in
+    /// 1..=65535, a track unseen in n consecutive scans is dropped (`TrackLoss::AfterUnseenScans`; needs a
+    /// gate, docs/maths.md).
+    pub lost_after_unseen_scans: u32,
     /// The tracker's random seed.
     pub seed: u64,
 }
@@ -440,6 +444,7 @@ impl RfisstConfig {
             selection: choice::RFISST_SELECTION_TOP_WEIGHT,
             store_overflow: choice::RFISST_STORE_OVERFLOW_PRUNE_CHILDREN,
             numerical_failure: choice::RFISST_NUMERICAL_FAILURE_DROP_TRACK,
+            lost_after_unseen_scans: 0,
             seed: 1,
         }
     }

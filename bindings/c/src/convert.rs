@@ -256,10 +256,18 @@ fn common<T: Real, M, G, const S: usize>(
             choice::RFISST_NUMERICAL_FAILURE_ERROR => NumericalFailure::Error,
             _ => return Err(Failure::invalid("numerical_failure: unknown RFISST_NUMERICAL_FAILURE_* code")),
         },
-        // Not in the C interface yet: the exact recursion.
-        track_loss: tracker_core::TrackLoss::Never,
+        track_loss: track_loss(c.lost_after_unseen_scans)?,
         seed: c.seed,
     })
+}
+
+/// The lost-track rule of `lost_after_unseen_scans` (0: never).
+fn track_loss(scans: u32) -> Result<tracker_core::TrackLoss, Failure> {
+    match u16::try_from(scans).map(core::num::NonZeroU16::new) {
+        Ok(None) => Ok(tracker_core::TrackLoss::Never),
+        Ok(Some(n)) => Ok(tracker_core::TrackLoss::AfterUnseenScans(n)),
+        Err(_) => Err(Failure::invalid("lost_after_unseen_scans: above 65535 (0: never)")),
+    }
 }
 
 /// The child generation.

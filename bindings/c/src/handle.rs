@@ -6,14 +6,14 @@
 #[cfg(not(feature = "std"))]
 use crate::config::RFISST_MAX_PRIOR_OBJECTS;
 use crate::config::{RfisstConfig, RfisstPriorHypothesis, RfisstPriorObject, RfisstStepReport, RfisstTrack, sensor};
-use crate::convert;
 use crate::status::{Failure, RfisstStatus};
+use crate::{convert, placeholder};
 use core::fmt::Write as _;
 use nalgebra::SVector;
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::{
-    Network, NetworkTracker, OpticalNetwork, OpticalTracker, PriorHypothesis, PriorObject, RadarNetwork, RadarTracker,
-    Real, ScanGeometry, SsaTracker, StepError, TrackLabel, Tracker, ssa_caps,
+    Config, Network, NetworkTracker, OpticalNetwork, OpticalTracker, PriorHypothesis, PriorObject, RadarNetwork,
+    RadarTracker, Real, ScanGeometry, SsaTracker, StepError, TrackLabel, Tracker, ssa_caps,
 };
 
 /// The default trackers, by code (`RfisstKind` in C).
@@ -198,25 +198,7 @@ where
     }
 
     fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        let mut objects: Objects<T, S> = Objects::new();
-        let mut ranges: heapless::Vec<(T, usize, usize), H> = heapless::Vec::new();
-        for (index, hypothesis) in prior.iter().enumerate() {
-            let start = objects.len();
-            for object in c_slice(hypothesis.objects, hypothesis.object_count, index)? {
-                let state = convert::gaussian(&object.state);
-                push_object(&mut objects, PriorObject { label: TrackLabel(object.label), state })?;
-            }
-            ranges
-                .push((T::of_f64(hypothesis.weight), start, objects.len()))
-                .map_err(|_| Failure::Config(tracker_core::ConfigError::PriorTooManyHypotheses))?;
-        }
-        let mut hypotheses: heapless::Vec<PriorHypothesis<'_, T, S>, H> = heapless::Vec::new();
-        for &(weight, start, end) in &ranges {
-            let objects = objects.get(start..end).unwrap_or(&[]);
-            // Same capacity as `ranges`: cannot overflow.
-            let _ = hypotheses.push(PriorHypothesis { weight, objects });
-        }
-        Tracker::reset(self, &hypotheses, time).map_err(Failure::Config)
+        load(self, None, prior, time)
     }
 
     fn step(
@@ -285,6 +267,55 @@ where
     }
 }
 
+/// Loads the C prior at `time` into `tracker`, with `config` installed too when given
+/// ([`Tracker::reset_with`]) or the tracker's own ([`Tracker::reset`]); on failure the tracker is unchanged.
+fn load<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    tracker: &mut Tracker<T, M, G, S, D, H, N, Z, K, B>,
+    config: Option<Config<T, M, G, S, B>>,
+    prior: &[RfisstPriorHypothesis],
+    time: f64,
+) -> Result<(), Failure>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D> + Clone,
+{
+    let mut objects: Objects<T, S> = Objects::new();
+    let mut ranges: heapless::Vec<(T, usize, usize), H> = heapless::Vec::new();
+    for (index, hypothesis) in prior.iter().enumerate() {
+        let start = objects.len();
+        for object in c_slice(hypothesis.objects, hypothesis.object_count, index)? {
+            let state = convert::gaussian(&object.state);
+            push_object(&mut objects, PriorObject { label: TrackLabel(object.label), state })?;
+        }
+        ranges
+            .push((T::of_f64(hypothesis.weight), start, objects.len()))
+            .map_err(|_| Failure::Config(tracker_core::ConfigError::PriorTooManyHypotheses))?;
+    }
+    let mut hypotheses: heapless::Vec<PriorHypothesis<'_, T, S>, H> = heapless::Vec::new();
+    for &(weight, start, end) in &ranges {
+        let objects = objects.get(start..end).unwrap_or(&[]);
+        // Same capacity as `ranges`: cannot overflow.
+        let _ = hypotheses.push(PriorHypothesis { weight, objects });
+    }
+    match config {
+        Some(config) => tracker.reset_with(config, &hypotheses, time),
+        None => tracker.reset(&hypotheses, time),
+    }
+    .map_err(Failure::Config)
+}
+
 /// The converted prior objects: bounded without `std`, growable with it.
 #[cfg(not(feature = "std"))]
 type Objects<T, const S: usize> = heapless::Vec<PriorObject<T, S>, RFISST_MAX_PRIOR_OBJECTS>;
@@ -332,45 +363,49 @@ fn c_slice<'a>(
     Ok(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// Builds one default tracker from a C configuration (not yet holding a prior), in two steps so that the
-/// large tracker can be written straight into the caller's storage: [`Build::config`] converts and
-/// checks the C values (small), [`Build::empty`] is `Tracker::empty`.
-pub trait Build: Ops + Sized {
+/// Builds one default tracker from a C configuration in the caller's storage, in three steps so that the
+/// large tracker never passes through the stack: [`Build::config`] converts and checks the C values
+/// (small), [`Build::PLACEHOLDER`] is the compile-time image copied into the storage
+/// ([`crate::placeholder`]), [`Build::configure`] installs the configuration and the prior in place.
+pub trait Build: Ops + Sized + 'static {
     /// The core configuration.
     type Config;
+    /// `Tracker::empty` of a placeholder configuration.
+    const PLACEHOLDER: Self;
     /// Converts the C configuration.
     fn config(config: &RfisstConfig) -> Result<Self::Config, Failure>;
-    /// `Tracker::empty(config)`.
-    fn empty(config: Self::Config) -> Self;
+    /// `Tracker::reset_with(config, prior, time)`; on failure the tracker is unchanged.
+    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure>;
 }
 
 impl<T: Real> Build for SsaTracker<T> {
     type Config = tracker_core::SsaConfig<T>;
+    const PLACEHOLDER: Self = SsaTracker::empty(placeholder::planar());
     fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         convert::planar(config)
     }
-    #[inline(always)]
-    fn empty(config: Self::Config) -> Self {
-        SsaTracker::empty(config)
+    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load(self, Some(config), prior, time)
     }
 }
 
 impl<T: Real> Build for RadarTracker<T> {
     type Config = tracker_core::RadarConfig<T>;
+    const PLACEHOLDER: Self = RadarTracker::empty(placeholder::orbital(RadarNetwork::unconfigured()));
     fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors = convert::single_kind_sensors::<T, 3, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_RADAR)?;
         let network = RadarNetwork::<T>::new(convert::rotation(config), &sensors)
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
         convert::config3d(config, network)
     }
-    #[inline(always)]
-    fn empty(config: Self::Config) -> Self {
-        RadarTracker::empty(config)
+    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load(self, Some(config), prior, time)
     }
 }
 
 impl<T: Real> Build for OpticalTracker<T> {
     type Config = tracker_core::OpticalConfig<T>;
+    const PLACEHOLDER: Self = OpticalTracker::empty(placeholder::orbital(OpticalNetwork::unconfigured()));
     fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors =
             convert::single_kind_sensors::<T, 2, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_OPTICAL)?;
@@ -378,23 +413,22 @@ impl<T: Real> Build for OpticalTracker<T> {
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
         convert::config3d(config, network)
     }
-    #[inline(always)]
-    fn empty(config: Self::Config) -> Self {
-        OpticalTracker::empty(config)
+    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load(self, Some(config), prior, time)
     }
 }
 
 impl<T: Real> Build for NetworkTracker<T> {
     type Config = tracker_core::NetworkConfig<T>;
+    const PLACEHOLDER: Self = NetworkTracker::empty(placeholder::orbital(Network::unconfigured()));
     fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
         let sensors = convert::mixed_sensors::<T, { ssa_caps::NETWORK_SENSORS }>(config)?;
         let network = Network::<T>::new(convert::rotation(config), &sensors)
             .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
         convert::config3d(config, network)
     }
-    #[inline(always)]
-    fn empty(config: Self::Config) -> Self {
-        NetworkTracker::empty(config)
+    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load(self, Some(config), prior, time)
     }
 }
 

@@ -26,6 +26,7 @@ pub mod api;
 pub mod config;
 pub mod convert;
 pub mod handle;
+pub mod placeholder;
 #[cfg(feature = "std")]
 pub mod scenario;
 pub mod status;

@@ -23,7 +23,7 @@ use tracker_core::sampler::Proposal;
 use tracker_core::sensor::Platform;
 use tracker_core::{
     BirthDetection, BirthEvents, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, OpticalRaDec,
-    PriorObject, RadarRangeAzEl, Region, Sensor, StoreOverflow, ssa_caps,
+    PriorObject, RadarRangeAzEl, Region, Sensor, StoreOverflow, TrackLoss, ssa_caps,
 };
 
 /// One scan in the tracker's units (planar as in the file; 3-D angles in radians).
@@ -277,6 +277,10 @@ fn common<M, G, const S: usize>(
         NumericalFailure::DropTrack => choice::RFISST_NUMERICAL_FAILURE_DROP_TRACK,
         NumericalFailure::Error => choice::RFISST_NUMERICAL_FAILURE_ERROR,
     };
+    c.lost_after_unseen_scans = match core.track_loss {
+        TrackLoss::Never => 0,
+        TrackLoss::AfterUnseenScans(n) => u32::from(n.get()),
+    };
     c.seed = core.seed;
     Ok(c)
 }
@@ -505,6 +509,7 @@ fn c_config(c: &RfisstConfig) -> String {
             "    .selection = {}u, .store_overflow = {}u, .numerical_failure = {}u,",
             c.selection, c.store_overflow, c.numerical_failure
         ),
+        format!("    .lost_after_unseen_scans = {}u,", c.lost_after_unseen_scans),
         format!("    .seed = {}ull,", c.seed),
     ]
     .join("\n")

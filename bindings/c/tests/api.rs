@@ -151,6 +151,52 @@ fn json_path_gives_host_sim_digests_radar_f32() {
 }
 
 #[test]
+fn the_lost_track_rule_is_configured_from_c_and_json_as_on_the_host() {
+    with_big_stack(|| {
+        let (mut parsed, _) = radar_scenario();
+        let count = parsed.scans.len();
+        let plain = host_sim::pipeline::digest::orbital::run(&parsed, Some(count)).expect("host digest");
+        // A track unseen in one scan (in view, nothing in its gate) is dropped: the rule fires here.
+        parsed.tracker.gate.get_or_insert(5.0);
+        parsed.tracker.lost_after_unseen_scans = core::num::NonZeroU16::new(1);
+        let json = serde_json::to_string(&parsed).expect("JSON");
+        let host = host_sim::pipeline::digest::orbital::run(&parsed, Some(count)).expect("host digest");
+        assert_ne!(host, plain, "the rule changes this run");
+        let scenario = from_json(&json, RfisstKind::RfisstRadarF32, Some(count)).expect("radar");
+        assert_eq!(scenario.config.lost_after_unseen_scans, 1);
+        let mut storage = Storage::new();
+        let tracker = init(&mut storage, RfisstKind::RfisstRadarF32, &scenario);
+        assert_eq!(digest_text(tracker, &scenario, count), host);
+        // The default is the exact recursion; a count beyond u16 is refused with its field named.
+        let mut config = RfisstConfig::default_for(false);
+        assert_eq!(config.lost_after_unseen_scans, 0);
+        config = RfisstConfig { lost_after_unseen_scans: 70_000, ..scenario.config };
+        let hypotheses = scenario.hypotheses();
+        let mut handle = core::ptr::null_mut();
+        // SAFETY: valid storage, configuration and prior.
+        let status = unsafe {
+            rfisst_tracker_init(
+                storage.ptr(),
+                storage.size(),
+                RfisstKind::RfisstRadarF32 as u32,
+                &config,
+                hypotheses.as_ptr(),
+                hypotheses.len(),
+                scenario.prior_time,
+                &mut handle,
+            )
+        };
+        assert_eq!(status, RfisstStatus::RfisstInvalidConfig);
+        assert!(handle.is_null());
+        assert!(
+            last_error(storage.ptr().cast()).contains("lost_after_unseen_scans"),
+            "{}",
+            last_error(storage.ptr().cast())
+        );
+    });
+}
+
+#[test]
 fn every_kind_initialises_steps_and_reports() {
     with_big_stack(|| {
         let planar = planar_scenario(3);

@@ -23,7 +23,7 @@
 use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
-use tracker_core::model::ProcessNoise;
+use tracker_core::model::{LightTime, ProcessNoise};
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
 use tracker_core::sensor::{EarthRotation, GroundSite, LookAxes, Platform, ScanGeometry, SiteSensor};
@@ -316,6 +316,9 @@ fn network<T: Real>(argc: i32) -> u64 {
     let Ok(network) = Network::<T>::new(EarthRotation::new(c(0.4) * x), &sensors[..argc as usize % 7]) else {
         return 3;
     };
+    // Light time on the first sensor for some inputs: its measurement path is linked too.
+    let mode = black_box(if argc > 4 { LightTime::TwoWayReceive } else { LightTime::Off });
+    let Ok(network) = network.with_light_time(0, mode) else { return 4 };
     let config: NetworkConfig<T> = black_box(Config {
         motion: motion(x),
         measurement: network,
@@ -396,6 +399,7 @@ fn births<T: Real>(argc: i32) -> u64 {
         frame: enu,
         sigma: black_box([c(5e-6), c(5e-6), c(1e-3), c(1e-4)]),
         births: SensorBirths::FromModel,
+        light_time: LightTime::Off,
     };
     let z = black_box(SVector::from([c(0.3) * x, c(0.1), c(0.9), c(-1.0)]));
     fold(mixed.birth_components(&z, &region, &mut out[..length]));

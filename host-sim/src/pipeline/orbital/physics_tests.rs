@@ -156,3 +156,26 @@ fn track_takes_light_time_and_refraction_from_the_tdm() {
     let reference = summary(stated, "tdm-stated");
     assert!((gospa(&modelled) - gospa(&reference)).abs() < 1e-9, "{} {}", gospa(&modelled), gospa(&reference));
 }
+
+#[test]
+fn light_time_in_a_network_of_mixed_kinds_tracks_as_in_a_network_of_one_kind() {
+    let mut sim = tiny(0.1);
+    let physics = SensorPhysics { light_time: LightTime::TwoWayReceive, ..SensorPhysics::default() };
+    apply(&mut sim, &[physics]).expect("physics");
+    let mut single = scenario(&sim);
+    single.sensors[0].light_time = Some(LightTimeSpec::TwoWayReceive);
+    // The same radar as the one sensor of a `network` (tracker-core's MixedNetwork).
+    let mut mixed = single.clone();
+    mixed.measurement = crate::scenario::v2::Measurement3dSpec::Network;
+    mixed.sensors[0].kind = Some(crate::scenario::v2::Measurement3dSpec::Radar);
+    let ignored = {
+        let mut off = mixed.clone();
+        off.sensors[0].light_time = None;
+        summary(off, "mixed-light-off")
+    };
+    let (single, mixed) = (summary(single, "single-light-on"), summary(mixed, "mixed-light-on"));
+    eprintln!("mean GOSPA: one kind {} mixed {} mixed ignored {}", gospa(&single), gospa(&mixed), gospa(&ignored));
+    // The core gives the bits of the network of one kind (model/mixed tests): the same run.
+    assert_eq!(gospa(&mixed), gospa(&single));
+    assert!(gospa(&mixed) < gospa(&ignored), "{} {}", gospa(&mixed), gospa(&ignored));
+}

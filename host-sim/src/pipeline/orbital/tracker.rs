@@ -14,7 +14,7 @@ use crate::scenario::v2::{Measurement3dSpec, Scenario3d};
 use crate::{with_capacities, with_measurement};
 use nalgebra::SVector;
 use std::collections::HashMap;
-use tracker_core::model::{MeasurementModel, MixedNetwork, MixedSensor, Placeable, SensorNetwork};
+use tracker_core::model::{LightTime, MeasurementModel, MixedNetwork, MixedSensor, Placeable, SensorNetwork};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, ScanGeometry, SiteSensor};
 use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, Sensor, StepError, Tracker, TwoBodyJ2};
 
@@ -74,7 +74,7 @@ where
                 .map_err(|e| Error::input(format!("sensors: {e}")))?;
         // Light time where a sensor sets it (docs/maths.md §6.12); off, the network measures as before.
         scenario.sensors.iter().enumerate().try_fold(network, |network, (i, sensor)| match sensor.light_time_mode() {
-            tracker_core::model::LightTime::Off => Ok(network),
+            LightTime::Off => Ok(network),
             mode => network.with_light_time(i, mode).map_err(|e| Error::input(format!("sensors[{i}].light_time: {e}"))),
         })
     }
@@ -82,17 +82,6 @@ where
 
 impl ScenarioNetwork<MIXED> for MixedNetwork<f64, C> {
     fn from_scenario(scenario: &Scenario3d) -> Result<Self, Error> {
-        // Light time is modelled for networks of one kind only (tracker-core's `SensorNetwork`): refused
-        // here rather than ignored.
-        if let Some(i) =
-            scenario.sensors.iter().position(|s| s.light_time_mode() != tracker_core::model::LightTime::Off)
-        {
-            return Err(Error::input(format!(
-                "sensors[{i}].light_time: not modelled yet for a sensor of a network of mixed kinds (measurement \
-                 type {}); leave it out or \"off\"",
-                scenario.measurement.name()
-            )));
-        }
         let sites = site_sensors::<MIXED>(scenario);
         let mut sensors = Vec::with_capacity(sites.len());
         for (i, sensor) in sites.into_iter().enumerate() {
@@ -105,6 +94,12 @@ impl ScenarioNetwork<MIXED> for MixedNetwork<f64, C> {
             if let Some(births) = sensor.birth_region {
                 network =
                     network.with_births(i, births.core()).map_err(|e| Error::input(format!("sensors[{i}]: {e}")))?;
+            }
+            // Light time where a sensor sets it (docs/maths.md §6.12), as for a network of one kind.
+            if sensor.light_time_mode() != LightTime::Off {
+                network = network
+                    .with_light_time(i, sensor.light_time_mode())
+                    .map_err(|e| Error::input(format!("sensors[{i}].light_time: {e}")))?;
             }
         }
         Ok(network)

@@ -31,6 +31,11 @@
 //! region (with an isotropic angular σ, the larger of σ_A cos E and σ_E). Range-only kinds give no birth
 //! density: their objects are born from another sensor's measurements.
 
+mod kind;
+
+pub use kind::{KindError, KindMeasurement, SensorKind};
+
+use super::light_time::{self, LightTime};
 use super::network::{angular_volume, check_platform, first_of_network, inertial_frame, observer_and_frame};
 use super::{
     AdmissibleRegion, Attributable, BirthComponent, BirthError, BirthGeometry, Measure, OpticalRaDec, Placeable,
@@ -43,172 +48,6 @@ use nalgebra::{SMatrix, SVector};
 
 /// The measurement components of a [`MixedNetwork`]: the largest kind's dimension.
 pub const MIXED_DIMENSION: usize = 4;
-
-/// What a sensor measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum SensorKind {
-    /// Range, azimuth, elevation (km, rad, rad).
-    Radar,
-    /// Range, azimuth, elevation, range-rate (km, rad, rad, km/s).
-    RadarRangeRate,
-    /// Topocentric right ascension and declination (rad).
-    OpticalRaDec,
-    /// Azimuth and elevation only (rad): a ground station's mount angles.
-    AzEl,
-    /// Range only (km).
-    Range,
-    /// Range and range-rate (km, km/s).
-    RangeRangeRate,
-}
-
-impl SensorKind {
-    /// Every kind, in a fixed order.
-    pub const ALL: [SensorKind; 6] = [
-        SensorKind::Radar,
-        SensorKind::RadarRangeRate,
-        SensorKind::OpticalRaDec,
-        SensorKind::AzEl,
-        SensorKind::Range,
-        SensorKind::RangeRangeRate,
-    ];
-
-    /// How many components it measures.
-    pub const fn dimension(self) -> usize {
-        match self {
-            SensorKind::Radar => 3,
-            SensorKind::RadarRangeRate => 4,
-            SensorKind::OpticalRaDec | SensorKind::AzEl | SensorKind::RangeRangeRate => 2,
-            SensorKind::Range => 1,
-        }
-    }
-
-    /// Its components in order, by name.
-    pub const fn components(self) -> &'static [&'static str] {
-        match self {
-            SensorKind::Radar => &["range", "azimuth", "elevation"],
-            SensorKind::RadarRangeRate => &["range", "azimuth", "elevation", "range_rate"],
-            SensorKind::OpticalRaDec => &["right_ascension", "declination"],
-            SensorKind::AzEl => &["azimuth", "elevation"],
-            SensorKind::Range => &["range"],
-            SensorKind::RangeRangeRate => &["range", "range_rate"],
-        }
-    }
-
-    /// The look coordinates besides the angles that it measures (the windows its field of view has).
-    pub const fn axes(self) -> LookAxes {
-        match self {
-            SensorKind::Radar | SensorKind::Range => LookAxes { range: true, range_rate: false },
-            SensorKind::RadarRangeRate | SensorKind::RangeRangeRate => LookAxes { range: true, range_rate: true },
-            SensorKind::OpticalRaDec | SensorKind::AzEl => LookAxes { range: false, range_rate: false },
-        }
-    }
-
-    /// Whether it measures angles.
-    pub const fn measures_angles(self) -> bool {
-        !matches!(self, SensorKind::Range | SensorKind::RangeRangeRate)
-    }
-
-    /// A short name (also the scenario files' spelling).
-    pub const fn name(self) -> &'static str {
-        match self {
-            SensorKind::Radar => "radar",
-            SensorKind::RadarRangeRate => "radar_range_rate",
-            SensorKind::OpticalRaDec => "optical",
-            SensorKind::AzEl => "az_el",
-            SensorKind::Range => "range",
-            SensorKind::RangeRangeRate => "range_range_rate",
-        }
-    }
-}
-
-impl core::fmt::Display for SensorKind {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// One measurement of a named kind: what a caller hands to [`MixedNetwork::pack`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum KindMeasurement<T> {
-    /// (ρ, A, E).
-    Radar([T; 3]),
-    /// (ρ, A, E, ρ̇).
-    RadarRangeRate([T; 4]),
-    /// (α, δ).
-    OpticalRaDec([T; 2]),
-    /// (A, E).
-    AzEl([T; 2]),
-    /// ρ.
-    Range(T),
-    /// (ρ, ρ̇).
-    RangeRangeRate([T; 2]),
-}
-
-impl<T: Real> KindMeasurement<T> {
-    /// Its kind.
-    pub const fn kind(&self) -> SensorKind {
-        match self {
-            KindMeasurement::Radar(_) => SensorKind::Radar,
-            KindMeasurement::RadarRangeRate(_) => SensorKind::RadarRangeRate,
-            KindMeasurement::OpticalRaDec(_) => SensorKind::OpticalRaDec,
-            KindMeasurement::AzEl(_) => SensorKind::AzEl,
-            KindMeasurement::Range(_) => SensorKind::Range,
-            KindMeasurement::RangeRangeRate(_) => SensorKind::RangeRangeRate,
-        }
-    }
-
-    /// The padded vector: its components first, zeros after.
-    pub fn padded(&self) -> SVector<T, MIXED_DIMENSION> {
-        let o = T::zero();
-        SVector::from(match *self {
-            KindMeasurement::Radar([a, b, c]) => [a, b, c, o],
-            KindMeasurement::RadarRangeRate(z) => z,
-            KindMeasurement::OpticalRaDec([a, b]) | KindMeasurement::AzEl([a, b]) => [a, b, o, o],
-            KindMeasurement::RangeRangeRate([a, b]) => [a, b, o, o],
-            KindMeasurement::Range(a) => [a, o, o, o],
-        })
-    }
-}
-
-/// A measurement of the wrong kind for the sensor it was given to ([`MixedNetwork::pack`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum KindError {
-    /// The network has no such sensor.
-    UnknownSensor {
-        /// The index given.
-        sensor: usize,
-        /// How many sensors there are.
-        sensors: usize,
-    },
-    /// The measurement's kind is not the sensor's.
-    WrongKind {
-        /// The sensor's index.
-        sensor: usize,
-        /// The sensor's kind.
-        expected: SensorKind,
-        /// The measurement's kind.
-        received: SensorKind,
-    },
-}
-
-impl core::fmt::Display for KindError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            KindError::UnknownSensor { sensor, sensors } => {
-                write!(f, "sensor {sensor} is unknown (the network has {sensors})")
-            }
-            KindError::WrongKind { sensor, expected, received } => {
-                write!(f, "sensor {sensor} measures {expected}, not {received}")
-            }
-        }
-    }
-}
-
-impl core::error::Error for KindError {}
 
 /// One sensor of a [`MixedNetwork`]: its kind, and where it is, its noise and how it detects. `sigma`
 /// holds the kind's components first ([`SensorKind::components`]); the rest must be zero.
@@ -236,6 +75,8 @@ pub struct MixedLook<T> {
     pub sigma: [T; MIXED_DIMENSION],
     /// Where the sensor's births come from.
     pub births: SensorBirths<T>,
+    /// How light time delays its measurements (docs/maths.md §6.12).
+    pub light_time: LightTime,
 }
 
 /// Where the births of one sensor of a [`MixedNetwork`] come from.
@@ -298,50 +139,80 @@ fn head<T: Real, const K: usize>(z: &Vector4<T>) -> SVector<T, K> {
     SVector::from_fn(|i, _| z[i])
 }
 
-impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for MixedLook<T> {
+/// A [`MixedLook`] measuring the object where it is at the scan time: what light time evaluates at the
+/// retarded state (§6.12).
+struct Instant<'a, T>(&'a MixedLook<T>);
+
+impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for Instant<'_, T> {
+    // Inlined, so that a sensor without light time runs the code of a network without the setting.
+    #[inline(always)]
     fn measure(&self, state: &SVector<T, 6>) -> Vector4<T> {
-        let o = T::zero();
-        match self.kind {
-            SensorKind::Radar => pad(&self.radar().measure(state)),
-            SensorKind::RadarRangeRate => self.radar_rate().measure(state),
-            SensorKind::OpticalRaDec => pad(&self.optical().measure(state)),
+        let (o, look) = (T::zero(), self.0);
+        match look.kind {
+            SensorKind::Radar => pad(&look.radar().measure(state)),
+            SensorKind::RadarRangeRate => look.radar_rate().measure(state),
+            SensorKind::OpticalRaDec => pad(&look.optical().measure(state)),
             SensorKind::AzEl => {
-                let z = self.radar().measure(state);
+                let z = look.radar().measure(state);
                 SVector::from([z[1], z[2], o, o])
             }
             SensorKind::Range => {
-                let z = self.radar().measure(state);
+                let z = look.radar().measure(state);
                 SVector::from([z[0], o, o, o])
             }
             SensorKind::RangeRangeRate => {
-                let z = self.radar_rate().measure(state);
+                let z = look.radar_rate().measure(state);
                 SVector::from([z[0], z[3], o, o])
             }
         }
     }
 
+    #[inline(always)]
     fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, 4, 6> {
-        match self.kind {
+        let look = self.0;
+        match look.kind {
             SensorKind::Radar => {
-                let h = self.radar().jacobian(state);
+                let h = look.radar().jacobian(state);
                 let mut padded = SMatrix::<T, 4, 6>::zeros();
                 for row in 0..3 {
                     padded.set_row(row, &h.row(row));
                 }
                 padded
             }
-            SensorKind::RadarRangeRate => self.radar_rate().jacobian(state),
+            SensorKind::RadarRangeRate => look.radar_rate().jacobian(state),
             SensorKind::OpticalRaDec => {
-                let h = self.optical().jacobian(state);
+                let h = look.optical().jacobian(state);
                 let mut padded = SMatrix::<T, 4, 6>::zeros();
                 for row in 0..2 {
                     padded.set_row(row, &h.row(row));
                 }
                 padded
             }
-            SensorKind::AzEl => pick_rows(&self.full(state).1, &[1, 2]),
-            SensorKind::Range => pick_rows(&self.full(state).1, &[0]),
-            SensorKind::RangeRangeRate => pick_rows(&self.full(state).1, &[0, 3]),
+            SensorKind::AzEl => pick_rows(&look.full(state).1, &[1, 2]),
+            SensorKind::Range => pick_rows(&look.full(state).1, &[0]),
+            SensorKind::RangeRangeRate => pick_rows(&look.full(state).1, &[0, 3]),
+        }
+    }
+
+    fn noise_covariance(&self) -> SMatrix<T, 4, 4> {
+        self.0.noise_covariance()
+    }
+}
+
+impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for MixedLook<T> {
+    /// h at the scan time, or at the light-time retarded state (§6.12; component 0 is the range of every
+    /// kind that has one).
+    fn measure(&self, state: &SVector<T, 6>) -> Vector4<T> {
+        match self.light_time {
+            LightTime::Off => Instant(self).measure(state),
+            mode => light_time::measure(&Instant(self), &self.observer, mode, self.kind.axes().range, state),
+        }
+    }
+
+    fn jacobian(&self, state: &SVector<T, 6>) -> SMatrix<T, 4, 6> {
+        match self.light_time {
+            LightTime::Off => Instant(self).jacobian(state),
+            mode => light_time::jacobian(&Instant(self), &self.observer, mode, state),
         }
     }
 
@@ -372,12 +243,17 @@ impl<T: Real> Measure<T, 6, MIXED_DIMENSION> for MixedLook<T> {
         self.kind.dimension()
     }
 
-    /// For the kinds without angles, the full look (ρ, A, E and ρ̇ where measured) of `state`.
+    /// For the kinds without angles, the full look (ρ, A, E and ρ̇ where measured) of `state`, retarded
+    /// by light time as the measurement is.
     fn look_of_state(&self, state: &SVector<T, 6>) -> Option<Look<T>> {
         if self.kind.measures_angles() {
             return None;
         }
-        let z = self.radar_rate().measure(state);
+        let radar = self.radar_rate();
+        let z = match self.light_time {
+            LightTime::Off => radar.measure(state),
+            mode => light_time::measure(&radar, &self.observer, mode, true, state),
+        };
         let range_rate = self.kind.axes().range_rate.then_some(z[3]);
         Some(Look { azimuth: z[1], elevation: z[2], range: Some(z[0]), range_rate })
     }
@@ -547,6 +423,7 @@ pub struct MixedNetwork<T, const C: usize> {
     sensors: [MixedSensor<T>; C],
     volumes: [T; C],
     births: [SensorBirths<T>; C],
+    light_time: [LightTime; C],
     count: usize,
     current: usize,
     placed: MixedLook<T>,
@@ -571,6 +448,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             sensors: [sensor; C],
             volumes: [T::ZERO; C],
             births: [SensorBirths::Off; C],
+            light_time: [LightTime::Off; C],
             count: 0,
             current: 0,
             placed: MixedLook {
@@ -579,6 +457,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
                 frame: [[T::ZERO; 3]; 3],
                 sigma: [T::ZERO; MIXED_DIMENSION],
                 births: SensorBirths::Off,
+                light_time: LightTime::Off,
             },
         }
     }
@@ -599,6 +478,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             sensors: [*first; C],
             volumes: [T::one(); C],
             births: [SensorBirths::FromModel; C],
+            light_time: [LightTime::Off; C],
             count: sensors.len(),
             current: 0,
             placed: MixedLook {
@@ -607,6 +487,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
                 frame: inertial_frame(),
                 sigma: first.sensor.sigma,
                 births: SensorBirths::FromModel,
+                light_time: LightTime::Off,
             },
         };
         for (index, sensor) in sensors.iter().enumerate() {
@@ -652,6 +533,33 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
     /// Where sensor `sensor`'s births come from ([`MixedNetwork::with_births`]).
     pub fn births(&self, sensor: usize) -> SensorBirths<T> {
         self.births.get(..self.count).and_then(|all| all.get(sensor)).copied().unwrap_or_default()
+    }
+
+    /// The network with sensor `sensor`'s measurements delayed by light time `mode` (docs/maths.md §6.12;
+    /// the maths of [`super::light_time`], as [`super::SensorNetwork::with_light_time`]). Every sensor
+    /// starts [`LightTime::Off`], which measures exactly as a network without the setting.
+    ///
+    /// # Errors
+    /// An unknown sensor, or a two-way mode for a kind without a range.
+    pub fn with_light_time(mut self, sensor: usize, mode: LightTime) -> Result<Self, &'static str> {
+        let Some(kind) = self.sensors().get(sensor).map(|s| s.kind) else {
+            return Err("sensor network: light time for an unknown sensor");
+        };
+        if mode.two_way() && !kind.axes().range {
+            return Err("sensor network: two-way light time needs a range measurement");
+        }
+        if let Some(slot) = self.light_time.get_mut(sensor) {
+            *slot = mode;
+        }
+        if self.current == sensor {
+            self.placed.light_time = mode;
+        }
+        Ok(self)
+    }
+
+    /// The light time of sensor `sensor` ([`LightTime::Off`] for an unknown one).
+    pub fn light_time(&self, sensor: usize) -> LightTime {
+        self.light_time.get(..self.count).and_then(|modes| modes.get(sensor)).copied().unwrap_or_default()
     }
 
     /// The sensors.
@@ -704,6 +612,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
             frame,
             sigma: site.sensor.sigma,
             births: self.births(sensor),
+            light_time: self.light_time(sensor),
         };
         Ok(Self { current: sensor, placed, ..*self })
     }

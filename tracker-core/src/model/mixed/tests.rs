@@ -100,15 +100,17 @@ fn wobble(scan: u32, k: usize) -> f64 {
 type Tracker4<G> = Tracker<f64, TwoBodyJ2<f64>, G, 6, 4, 8, 4, 8, 16, 1>;
 
 /// Steps a network of one kind (`SensorNetwork` of `X`, `D` components) and a `MixedNetwork` of the
-/// same sensors side by side; returns their digests after every scan.
-fn side_by_side<X: Placeable<f64, D>, const D: usize>(kind: SensorKind) -> (Vec<u64>, Vec<u64>) {
+/// same sensors side by side, the second sensor of each with light time `mode`; returns their digests
+/// after every scan.
+fn side_by_side<X: Placeable<f64, D>, const D: usize>(kind: SensorKind, mode: LightTime) -> (Vec<u64>, Vec<u64>) {
     let rotation = EarthRotation::new(0.3);
     let platforms = [ground(SITES[0].0, SITES[0].1), ground(SITES[1].0, SITES[1].1)];
     let own: [SiteSensor<f64, D>; 2] =
         platforms.map(|p| site_sensor(p, core::array::from_fn(|k| sigma(kind)[k]), kind.axes()));
     let mixed = platforms.map(|p| mixed_sensor(kind, p));
-    let single: SensorNetwork<f64, X, D, 2> = SensorNetwork::new(rotation, &own).unwrap();
-    let network: MixedNetwork<f64, 2> = MixedNetwork::new(rotation, &mixed).unwrap();
+    let single: SensorNetwork<f64, X, D, 2> =
+        SensorNetwork::new(rotation, &own).unwrap().with_light_time(1, mode).unwrap();
+    let network: MixedNetwork<f64, 2> = MixedNetwork::new(rotation, &mixed).unwrap().with_light_time(1, mode).unwrap();
     let truth0 = truth(&rotation);
     let mut start = truth0;
     start[0] += 0.3;
@@ -145,12 +147,100 @@ fn side_by_side<X: Placeable<f64, D>, const D: usize>(kind: SensorKind) -> (Vec<
 
 #[test]
 fn a_network_of_one_kind_gives_the_bits_of_that_kind_alone() {
-    let (radar, mixed) = side_by_side::<RadarRangeAzEl<f64>, 3>(SensorKind::Radar);
+    let (radar, mixed) = side_by_side::<RadarRangeAzEl<f64>, 3>(SensorKind::Radar, LightTime::Off);
     assert_eq!(radar, mixed);
-    let (radar_rate, mixed) = side_by_side::<RadarRangeRate<f64>, 4>(SensorKind::RadarRangeRate);
+    let (radar_rate, mixed) = side_by_side::<RadarRangeRate<f64>, 4>(SensorKind::RadarRangeRate, LightTime::Off);
     assert_eq!(radar_rate, mixed);
-    let (optical, mixed) = side_by_side::<OpticalRaDec<f64>, 2>(SensorKind::OpticalRaDec);
+    let (optical, mixed) = side_by_side::<OpticalRaDec<f64>, 2>(SensorKind::OpticalRaDec, LightTime::Off);
     assert_eq!(optical, mixed);
+}
+
+#[test]
+fn with_light_time_a_network_of_one_kind_still_gives_the_bits_of_that_kind_alone() {
+    for mode in [LightTime::TwoWayReceive, LightTime::TwoWayTransmit, LightTime::OneWayReceive] {
+        let (radar, mixed) = side_by_side::<RadarRangeAzEl<f64>, 3>(SensorKind::Radar, mode);
+        assert_eq!(radar, mixed, "{mode:?}");
+        let (unset, _) = side_by_side::<RadarRangeAzEl<f64>, 3>(SensorKind::Radar, LightTime::Off);
+        assert_ne!(radar[1..], unset[1..], "{mode:?}: the second sensor's scans move the posterior");
+        let (radar_rate, mixed) = side_by_side::<RadarRangeRate<f64>, 4>(SensorKind::RadarRangeRate, mode);
+        assert_eq!(radar_rate, mixed, "{mode:?}");
+    }
+    let (optical, mixed) = side_by_side::<OpticalRaDec<f64>, 2>(SensorKind::OpticalRaDec, LightTime::OneWayReceive);
+    assert_eq!(optical, mixed);
+}
+
+/// τ of `state` seen from `observer` with direction `k`, the light-time equation solved to convergence.
+fn converged_light_time(state: &SVector<f64, 6>, observer: &[f64; 6], k: f64) -> (f64, [f64; 3]) {
+    let mut tau = 0.0;
+    let mut d = [0.0; 3];
+    for _ in 0..20 {
+        d = core::array::from_fn(|i| state[i] + k * tau * state[i + 3] - observer[i]);
+        tau = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() / crate::model::light_time::SPEED_OF_LIGHT;
+    }
+    (tau, d)
+}
+
+#[test]
+fn a_range_only_sensor_with_two_way_light_time_measures_the_light_time_equation() {
+    let rotation = EarthRotation::new(0.3);
+    let sensors = [mixed_sensor(SensorKind::Range, ground(SITES[0].0, SITES[0].1))];
+    let plain: MixedNetwork<f64, 1> = MixedNetwork::new(rotation, &sensors).unwrap();
+    let state = truth(&rotation);
+    let at = ScanGeometry { sensor: 0, time: 40.0, observer: None };
+    for (mode, k) in [(LightTime::TwoWayReceive, -1.0), (LightTime::TwoWayTransmit, 1.0)] {
+        let network = plain.with_light_time(0, mode).unwrap();
+        assert_eq!(network.light_time(0), mode);
+        let placed = network.place(&at).unwrap();
+        let observer = placed.placed().observer;
+        let (tau, d) = converged_light_time(&state, &observer, k);
+        let rho = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        // The mean of both legs: the site moved 2τ v_s between them.
+        let along = (0..3).map(|i| d[i] / rho * observer[i + 3]).sum::<f64>();
+        let expected = rho - k * tau * along;
+        let z = placed.measure(&state);
+        assert!((z[0] - expected).abs() < 1e-9, "{mode:?}: {} vs {expected}", z[0]);
+        assert_eq!(&z.as_slice()[1..], &[0.0; 3], "the padding stays zero");
+        // Light time moves the range by (d̂ · v) τ: metres, well above the 1e-9 km agreement.
+        let unset = plain.place(&at).unwrap().measure(&state)[0];
+        assert!((z[0] - unset).abs() > 1e-3, "{mode:?}: {} vs {unset}", z[0]);
+        // The range of the radar kind with the same light time: the same number.
+        let radar = [mixed_sensor(SensorKind::Radar, ground(SITES[0].0, SITES[0].1))];
+        let radar: MixedNetwork<f64, 1> =
+            MixedNetwork::new(rotation, &radar).unwrap().with_light_time(0, mode).unwrap();
+        assert_eq!(radar.place(&at).unwrap().measure(&state)[0], z[0]);
+        // The Jacobian against central differences (its range row; the padding zero).
+        let h = placed.jacobian(&state);
+        for j in 0..6 {
+            // ∂ρ/∂v is kτ d̂ (≈ 3e-3 s): a step of 1 m/s keeps rounding (≈ 1e-12 km) below 1e-6 of it.
+            let step = 1e-3;
+            let (mut up, mut down) = (state, state);
+            up[j] += step;
+            down[j] -= step;
+            let numeric = (placed.measure(&up)[0] - placed.measure(&down)[0]) / (2.0 * step);
+            assert!(
+                (h[(0, j)] - numeric).abs() < 1e-4 * h[(0, j)].abs().max(1e-3),
+                "{mode:?} column {j}: {} vs {numeric}",
+                h[(0, j)]
+            );
+            assert_eq!([h[(1, j)], h[(2, j)], h[(3, j)]], [0.0; 3]);
+        }
+    }
+}
+
+#[test]
+fn light_time_is_refused_where_it_does_not_apply_and_off_changes_nothing() {
+    let rotation = EarthRotation::new(0.3);
+    let network = every_kind(rotation);
+    for (sensor, kind) in SensorKind::ALL.into_iter().enumerate() {
+        assert_eq!(network.with_light_time(sensor, LightTime::TwoWayReceive).is_ok(), kind.axes().range, "{kind}");
+        assert!(network.with_light_time(sensor, LightTime::OneWayReceive).is_ok(), "{kind}");
+        assert_eq!(network.with_light_time(sensor, LightTime::Off), Ok(network));
+    }
+    assert!(network.with_light_time(6, LightTime::OneWayReceive).is_err());
+    // Off after on: the network as it was.
+    let on = network.with_light_time(0, LightTime::TwoWayReceive).unwrap();
+    assert_ne!(on, network);
+    assert_eq!(on.with_light_time(0, LightTime::Off), Ok(network));
 }
 
 /// A `K`-component model that picks rows `rows` of the radar with range-rate: the kinds without a model
@@ -221,7 +311,14 @@ fn the_kinds_without_a_model_of_their_own_are_scored_and_updated_in_their_own_di
     let rotation = EarthRotation::new(0.3);
     let Platform::Ground(site) = ground(SITES[0].0, SITES[0].1) else { unreachable!() };
     let (observer, frame) = (site.observer(&rotation, 0.0), site.enu(&rotation, 0.0));
-    let look = |kind| MixedLook { kind, observer, frame, sigma: sigma(kind), births: SensorBirths::FromModel };
+    let look = |kind| MixedLook {
+        kind,
+        observer,
+        frame,
+        sigma: sigma(kind),
+        births: SensorBirths::FromModel,
+        light_time: LightTime::Off,
+    };
     let radar = RadarRangeRate { observer, enu: frame, sigma: [1.0; 4] };
     let state = Gaussian { mean: truth(&rotation), covariance: prior_covariance() };
     let s = |kind| sigma(kind);
