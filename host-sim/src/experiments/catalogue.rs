@@ -209,33 +209,9 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
     Ok(Catalogue { entries, origins })
 }
 
-/// The catalogue as OMM JSON (CelesTrak's keywords; numbers written exactly).
+/// The catalogue as OMM JSON (CelesTrak's keywords; numbers written exactly): [`catalogue::to_omm_json`].
 pub fn omm_json(entries: &[CatalogueEntry]) -> String {
-    let records: Vec<serde_json::Value> = entries
-        .iter()
-        .map(|e| {
-            serde_json::json!({
-                "OBJECT_NAME": e.name.clone().unwrap_or_default(),
-                "OBJECT_ID": e.international_designator.clone().unwrap_or_default(),
-                "EPOCH": e.epoch.format("%Y-%m-%dT%H:%M:%S%.6f").to_string(),
-                "MEAN_MOTION": e.mean_motion,
-                "ECCENTRICITY": e.eccentricity,
-                "INCLINATION": e.inclination,
-                "RA_OF_ASC_NODE": e.right_ascension,
-                "ARG_OF_PERICENTER": e.argument_of_perigee,
-                "MEAN_ANOMALY": e.mean_anomaly,
-                "EPHEMERIS_TYPE": e.ephemeris_type,
-                "CLASSIFICATION_TYPE": e.classification.to_string(),
-                "NORAD_CAT_ID": e.norad_id,
-                "ELEMENT_SET_NO": e.element_set_number,
-                "REV_AT_EPOCH": e.revolution_number,
-                "BSTAR": e.bstar,
-                "MEAN_MOTION_DOT": e.mean_motion_dot,
-                "MEAN_MOTION_DDOT": e.mean_motion_ddot,
-            })
-        })
-        .collect();
-    serde_json::to_string_pretty(&records).unwrap_or_default() + "\n"
+    catalogue::to_omm_json(entries)
 }
 
 /// Which objects are missing from the prior: the train, and `round(fraction × others)` of the others chosen
