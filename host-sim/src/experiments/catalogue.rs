@@ -25,6 +25,11 @@
 //! those the tracker confirmed; `sensor_kinds` lists the kinds present. Scored with the radar's evaluation
 //! settings (error bound 5 km, GOSPA cut-off 10 km, order 2).
 //!
+//! The errors of the objects observed so far and of those not yet observed are apart
+//! ([`crate::eval::observed`]): `observed_objects`, `observed_median_error_km` and
+//! `unobserved_median_error_km` in `catalogue.json` (at the last scan), over time in
+//! `network/observed_errors.png`.
+//!
 //! Run time: a few minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not part
 //! of `experiment all`. The run folder is several hundred MB (`tracks.oem`: every MAP track at every scan).
 
@@ -605,6 +610,9 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
         mean_ms_per_scan: details.iter().map(|d| d.mean_ms_per_scan * accepted(d)).sum::<f64>()
             / accepted_total.max(1.0),
         max_ms_per_scan: details.iter().map(|d| d.max_ms_per_scan).fold(0.0, f64::max),
+        observed_objects: networks[0].summary.observed_objects,
+        observed_median_error_km: networks[0].summary.observed_median_error_km,
+        unobserved_median_error_km: networks[0].summary.unobserved_median_error_km,
         details,
     };
     write_json(&dir.join("catalogue.json"), &report)?;
