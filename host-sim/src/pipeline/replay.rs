@@ -190,8 +190,11 @@ fn observe<const P: usize>(
 }
 
 /// The plot of the observed and unobserved objects' median errors over the run (`observed_errors.png` and
-/// `.svg`), for 3-D runs with truth.
-fn plot_observed(observed: &[(f64, ObservedErrors)], out: &Path) -> Result<(), Error> {
+/// `.svg`), for 3-D runs with truth (none for others).
+fn plot_observed<const P: usize>(observed: &[(f64, ObservedErrors)], out: &Path) -> Result<(), Error> {
+    if P != 3 || observed.is_empty() {
+        return Ok(());
+    }
     let series = |name: &str, pick: fn(&ObservedErrors) -> Option<f64>| crate::plots::Series {
         name: name.into(),
         points: observed.iter().filter_map(|(t, e)| pick(e).map(|v| (t / 3600.0, v.max(1e-3)))).collect(),
@@ -298,15 +301,11 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
         });
     }
     bar.finish_and_clear();
-    for line in notices.finish() {
-        eprintln!("{line}");
-    }
+    notices.finish().iter().for_each(|line| eprintln!("{line}"));
     csv.commit()?;
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
-    if P == 3 && !tally.observed.is_empty() {
-        plot_observed(&tally.observed, out)?;
-    }
+    plot_observed::<P>(&tally.observed, out)?;
     summary.numerical_drops = numerical_drops(&records);
     summary.refused_scans = refused_scans(&*world, &records);
     if world.judged() {
