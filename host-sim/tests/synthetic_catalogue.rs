@@ -114,3 +114,36 @@ fn run_catalogue_reports_observed_and_unobserved_objects_apart() {
     assert!(observed_km < 1.0 && observed_km < unobserved_km, "{observed_km} {unobserved_km}");
     assert!(out.join("observed_errors.png").is_file() && out.join("observed_errors.svg").is_file());
 }
+
+#[test]
+fn a_catalogue_larger_than_one_tracker_is_refused_in_one_line() {
+    // Issue 30: 2,000 objects were refused with "prior hypothesis 0: more objects than the capacity N".
+    let dir = TempDir::new("capacity");
+    let catalogue = generate(&dir, "syn.json", "300", "1");
+    let out = dir.join("run");
+    let start = "2026-03-20T00:00:00Z";
+    for profile in ["host", "embedded"] {
+        let output = host_sim(&[
+            "run-catalogue",
+            "--catalogue",
+            p(&catalogue),
+            "--sensors",
+            RADARS,
+            "--start",
+            start,
+            "--duration-hours",
+            "0.01",
+            "--quiet",
+            "--profile",
+            profile,
+            "--out",
+            p(&out),
+        ]);
+        let err = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        let n = if profile == "host" { 256 } else { 64 };
+        assert!(err.contains("the prior holds 300 objects") && err.contains(&format!("N = {n}")), "{err}");
+        assert!(!out.join("summary.json").exists());
+    }
+}
