@@ -394,7 +394,7 @@ fn member(family: Family, m: usize, d: Dealt, random: &mut Random, shared: &Shar
 /// GEO member `m`: even members station-kept in a co-located cluster, odd ones drifting. The mean longitude
 /// node + perigee + anomaly is the longitude plus the Earth's rotation angle at the epoch (`theta_deg`).
 fn geo(m: usize, random: &mut Random, clusters: &[f64], theta_deg: f64) -> (String, Orbit) {
-    let (a, i, longitude, name) = if m % 2 == 0 {
+    let (a, i, longitude, name) = if m.is_multiple_of(2) {
         let c = (m / 2) % clusters.len();
         let longitude = clusters[c] + random.between(-0.05, 0.05);
         (
