@@ -165,7 +165,7 @@ fn score_scan<W: World<P>, const P: usize>(
 }
 
 /// Records the objects `detected` at `time` and the observed and unobserved objects' errors then
-/// ([`crate::eval::observed`]).
+/// ([`crate::eval::observed`]); 3-D runs only.
 fn observe<const P: usize>(
     time: f64,
     detected: &[u64],
@@ -173,6 +173,9 @@ fn observe<const P: usize>(
     posterior: &Posterior,
     tally: &mut Tally,
 ) {
+    if P != 3 {
+        return; // catalogue figures, in km: 3-D runs only
+    }
     for &id in detected {
         tally.last_observed.insert(id, time);
     }

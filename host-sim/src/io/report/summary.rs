@@ -96,8 +96,8 @@ pub struct RunSummary {
     /// Sensors whose `mean_nis` lies outside its `nis_band`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub consistency_warnings: Option<Vec<String>>,
-    /// Runs with truth: objects observed (measured at least once) by the last scan
-    /// ([`crate::eval::observed`]). Absent without truth, like the three keys below.
+    /// Version 2 (3-D) runs with truth: objects observed (measured at least once) by the last scan
+    /// ([`crate::eval::observed`]). Absent from other runs, like the three keys below.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub observed_objects: Option<usize>,
     /// Objects never observed by the last scan.
