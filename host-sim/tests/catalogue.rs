@@ -585,6 +585,7 @@ fn orbits_inside_the_earth_and_repeated_element_sets_are_dropped_and_counted() {
     assert!(err.contains("3 objects") && err.contains("3 element sets dropped"), "{err}");
     let report: Value = serde_json::from_slice(&output.stdout).expect("JSON on stdout");
     assert_eq!(report["catalogue_dropped"]["count"], 3, "{report}");
+    assert_eq!(report["catalogue_dropped"]["extrapolated"], 1, "the 60-day-old elements are counted");
     let dropped = report["catalogue_dropped"]["objects"].as_array().expect("objects");
     assert_eq!(dropped.iter().map(|o| o["line"].as_u64().unwrap()).collect::<Vec<_>>(), [10, 13, 16]);
     assert_eq!(dropped[0]["name"], "LOW 17");

@@ -7,6 +7,7 @@ use crate::io::catalogue::CatalogueDropped;
 use crate::scenario::from_simulation::{Generated, Preset3d};
 use crate::scenario::v2::Scenario3d;
 use crate::sim::planar::Preset;
+use sgp4::chrono::Timelike;
 use std::path::PathBuf;
 
 /// The arguments of `generate`.
@@ -29,6 +30,54 @@ pub struct Args {
     /// radar-leo: fragments of a break-up during the run (0: none).
     #[arg(long, default_value_t = 0)]
     breakup: usize,
+    #[command(flatten)]
+    synthetic: SyntheticArgs,
+}
+
+/// The inputs of `generate synthetic-catalogue` ([`crate::sim::population`]).
+#[derive(clap::Args, Clone)]
+pub struct SyntheticArgs {
+    /// generate synthetic-catalogue: the number of element sets, 1 to 400,000. Mixture: LEO shells 30 %,
+    /// sun-synchronous 15 %, debris clouds of break-ups 35 %, MEO navigation 4 %, GEO belt 8 %, GTO 6 %,
+    /// Molniya 2 % (docs/scenario-format.md, "Synthetic catalogues").
+    #[arg(long)]
+    objects: Option<usize>,
+    /// generate synthetic-catalogue: the epoch of every element set, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]`.
+    #[arg(long, default_value = "2026-03-20T00:00:00Z")]
+    epoch: String,
+}
+
+impl SyntheticArgs {
+    /// Writes the synthetic catalogue of `seed` to `out` as OMM JSON; prints what it wrote (`json`: as JSON
+    /// on stdout).
+    fn write(&self, seed: u64, out: &std::path::Path, json: bool) -> Result<(), Error> {
+        use crate::sim::population::{MIXTURE, family_counts, synthetic_catalogue};
+        let objects =
+            self.objects.ok_or_else(|| Error::input("generate synthetic-catalogue: --objects is required"))?;
+        let epoch_text = self.epoch.as_str();
+        let bad =
+            || Error::input(format!("--epoch {epoch_text:?}: not a UTC time YYYY-MM-DDTHH:MM:SS[.f][Z] in 1901-2099"));
+        let epoch_jd = crate::sim::time::parse_iso8601(epoch_text).map_err(|_| bad())?;
+        let epoch = crate::io::catalogue::parse_omm_epoch(epoch_text).ok_or_else(bad)?;
+        // OMM's EPOCH holds microseconds: an epoch with more digits would not read back the same.
+        let epoch = epoch.with_nanosecond(epoch.nanosecond() / 1000 * 1000).ok_or_else(bad)?;
+        let synthetic = synthetic_catalogue(objects, seed, epoch, epoch_jd).map_err(Error::input)?;
+        crate::io::atomic::write(out, crate::io::catalogue::to_omm_json(&synthetic.entries))?;
+        let counts = family_counts(objects);
+        let families: Vec<String> =
+            MIXTURE.iter().zip(&counts).map(|((family, _), count)| format!("{count} {family:?}")).collect();
+        eprintln!("wrote {} ({objects} element sets, OMM JSON: {})", out.display(), families.join(", "));
+        if json {
+            let report = serde_json::json!({
+                "out": out,
+                "objects": objects,
+                "epoch": epoch.format("%Y-%m-%dT%H:%M:%S%.6fZ").to_string(),
+                "families": MIXTURE.iter().zip(&counts).map(|((f, _), c)| (format!("{f:?}"), *c)).collect::<std::collections::BTreeMap<_, _>>(),
+            });
+            println!("{}", serde_json::to_string_pretty(&report).map_err(Error::internal)?);
+        }
+        Ok(())
+    }
 }
 
 /// The inputs of `generate catalogue` (docs/scenario-format.md, "Catalogue files" and "Sensors files").
@@ -88,6 +137,8 @@ enum AnyPreset {
     Ssa(Preset3d),
     /// A catalogue seen by a sensor network (`--catalogue`, `--sensors`, `--start`, `--duration-hours`).
     Catalogue,
+    /// A synthetic catalogue (`--objects`, `--epoch`), written as OMM JSON.
+    SyntheticCatalogue,
 }
 
 impl clap::ValueEnum for AnyPreset {
@@ -104,6 +155,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Ssa(Preset3d::SsaNetwork),
             AnyPreset::Ssa(Preset3d::TinyNetwork),
             AnyPreset::Catalogue,
+            AnyPreset::SyntheticCatalogue,
         ]
     }
 
@@ -114,6 +166,10 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Catalogue => Some(
                 clap::builder::PossibleValue::new("catalogue")
                     .help("A TLE/OMM catalogue (--catalogue) seen by the sensors of --sensors; truth by SGP4"),
+            ),
+            AnyPreset::SyntheticCatalogue => Some(
+                clap::builder::PossibleValue::new("synthetic-catalogue")
+                    .help("A synthetic catalogue of --objects element sets shaped like the public one, as OMM JSON"),
             ),
         }
     }
@@ -133,7 +189,10 @@ struct CatalogueGenerated<'a> {
 
 /// Runs `generate` (`json`: `generate catalogue` prints its figures as JSON on stdout).
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
-    let Args { preset, seed, out, catalogue, missing_fraction, breakup } = args;
+    let Args { preset, seed, out, catalogue, missing_fraction, breakup, synthetic } = args;
+    if preset != AnyPreset::SyntheticCatalogue && synthetic.objects.is_some() {
+        return Err(Error::input("--objects is for generate synthetic-catalogue only").into());
+    }
     let unknowns_refused = || -> Result<(), Error> {
         if missing_fraction != 0.0 || breakup != 0 {
             return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo"));
@@ -164,6 +223,11 @@ pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
             let (scenario, figures) = crate::scenario::from_simulation::to_scenario(&simulation)?;
             scenario.save(&out)?;
             figures
+        }
+        AnyPreset::SyntheticCatalogue => {
+            catalogue.only_for_catalogue()?;
+            unknowns_refused()?;
+            return Ok(synthetic.write(seed, &out, json)?);
         }
         AnyPreset::Catalogue => {
             unknowns_refused()?;

@@ -25,6 +25,11 @@
 //! those the tracker confirmed; `sensor_kinds` lists the kinds present. Scored with the radar's evaluation
 //! settings (error bound 5 km, GOSPA cut-off 10 km, order 2).
 //!
+//! The errors of the objects observed so far and of those not yet observed are apart
+//! ([`crate::eval::observed`]): `observed_objects`, `observed_median_error_km` and
+//! `unobserved_median_error_km` in `catalogue.json` (at the last scan), over time in
+//! `network/observed_errors.png`.
+//!
 //! Run time: a few minutes in release on a 2-vCPU machine (docs/results.md), so the experiment is not part
 //! of `experiment all`. The run folder is several hundred MB (`tracks.oem`: every MAP track at every scan).
 
@@ -209,33 +214,9 @@ pub fn build_catalogue(settings: &Settings) -> Result<Catalogue, Error> {
     Ok(Catalogue { entries, origins })
 }
 
-/// The catalogue as OMM JSON (CelesTrak's keywords; numbers written exactly).
+/// The catalogue as OMM JSON (CelesTrak's keywords; numbers written exactly): [`catalogue::to_omm_json`].
 pub fn omm_json(entries: &[CatalogueEntry]) -> String {
-    let records: Vec<serde_json::Value> = entries
-        .iter()
-        .map(|e| {
-            serde_json::json!({
-                "OBJECT_NAME": e.name.clone().unwrap_or_default(),
-                "OBJECT_ID": e.international_designator.clone().unwrap_or_default(),
-                "EPOCH": e.epoch.format("%Y-%m-%dT%H:%M:%S%.6f").to_string(),
-                "MEAN_MOTION": e.mean_motion,
-                "ECCENTRICITY": e.eccentricity,
-                "INCLINATION": e.inclination,
-                "RA_OF_ASC_NODE": e.right_ascension,
-                "ARG_OF_PERICENTER": e.argument_of_perigee,
-                "MEAN_ANOMALY": e.mean_anomaly,
-                "EPHEMERIS_TYPE": e.ephemeris_type,
-                "CLASSIFICATION_TYPE": e.classification.to_string(),
-                "NORAD_CAT_ID": e.norad_id,
-                "ELEMENT_SET_NO": e.element_set_number,
-                "REV_AT_EPOCH": e.revolution_number,
-                "BSTAR": e.bstar,
-                "MEAN_MOTION_DOT": e.mean_motion_dot,
-                "MEAN_MOTION_DDOT": e.mean_motion_ddot,
-            })
-        })
-        .collect();
-    serde_json::to_string_pretty(&records).unwrap_or_default() + "\n"
+    catalogue::to_omm_json(entries)
 }
 
 /// Which objects are missing from the prior: the train, and `round(fraction × others)` of the others chosen
@@ -629,6 +610,9 @@ pub fn run_with(dir: &Path, seed: u64, quiet: bool, settings: &Settings) -> Resu
         mean_ms_per_scan: details.iter().map(|d| d.mean_ms_per_scan * accepted(d)).sum::<f64>()
             / accepted_total.max(1.0),
         max_ms_per_scan: details.iter().map(|d| d.max_ms_per_scan).fold(0.0, f64::max),
+        observed_objects: networks[0].summary.observed_objects,
+        observed_median_error_km: networks[0].summary.observed_median_error_km,
+        unobserved_median_error_km: networks[0].summary.unobserved_median_error_km,
         details,
     };
     write_json(&dir.join("catalogue.json"), &report)?;

@@ -16,6 +16,7 @@ use crate::error::Error;
 use crate::eval::births::{BirthTally, MapTrack};
 use crate::eval::consistency::Judge;
 use crate::eval::metrics::LabelSwitches;
+use crate::eval::observed::{MATCH_CUTOFF_KM, ObjectAt, ObservedErrors, observed_errors};
 use crate::eval::score::{Scored, score};
 use crate::io::report::{NumericalDrop, NumericalDropsSummary, RefusedScan, RefusedScans, RejectedScan, RunSummary};
 use crate::pipeline::output::{mean, peak_resident_kib, progress, write_json};
@@ -32,6 +33,12 @@ struct Tally {
     in_view_red_stars: usize,
     out_of_view_red_stars: usize,
     peak_hypotheses: usize,
+    /// The labels of the prior's MAP tracks (object i's prior track is labelled i).
+    prior_labels: std::collections::HashSet<u32>,
+    /// Each object's latest observation time.
+    last_observed: std::collections::HashMap<u64, f64>,
+    /// Per scan with truth: its time and the observed and unobserved objects' errors.
+    observed: Vec<(f64, ObservedErrors)>,
 }
 
 impl Tally {
@@ -49,6 +56,9 @@ impl Tally {
             in_view_red_stars: 0,
             out_of_view_red_stars: 0,
             peak_hypotheses: if heading.peak_counts_prior { prior.hypotheses } else { 0 },
+            prior_labels: prior.map.iter().map(|t| t.label).collect(),
+            last_observed: std::collections::HashMap::new(),
+            observed: vec![],
         }
     }
 }
@@ -133,7 +143,9 @@ fn score_scan<W: World<P>, const P: usize>(
         .iter()
         .map(|t| MapTrack { label: t.label, position: &t.mean[..P], existence: t.existence })
         .collect();
-    tally.births.record(k, &objects, world.detected(k), &map, &scored.bound_assignment);
+    let detected = world.detected(k);
+    observe::<P>(world.time(k), &detected, truth, posterior, tally);
+    tally.births.record(k, &objects, detected, &map, &scored.bound_assignment);
     for (t, assigned) in truth.iter().zip(&scored.bound_assignment) {
         let confirmed_track = !tally.births.is_birth(t.id) || tally.births.confirmed_at(t.id).is_some();
         if confirmed_track && assigned.is_none() && world.in_view(k, t.state) {
@@ -150,6 +162,60 @@ fn score_scan<W: World<P>, const P: usize>(
         }
     }
     scored
+}
+
+/// Records the objects `detected` at `time` and the observed and unobserved objects' errors then
+/// ([`crate::eval::observed`]); 3-D runs only.
+fn observe<const P: usize>(
+    time: f64,
+    detected: &[u64],
+    truth: &[TruthObject<'_>],
+    posterior: &Posterior,
+    tally: &mut Tally,
+) {
+    if P != 3 {
+        return; // catalogue figures, in km: 3-D runs only
+    }
+    for &id in detected {
+        tally.last_observed.insert(id, time);
+    }
+    let objects: Vec<ObjectAt<P>> = truth
+        .iter()
+        .map(|t| ObjectAt {
+            id: t.id,
+            position: position(t.state),
+            prior_label: u32::try_from(t.id).ok().filter(|l| tally.prior_labels.contains(l)),
+            last_observed: tally.last_observed.get(&t.id).copied(),
+        })
+        .collect();
+    let tracks: Vec<(u32, [f64; P])> = posterior.map.iter().map(|t| (t.label, position(&t.mean))).collect();
+    tally.observed.push((time, observed_errors(time, &objects, &tracks, MATCH_CUTOFF_KM)));
+}
+
+/// The plot of the observed and unobserved objects' median errors over the run (`observed_errors.png` and
+/// `.svg`), for 3-D runs with truth (none for others).
+fn plot_observed<const P: usize>(observed: &[(f64, ObservedErrors)], out: &Path) -> Result<(), Error> {
+    if P != 3 || observed.is_empty() {
+        return Ok(());
+    }
+    let series = |name: &str, pick: fn(&ObservedErrors) -> Option<f64>| crate::plots::Series {
+        name: name.into(),
+        points: observed.iter().filter_map(|(t, e)| pick(e).map(|v| (t / 3600.0, v.max(1e-3)))).collect(),
+        markers: false,
+    };
+    let lines = [
+        series("observed objects: median error", |e| e.observed_median_error_km),
+        series("unobserved objects: median prediction error", |e| e.unobserved_median_error_km),
+    ];
+    Ok(crate::plots::plot_series(
+        &out.join("observed_errors"),
+        "Errors of the objects observed so far and of those not yet observed",
+        "time since the start (h)",
+        "median error (km)",
+        crate::plots::Scale::Linear,
+        crate::plots::Scale::Log10,
+        &lines,
+    )?)
 }
 
 /// Replays `world` with progress bar `quiet`, writing `estimates.csv` and `summary.json` into `out`;
@@ -239,12 +305,11 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
         });
     }
     bar.finish_and_clear();
-    for line in notices.finish() {
-        eprintln!("{line}");
-    }
+    notices.finish().iter().for_each(|line| eprintln!("{line}"));
     csv.commit()?;
     world.finish(&records)?;
     let mut summary = summarise(&heading, &records, &prior, &tally);
+    plot_observed::<P>(&tally.observed, out)?;
     summary.numerical_drops = numerical_drops(&records);
     summary.refused_scans = refused_scans(&*world, &records);
     if world.judged() {
@@ -319,6 +384,10 @@ fn summarise(
         tracks_ended: None,
         measurements_per_track: None,
         consistency_warnings: None,
+        observed_objects: tally.observed.last().map(|(_, e)| e.observed_objects),
+        unobserved_objects: tally.observed.last().map(|(_, e)| e.unobserved_objects),
+        observed_median_error_km: tally.observed.last().and_then(|(_, e)| e.observed_median_error_km),
+        unobserved_median_error_km: tally.observed.last().and_then(|(_, e)| e.unobserved_median_error_km),
     }
 }
 

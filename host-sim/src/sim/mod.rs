@@ -7,6 +7,7 @@
 //!   observers), [`field_of_view`], [`sensor`] (what a radar or telescope measures, its clutter and noise),
 //!   [`truth`] (the objects, their orbits and what the prior knows), [`breakup`], [`error`] (why a simulation fails), [`ssa`] (the scenario
 //!   and its scans) and [`presets`] (`radar-leo`, `optical-geo`, `tiny-3d`).
+//! - [`population`]: a synthetic catalogue shaped like the public one (`generate synthetic-catalogue`).
 //! - [`orbit`]: the truth propagator (adaptive RKF7(8), two-body + J2); [`rng`]: the seeded random streams.
 
 pub mod breakup;
@@ -20,6 +21,7 @@ pub mod network;
 pub mod orbit;
 pub mod physics;
 pub mod planar;
+pub mod population;
 pub mod presets;
 pub mod refraction;
 pub mod rng;

@@ -26,7 +26,7 @@ mod tle;
 
 pub use entry::{CatalogueEntry, CatalogueError, MAX_NAME_CHARS};
 pub use files::{Format, detect, load, parse};
-pub use omm::{parse_omm_csv, parse_omm_epoch, parse_omm_json};
+pub use omm::{parse_omm_csv, parse_omm_epoch, parse_omm_json, to_omm_json};
 pub use propagation::{ObjectReport, PropagationError, Satellite, State, report};
 pub use screen::{CatalogueDropped, DroppedElementSet, Screened, orbit_problem, screen_for_run};
 pub use tle::{parse_catalogue_number, parse_tle, tle_checksum};

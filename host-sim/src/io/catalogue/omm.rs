@@ -224,6 +224,39 @@ pub fn parse_omm_json(file: &str, text: &str) -> Result<Vec<CatalogueEntry>, Cat
     Ok(entries)
 }
 
+/// `entries` as OMM JSON in CelesTrak's keywords, one record a line; numbers written exactly (shortest
+/// round-trip form) and the epoch to the microsecond, so that [`parse_omm_json`] reads back the same
+/// elements when the epochs are whole microseconds.
+pub fn to_omm_json(entries: &[CatalogueEntry]) -> String {
+    let mut text = String::with_capacity(entries.len() * 560 + 4);
+    text.push('[');
+    for (k, e) in entries.iter().enumerate() {
+        let record = serde_json::json!({
+            "OBJECT_NAME": e.name.clone().unwrap_or_default(),
+            "OBJECT_ID": e.international_designator.clone().unwrap_or_default(),
+            "EPOCH": e.epoch.format("%Y-%m-%dT%H:%M:%S%.6f").to_string(),
+            "MEAN_MOTION": e.mean_motion,
+            "ECCENTRICITY": e.eccentricity,
+            "INCLINATION": e.inclination,
+            "RA_OF_ASC_NODE": e.right_ascension,
+            "ARG_OF_PERICENTER": e.argument_of_perigee,
+            "MEAN_ANOMALY": e.mean_anomaly,
+            "EPHEMERIS_TYPE": e.ephemeris_type,
+            "CLASSIFICATION_TYPE": e.classification.to_string(),
+            "NORAD_CAT_ID": e.norad_id,
+            "ELEMENT_SET_NO": e.element_set_number,
+            "REV_AT_EPOCH": e.revolution_number,
+            "BSTAR": e.bstar,
+            "MEAN_MOTION_DOT": e.mean_motion_dot,
+            "MEAN_MOTION_DDOT": e.mean_motion_ddot,
+        });
+        text.push_str(if k == 0 { "\n" } else { ",\n" });
+        text.push_str(&record.to_string());
+    }
+    text.push_str("\n]\n");
+    text
+}
+
 /// The fields of one CSV line: separated by commas, a field in double quotes may hold commas and `""`.
 fn csv_fields(line: &str) -> Option<Vec<String>> {
     let mut fields = vec![];

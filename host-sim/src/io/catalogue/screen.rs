@@ -49,6 +49,9 @@ pub struct CatalogueDropped {
     pub count: usize,
     /// Each, in file order.
     pub objects: Vec<DroppedElementSet>,
+    /// Element sets kept with a warning: elements more than [`MAX_EXTRAPOLATION_DAYS`] from the run.
+    #[serde(default)]
+    pub extrapolated: usize,
 }
 
 /// The element sets a run keeps (as SGP4 propagators, in file order), those it drops, and the warning lines
@@ -137,6 +140,7 @@ pub fn screen_for_run(file: &str, entries: Vec<CatalogueEntry>, start: NaiveDate
         match kept {
             Ok(satellite) => {
                 if days > MAX_EXTRAPOLATION_DAYS {
+                    screened.dropped.extrapolated += 1;
                     let days = Readable((days * 10.0).round() / 10.0);
                     screened.warnings.push(format!(
                         "{label}: elements {days} days from the run: SGP4 extrapolated beyond \
@@ -244,6 +248,7 @@ mod tests {
         assert!(screened.dropped.objects[0].reason.contains("line 1 again"), "{:?}", screened.dropped);
         let old: Vec<&String> = screened.warnings.iter().filter(|w| w.contains("days from the run")).collect();
         assert_eq!(old.len(), 2, "{:?}", screened.warnings);
+        assert_eq!(screened.dropped.extrapolated, 2);
         assert!(old[0].starts_with("t:1: object 5: elements 40 days"), "{}", old[0]);
         assert!(old[1].starts_with("t:5: object 5: elements 39 days"), "{}", old[1]);
     }

@@ -28,6 +28,15 @@ pub struct CatalogueReport {
     pub mean_ms_per_scan: f64,
     /// The slowest scan (ms).
     pub max_ms_per_scan: f64,
+    /// Objects observed (measured at least once) by the last scan ([`crate::eval::observed`]).
+    #[serde(default)]
+    pub observed_objects: Option<usize>,
+    /// Median error (km) at the last scan of the objects observed so far.
+    #[serde(default)]
+    pub observed_median_error_km: Option<f64>,
+    /// Median prediction error (km) at the last scan of the objects never observed.
+    #[serde(default)]
+    pub unobserved_median_error_km: Option<f64>,
     /// The tracker's figures (one entry: the fused network).
     pub details: Vec<CatalogueTracker>,
 }

@@ -100,6 +100,20 @@ pub struct RunSummary {
     /// Sensors whose `mean_nis` lies outside its `nis_band`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub consistency_warnings: Option<Vec<String>>,
+    /// Version 2 (3-D) runs with truth: objects observed (measured at least once) by the last scan
+    /// ([`crate::eval::observed`]). Absent from other runs, like the three keys below.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observed_objects: Option<usize>,
+    /// Objects never observed by the last scan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unobserved_objects: Option<usize>,
+    /// Median error (km) at the last scan of the objects observed so far: true position to its MAP track
+    /// (the prior label's, else the nearest within 100 km; none counts as 100 km). Absent when none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observed_median_error_km: Option<f64>,
+    /// Median prediction error (km) at the last scan of the objects never observed. Absent when none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unobserved_median_error_km: Option<f64>,
 }
 
 /// The summary figures of a birth tally (`births::BirthTally::figures`), from which [`BirthsSummary`] is made.

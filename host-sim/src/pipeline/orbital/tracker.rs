@@ -272,6 +272,15 @@ fn core3d<G, const D: usize, const H: usize, const N: usize, const Z: usize, con
 where
     G: ScenarioNetwork<D>,
 {
+    let prior_objects = scenario.max_prior_objects();
+    if prior_objects > N {
+        // One tracker holds at most N objects per hypothesis (issue 30: a partitioned tracker for catalogues).
+        return Err(Error::input(format!(
+            "the prior holds {prior_objects} objects, more than one tracker of this profile holds (its capacity \
+             N = {N}; the host profile's is {}): track a smaller catalogue",
+            crate::pipeline::profile::HOST_OBJECTS_3D
+        )));
+    }
     let (config, objects) = config3d::<G, D, B>(scenario, kind)?;
     let prior: Vec<PriorHypothesis<'_, f64, 6>> =
         objects.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
