@@ -13,6 +13,7 @@ pub mod error;
 pub mod hypotheses;
 pub mod marginal;
 pub mod route;
+pub mod runner;
 pub mod split;
 #[cfg(test)]
 mod tests;
