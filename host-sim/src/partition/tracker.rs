@@ -218,11 +218,18 @@ where
             .collect();
         let routing = route::route(&gated, measurements.len());
         let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
-        // The work of the scan: each group's core (a clone, or a merge's new core) and its measurements.
+        // Quiet clusters (no measurement, no track in view) are stepped in place at the end (§13.2).
+        let quiet_allowed = self.quiet_steps_cannot_fail();
+        let mut quiet = vec![false; self.clusters.len()];
+        // The work of the scan: each other group's core (a clone, or a merge's new core) and its measurements.
         let mut work: Vec<Work<M, G, S, D, H, N, Z, K, B>> = vec![];
         for (group, rows) in routing.groups.iter().zip(&routing.measurements) {
             let id = self.clusters[group[0]].id;
             check_capacity(id, rows.len(), Z)?;
+            if quiet_allowed && group.len() == 1 && rows.is_empty() && !gated[group[0]].in_view {
+                quiet[group[0]] = true;
+                continue;
+            }
             let core = if group.len() == 1 {
                 self.clusters[group[0]].core.clone()
             } else {
@@ -244,8 +251,55 @@ where
         report.clusters_with_measurements = work.iter().filter(|w| !w.2.is_empty()).count();
         let birth = work.pop().expect("the birth cluster's work").1;
         let stepped: Vec<_> = work.into_iter().map(|(id, core, _)| Cluster { id, core }).collect();
-        self.commit(geometry.time, stepped, birth, &mut report)?;
+        let (stepped, counters) = self.rebuild(geometry.time, stepped, &birth, &mut report)?;
+        let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
+        // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
+        let quiet_results: Vec<Result<StepReport<f64>, StepError>> = self
+            .clusters
+            .par_iter_mut()
+            .zip(&quiet)
+            .filter(|(_, q)| **q)
+            .map(|(c, _)| c.core.step_scan(geometry, &[]))
+            .collect();
+        // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
+        // stepped before it would have moved on (docs/maths.md §13.6).
+        let quiet_ids = self.clusters.iter().zip(&quiet).filter(|(_, q)| **q).map(|(c, _)| c.id);
+        if let Some((id, Err(error))) = quiet_ids.zip(quiet_results).find(|(_, r)| r.is_err()) {
+            return Err(PartitionError::Cluster { cluster: id, error });
+        }
+        let mut clusters: Vec<_> =
+            std::mem::take(&mut self.clusters).into_iter().zip(&quiet).filter(|(_, q)| **q).map(|(c, _)| c).collect();
+        clusters.extend(stepped);
+        clusters.retain(|c| !c.core.tracks().is_empty());
+        clusters.sort_by_key(|c| c.id);
+        report.clusters = clusters.len();
+        report.largest_cluster = clusters.iter().map(|c| labels(&c.core).len()).max().unwrap_or(0);
+        report.hypotheses = clusters.iter().map(|c| c.core.hypotheses().len()).sum();
+        self.clusters = clusters;
+        self.birth = birth;
+        (self.next_cluster, self.next_label, self.time) = (counters.next_cluster, counters.next_label, counters.time);
         Ok(report)
+    }
+
+    /// Whether an empty scan of a cluster with no track in view cannot fail: a prediction failure drops the
+    /// track (`NumericalFailure::DropTrack`), each parent has its one no-event child (no measurement, no
+    /// birth, no death out of view) and the child budget holds H of them.
+    fn quiet_steps_cannot_fail(&self) -> bool {
+        let budget = match self.quiet.children {
+            tracker_core::config::ChildGeneration::Exhaustive { max_children_per_scan } => {
+                max_children_per_scan >= H as u64
+            }
+            tracker_core::config::ChildGeneration::Sampled(_) => true,
+        };
+        budget && self.quiet.numerical_failure == tracker_core::NumericalFailure::DropTrack
+    }
+
+    /// A fresh birth cluster at `time` (the configuration with births, one empty hypothesis).
+    fn empty_birth(&self, time: f64) -> Result<Box<Core<M, G, S, D, H, N, Z, K, B>>, PartitionError> {
+        let mut core = Box::new(Core::empty(self.config.clone()));
+        let empty = [PriorHypothesis { weight: 1.0, objects: &[] }];
+        core.reset(&empty, time).map_err(|error| PartitionError::Rebuild { cluster: ClusterId::BIRTH, error })?;
+        Ok(core)
     }
 
     /// The merge of the clusters at `group` (indices): their product, pruned to H after it, as a new core
@@ -293,28 +347,25 @@ where
     M: MotionModel<f64, S> + Clone + Send + Sync,
     G: MeasurementModel<f64, S, D> + Clone + Send + Sync,
 {
-    /// Installs a scan's stepped clusters: a birth cluster holding tracks becomes a cluster of objects
-    /// (fresh labels) and the birth cluster restarts empty; clusters that factor are split; clusters with
-    /// no object left are dropped. Rebuilding can still fail (the core's checks), so the new state is
-    /// built aside and swapped in at the end.
-    fn commit(
-        &mut self,
+    /// The clusters a scan stepped, rebuilt: a birth cluster holding tracks becomes a cluster of objects
+    /// (fresh labels); clusters that factor are split (§13.4); and the counters after the scan. Nothing of
+    /// the tracker changes here, so a failed rebuild leaves it as it was.
+    #[allow(clippy::type_complexity)]
+    fn rebuild(
+        &self,
         time: f64,
         stepped: Vec<Cluster<M, G, S, D, H, N, Z, K, B>>,
-        mut birth: Box<Core<M, G, S, D, H, N, Z, K, B>>,
+        birth: &Core<M, G, S, D, H, N, Z, K, B>,
         report: &mut PartitionReport,
-    ) -> Result<(), PartitionError> {
+    ) -> Result<(Vec<Cluster<M, G, S, D, H, N, Z, K, B>>, Counters), PartitionError> {
         let mut next = self.clone_counters();
         next.time = time;
         let mut clusters = stepped;
         if !birth.tracks().is_empty() {
-            let set = next.relabel(hypotheses::read(&birth));
-            let id = ClusterId(next.next_cluster);
-            next.next_cluster += 1;
+            let set = next.relabel(hypotheses::read(birth));
+            let id = next.fresh_cluster();
             clusters.push(Cluster { id, core: self.build_at(id, &set, time)? });
             report.born_clusters += 1;
-            let empty = [PriorHypothesis { weight: 1.0, objects: &[] }];
-            birth.reset(&empty, time).map_err(|error| PartitionError::Rebuild { cluster: ClusterId::BIRTH, error })?;
         }
         let factors: Vec<Option<split::Factors<S>>> =
             clusters.par_iter().map(|c| split::factor(&c.core, self.epsilon)).collect();
@@ -332,15 +383,7 @@ where
                 }
             }
         }
-        out.retain(|c| !c.core.tracks().is_empty());
-        out.sort_by_key(|c| c.id);
-        report.clusters = out.len();
-        report.largest_cluster = out.iter().map(|c| labels(&c.core).len()).max().unwrap_or(0);
-        report.hypotheses = out.iter().map(|c| c.core.hypotheses().len()).sum();
-        self.clusters = out;
-        self.birth = birth;
-        (self.next_cluster, self.next_label, self.time) = (next.next_cluster, next.next_label, next.time);
-        Ok(())
+        Ok((out, next))
     }
 
     fn clone_counters(&self) -> Counters {
