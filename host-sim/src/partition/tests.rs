@@ -110,11 +110,33 @@ fn apart_scans() -> Vec<(f64, Vec<SVector<f64, 2>>)> {
 
 #[test]
 fn objects_that_never_interact_have_the_single_trackers_posteriors() {
-    on_large_stack(|| {
+    on_large_stack(|| assert_eq!(apart(config(), apart_scans()), 0, "everything is in view"));
+}
+
+/// As above with the object at 200 out of the field of view (x < 150): its cluster has no measurement and
+/// no track in view, so it is stepped in place, and stays exact.
+#[test]
+fn a_cluster_out_of_view_is_stepped_in_place_and_stays_exact() {
+    let mut narrow = config();
+    narrow.sensor.field_of_view = Region::Rectangle { min: [-50.0, -50.0], max: [150.0, 50.0] };
+    let scans = apart_scans()
+        .into_iter()
+        .map(|(t, zs)| (t, zs.into_iter().filter(|z| z[0] < 150.0 && z[1].abs() < 50.0).collect()))
+        .collect();
+    on_large_stack(move || assert_eq!(apart(narrow, scans), 3, "one quiet cluster at each of 3 scans"));
+}
+
+/// Runs `scans` in both trackers, checking each object's posterior after every scan; returns how many
+/// clusters were stepped in place (quiet) over the run.
+fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) -> usize {
+    {
+        let mut quiet = 0;
         let xs = [0.0, 100.0, 200.0];
-        let mut single = single(&xs);
-        let mut partitioned = Partitioned::new(config(), &objects(&xs), 0.0, 0.0).expect("tracker");
-        for (time, zs) in apart_scans() {
+        let objects = objects(&xs);
+        let mut single = Box::new(Single::empty(config.clone()));
+        single.reset(&[PriorHypothesis { weight: 1.0, objects: &objects }], 0.0).expect("prior");
+        let mut partitioned = Partitioned::new(config, &objects, 0.0, 0.0).expect("tracker");
+        for (time, zs) in scans {
             let step = single.step(time, &zs).expect("single");
             assert!(
                 step.hypotheses < 1024 && (step.captured_mass - 1.0).abs() < 1e-12,
@@ -122,13 +144,16 @@ fn objects_that_never_interact_have_the_single_trackers_posteriors() {
             );
             let report = partitioned.step(&scan(time), &zs).expect("partitioned");
             assert_eq!((report.clusters, report.merged, report.split), (3, 0, 0));
+            quiet += report.quiet;
             let mut expected = BTreeMap::new();
             marginal::add(&single, &mut expected);
             assert_equal(&posteriors(&partitioned), &expected);
         }
-        // The check can fail: the hypotheses did branch.
+        // The check can fail: the hypotheses did branch, and every object moved.
         assert!(partitioned.clusters()[0].core.hypotheses().len() > 1);
-    });
+        assert!(partitioned.clusters().iter().all(|c| c.core.time() == 3.0));
+        quiet
+    }
 }
 
 /// Two objects 6 apart; at scan 1 a measurement between them gates with both.

@@ -67,6 +67,8 @@ pub struct PartitionReport {
     pub born_clusters: usize,
     /// Measurements routed to the birth cluster.
     pub unclaimed: usize,
+    /// Clusters stepped in place with an empty scan: no measurement and no track in view (§13.2).
+    pub quiet: usize,
     /// Clusters stepped with at least one measurement.
     pub clusters_with_measurements: usize,
     /// Σ over clusters of the core's hypotheses after the scan.
@@ -254,6 +256,7 @@ where
         let (stepped, counters) = self.rebuild(geometry.time, stepped, &birth, &mut report)?;
         let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
         // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
+        report.quiet = quiet.iter().filter(|q| **q).count();
         let quiet_results: Vec<Result<StepReport<f64>, StepError>> = self
             .clusters
             .par_iter_mut()
