@@ -62,9 +62,32 @@ fn build_for<G: ScenarioNetwork<D>, const D: usize>(
     Ok(Box::new(Runner { tracker }))
 }
 
+/// A partitioned scan in the run's terms.
+fn info(report: &super::PartitionReport) -> StepInfo {
+    StepInfo {
+        children: 0,
+        hypotheses: report.hypotheses,
+        captured_mass: 1.0 - report.step_pruned_mass - report.merge_pruned_mass,
+        budget_reached: false,
+        numerical_drops: NumericalDrops::default(),
+        lost_tracks: 0,
+    }
+}
+
 impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
+    /// The core's error behind a partitioned failure, without the cluster's name; the run itself reads
+    /// [`Runner3d::step_or_failure`], whose messages name the cluster.
     fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError> {
-        self.step_or_failure(sensor, time, measurements).map_err(|_| StepError::NotInitialised)
+        let zs: Vec<SVector<f64, D>> = measurements.iter().map(|z| padded::<D>(z)).collect();
+        match self.tracker.step(&ScanGeometry { sensor, time, observer: None }, &zs) {
+            Ok(report) => Ok(info(&report)),
+            Err(PartitionError::Scan(e) | PartitionError::Cluster { error: e, .. }) => Err(e),
+            Err(PartitionError::TooManyMeasurements { received, capacity, .. }) => {
+                Err(StepError::TooManyMeasurements { received, capacity })
+            }
+            // A merge beyond a cluster's N or K: the store is full.
+            Err(_) => Err(StepError::TrackStoreFull { capacity: { CLUSTER.tracks } }),
+        }
     }
 
     fn step_or_failure(
@@ -78,14 +101,7 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
             PartitionError::Scan(e) => crate::pipeline::orbital::step_failure(e),
             e => StepFailure::Rejected(e.to_string()),
         })?;
-        Ok(StepInfo {
-            children: 0,
-            hypotheses: report.hypotheses,
-            captured_mass: 1.0 - report.step_pruned_mass - report.merge_pruned_mass,
-            budget_reached: false,
-            numerical_drops: NumericalDrops::default(),
-            lost_tracks: 0,
-        })
+        Ok(info(&report))
     }
 
     fn posterior(&self) -> Posterior6 {
