@@ -33,6 +33,7 @@ pub mod error;
 pub mod eval;
 pub mod experiments;
 pub mod io;
+pub mod partition;
 pub mod peers;
 pub mod pipeline;
 pub mod plots;

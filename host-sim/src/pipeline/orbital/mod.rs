@@ -163,12 +163,7 @@ impl World<3> for OrbitalWorld<'_> {
     fn step(&mut self, k: usize) -> Result<StepInfo, StepFailure> {
         let scan = &self.scenario.scans[k];
         let zs = corrections::corrected_measurements(self.scenario, scan);
-        self.runner.step(scan.sensor, scan.time, &zs).map_err(|e| match e {
-            // Bad input, not a tracker failure: one line and exit code 2.
-            StepError::TimeStepTooLong { .. } | StepError::Placement(_) => StepFailure::BadInput(e.to_string()),
-            e if is_refused_input(&e) => StepFailure::Refused(e.to_string()),
-            e => StepFailure::Rejected(e.to_string()),
-        })
+        self.runner.step_or_failure(scan.sensor, scan.time, &zs)
     }
 
     fn posterior(&mut self) -> Posterior {
@@ -279,6 +274,16 @@ impl World<3> for OrbitalWorld<'_> {
     fn finish(&mut self, records: &[ScanRecord]) -> Result<(), Error> {
         plots::write_plots(self.scenario, records, &self.sky_truth, &self.sky_estimates, &self.out)?;
         self.oem.write(&self.out.join("tracks.oem"))
+    }
+}
+
+/// What a run does with a core error of a scan: bad input (one line, exit code 2) for a gap beyond the
+/// motion model's bound or an unknown sensor, a refused scan for the scan's own input, else a rejection.
+pub fn step_failure(e: StepError) -> StepFailure {
+    match e {
+        StepError::TimeStepTooLong { .. } | StepError::Placement(_) => StepFailure::BadInput(e.to_string()),
+        e if is_refused_input(&e) => StepFailure::Refused(e.to_string()),
+        e => StepFailure::Rejected(e.to_string()),
     }
 }
 

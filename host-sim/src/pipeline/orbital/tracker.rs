@@ -42,6 +42,16 @@ pub trait Runner3d: Send {
     /// # Errors
     /// The core's [`StepError`]; the tracker is unchanged.
     fn step(&mut self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> Result<StepInfo, StepError>;
+    /// [`Runner3d::step`] with the run's reading of a failure ([`super::step_failure`]); a tracker whose
+    /// errors say more than a [`StepError`] (the partitioned tracker's name the cluster) overrides it.
+    fn step_or_failure(
+        &mut self,
+        sensor: usize,
+        time: f64,
+        measurements: &[Vec<f64>],
+    ) -> Result<StepInfo, crate::pipeline::world::StepFailure> {
+        self.step(sensor, time, measurements).map_err(super::step_failure)
+    }
     /// The posterior now.
     fn posterior(&self) -> Posterior6;
     /// Per measurement of a scan about to be stepped, its association with a MAP track, and the
@@ -325,6 +335,21 @@ pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
 pub fn build3d(kind: TrackerKind, profile: Profile, scenario: &Scenario3d) -> Result<Box<dyn Runner3d>, Error> {
     if kind == TrackerKind::Reference {
         return Err(Error::input("--tracker reference: not yet supported on version 2 (3-D) scenario files"));
+    }
+    let n = ORBITAL.of(profile).objects;
+    if scenario.max_prior_objects() > n {
+        // More objects than one tracker holds: clusters of objects (docs/maths.md §13).
+        let cluster = crate::partition::runner::CLUSTER;
+        eprintln!(
+            "note: {} prior objects, more than the {} profile's N = {n}: the partitioned tracker (clusters of H = {}, N = \
+             {}, Z = {})",
+            scenario.max_prior_objects(),
+            profile.name(),
+            cluster.hypotheses,
+            cluster.objects,
+            cluster.measurements
+        );
+        return crate::partition::runner::build(kind, scenario);
     }
     with_measurement!(scenario.measurement, build_for, (kind, profile, scenario))
 }

@@ -1,0 +1,23 @@
+//! The partitioned catalogue tracker (issue 30; docs/maths.md §13): objects in clusters that do not
+//! interact, each cluster an exact core R-FISST tracker with its own hypotheses, merged when a measurement
+//! gates with two of them and split when their hypotheses factor, stepped in parallel.
+//!
+//! - [`tracker`]: [`PartitionedTracker`], the scan loop (route, merge, step, births, split, commit).
+//! - [`route`]: gating a scan's measurements against each cluster and grouping clusters to merge.
+//! - [`hypotheses`]: a cluster's hypothesis set as owned data and the product of two of them.
+//! - [`split`]: the factorisation of a cluster into independent groups of labels (exact or within ε).
+//! - [`marginal`]: per-object posteriors (existence, mean, covariance) of a cluster or a single tracker.
+//! - [`error`]: cluster ids and the typed errors.
+
+pub mod error;
+pub mod hypotheses;
+pub mod marginal;
+pub mod route;
+pub mod runner;
+pub mod split;
+#[cfg(test)]
+mod tests;
+pub mod tracker;
+
+pub use error::{ClusterId, PartitionError};
+pub use tracker::{Cluster, PartitionReport, PartitionedTracker};
