@@ -116,13 +116,14 @@ fn run_catalogue_reports_observed_and_unobserved_objects_apart() {
 }
 
 #[test]
-fn a_catalogue_larger_than_one_tracker_is_refused_in_one_line() {
-    // Issue 30: 2,000 objects were refused with "prior hypothesis 0: more objects than the capacity N".
+fn a_catalogue_larger_than_one_tracker_runs_partitioned() {
+    // Issue 30: 2,000 objects were refused with "prior hypothesis 0: more objects than the capacity N";
+    // a prior larger than one tracker's N now goes to the partitioned tracker (docs/maths.md §13).
     let dir = TempDir::new("capacity");
     let catalogue = generate(&dir, "syn.json", "300", "1");
-    let out = dir.join("run");
     let start = "2026-03-20T00:00:00Z";
     for profile in ["host", "embedded"] {
+        let out = dir.join(profile);
         let output = host_sim(&[
             "run-catalogue",
             "--catalogue",
@@ -140,10 +141,10 @@ fn a_catalogue_larger_than_one_tracker_is_refused_in_one_line() {
             p(&out),
         ]);
         let err = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(output.status.code(), Some(2), "{err}");
-        assert_eq!(err.lines().count(), 1, "{err}");
+        assert_eq!(output.status.code(), Some(0), "{err}");
         let n = if profile == "host" { 256 } else { 64 };
-        assert!(err.contains("the prior holds 300 objects") && err.contains(&format!("N = {n}")), "{err}");
-        assert!(!out.join("summary.json").exists());
+        assert!(err.contains("300 prior objects") && err.contains(&format!("N = {n}")), "{err}");
+        assert!(err.contains("partitioned tracker"), "{err}");
+        assert!(out.join("summary.json").is_file());
     }
 }
