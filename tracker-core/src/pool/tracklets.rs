@@ -152,7 +152,8 @@ impl<T: Real> TrackletBuffer<T> {
                 break;
             }
             if frame.sensor == sensor && frame.time < time && time - frame.time <= settings.max_span {
-                chosen[found] = index;
+                let Some(slot) = chosen.get_mut(found) else { break };
+                *slot = index;
                 found += 1;
             }
         }
@@ -169,7 +170,7 @@ impl<T: Real> TrackletBuffer<T> {
                 let (angles, _) = *earlier.points.get(digit)?;
                 arc[slot + 1] = TrackletFrame { time: earlier.time, angles };
             }
-            if let Ok(attributable) = Attributable::fit_at(&arc[..=earlier], time, point.sigma, &settings.limits) {
+            if let Ok(attributable) = Attributable::fit_at(arc.get(..=earlier)?, time, point.sigma, &settings.limits) {
                 let score = link_score(&attributable, &settings.limits);
                 if best.as_ref().is_none_or(|(low, _)| score < *low) {
                     best = Some((score, attributable));

@@ -156,7 +156,7 @@ impl<T: Real> Attributable<T> {
         if !finite || !time.is_finite() || !sigma.iter().all(|s| s.is_finite_value() && *s > T::zero()) {
             return Err(TrackletError::NonFinite);
         }
-        if frames.iter().enumerate().any(|(i, a)| frames[..i].iter().any(|b| b.time == a.time)) {
+        if frames.iter().enumerate().any(|(i, a)| frames.iter().take(i).any(|b| b.time == a.time)) {
             return Err(TrackletError::Frames);
         }
         let row = |f: &TrackletFrame<T>| {
@@ -187,7 +187,7 @@ impl<T: Real> Attributable<T> {
         let rate = sqrt(values[2] * values[2] * cos_dec * cos_dec + values[3] * values[3]);
         let accelerations = [acceleration[0] * cos_dec, acceleration[1]];
         let spread = [sigma[0] * cos_dec, sigma[1]].map(|s| c::<T>(3.0) * s * sqrt(inverse[(2, 2)]));
-        let steady = (0..2).all(|axis| accelerations[axis].abs() <= limits.max_acceleration + spread[axis]);
+        let steady = accelerations.iter().zip(&spread).all(|(a, s)| a.abs() <= limits.max_acceleration + *s);
         if !(chi_squared <= limits.max_chi_squared && rate <= limits.max_rate && steady) {
             return Err(TrackletError::NotLinked);
         }
