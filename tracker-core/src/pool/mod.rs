@@ -15,7 +15,8 @@
 //! time and are birth cells of the independent birth model (§5.6): the birth model of a scan is known
 //! before the scan, so the recursion's weights are those of §4 and §5.6 unchanged. A cell lives for
 //! `lifetime` seconds after its measurement; each scan its α is multiplied by the probability that it gave
-//! no birth in that scan. When the pool is full the cells with the smallest α give way.
+//! no birth in that scan and, when the scan's sensor had it in view, by the Bernoulli missed-detection factor
+//! (1 − p_D) / (1 − α p_D). When the pool is full the cells with the smallest α give way.
 
 pub mod tracklets;
 
@@ -139,6 +140,9 @@ pub struct ScanUse<'a, T, const D: usize> {
     pub unexplained: &'a [T],
     /// Per pool cell (in the pool's order before the update), the probability that it gave birth.
     pub born: &'a [T],
+    /// Per pool cell (same order), the scan sensor's p_D when the cell was in its field of view, else 0
+    /// (missing entries count as 0): a cell in view that gave no birth was missed (docs/maths.md §5.8).
+    pub detection: &'a [T],
 }
 
 /// At most `B` birth cells made from measurements (docs/maths.md §5.8).
@@ -191,7 +195,8 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     }
 
     /// Updates the pool after `scan`: each cell's α times 1 − `born[l]` (the posterior probability that
-    /// cell l gave birth in the scan; missing entries count as 0), cells past their lifetime removed, then
+    /// cell l gave birth in the scan; missing entries count as 0) and (1 − p_D) / (1 − α p_D) with p_D =
+    /// `detection[l]` (docs/maths.md §5.8), cells past their lifetime removed, then
     /// the cells of every measurement whose `unexplained[z]` (r_U) is at least the settings' minimum added,
     /// made by `model` (the measurement model placed at the scan). At most
     /// `capacity` (≤ `B`) cells are kept: the smallest α give way, the older first among equals.
@@ -202,7 +207,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         model: &G,
         scan: &ScanUse<'_, T, D>,
     ) -> PoolUpdate {
-        let ScanUse { time, sensor, measurements, unexplained, born } = *scan;
+        let ScanUse { time, sensor, measurements, unexplained, born, detection } = *scan;
         let capacity = capacity.min(B);
         let mut update = PoolUpdate::default();
         // Age the old cells.
@@ -210,9 +215,13 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         let mut old_index = 0;
         while index < self.cells.len() {
             let given_birth = unit(born.get(old_index).copied().unwrap_or(T::zero()));
+            let p_d = unit(detection.get(old_index).copied().unwrap_or(T::zero()));
             old_index += 1;
             let Some(cell) = self.cells.get_mut(index) else { break };
-            cell.probability *= T::one() - given_birth;
+            // The candidate object, had it existed, was missed: the Bernoulli update α (1 − p_D) / (1 − α p_D)
+            // of what did not give birth (docs/maths.md §5.8).
+            let alpha = cell.probability;
+            cell.probability = alpha * (T::one() - given_birth) * (T::one() - p_d) / (T::one() - alpha * p_d);
             if !(time - cell.time <= settings.lifetime && cell.probability > T::zero()) {
                 self.remove_at(index);
                 update.expired += 1;
@@ -386,7 +395,7 @@ mod tests {
     }
 
     fn scan<'a>(time: f64, zs: &'a [SVector<f64, 2>], r_u: &'a [f64], born: &'a [f64]) -> ScanUse<'a, f64, 2> {
-        ScanUse { time, sensor: 0, measurements: zs, unexplained: r_u, born }
+        ScanUse { time, sensor: 0, measurements: zs, unexplained: r_u, born, detection: &[] }
     }
 
     #[test]
@@ -404,6 +413,33 @@ mod tests {
         assert_eq!(update.added, 2);
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
         assert_eq!(alphas, [0.15, 0.3, 0.3], "the first cell gave birth with probability 1/2");
+    }
+
+    #[test]
+    fn a_cell_in_view_that_gave_no_birth_was_missed() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0])];
+        let mut pool = BirthPool::<f64, 4, 4>::new();
+        let settings = MeasuredBirths { max_probability: 0.9, ..settings() };
+        // Two cells of α = 0.5 each (r_U 1 and 1 share λ_B = 1).
+        pool.update(&settings, 4, &model, &scan(0.0, &zs, &[1.0, 1.0], &[]));
+        // The first in view of a sensor of p_D 0.8, no birth: 0.5 · 0.2 / (1 − 0.4) = 1/6; the second out
+        // of view and born with probability 0.2: 0.5 · 0.8 = 0.4.
+        let in_view = ScanUse {
+            time: 1.0,
+            sensor: 0,
+            measurements: &[],
+            unexplained: &[],
+            born: &[0.0, 0.2],
+            detection: &[0.8, 0.0],
+        };
+        pool.update(&settings, 4, &model, &in_view);
+        let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
+        assert!((alphas[0] - 1.0 / 6.0).abs() < 1e-15 && (alphas[1] - 0.4).abs() < 1e-15, "{alphas:?}");
+        // p_D = 1 in view: the candidate would have been seen, so the cell is gone.
+        let certain = ScanUse { detection: &[1.0, 0.0], born: &[], ..in_view };
+        let update = pool.update(&settings, 4, &model, &ScanUse { time: 2.0, ..certain });
+        assert_eq!((update.expired, pool.cells().len()), (1, 1));
     }
 
     #[test]

@@ -268,7 +268,7 @@ mod tests {
         for (t, q, zs) in scans {
             let model = OpticalRaDec { observer: *q, sigma: [SIGMA; 2] };
             let r_u = std::vec![1.0; zs.len()];
-            let scan = ScanUse { time: *t, sensor: 0, measurements: zs, unexplained: &r_u, born: &[] };
+            let scan = ScanUse { time: *t, sensor: 0, measurements: zs, unexplained: &r_u, born: &[], detection: &[] };
             update = pool.update(settings, B, &model, &scan);
         }
         update

@@ -594,6 +594,7 @@ where
                     measurements,
                     unexplained: &unexplained[..rows],
                     born: &born,
+                    detection: &pool_detection(birth_cells, placed.detection.detection_probability),
                 };
                 self.pool.update(measured, capacity, &placed.model, &scan)
             }
@@ -650,6 +651,24 @@ fn finish_hypotheses<T: Real, const S: usize, const N: usize, const H: usize, co
             }
         }
     }
+}
+
+/// Per pool cell, `p_d` when the cell was in the scan's field of view (§3.1, at its predicted mean), else 0
+/// (docs/maths.md §5.8).
+fn pool_detection<T: Real, const S: usize, const D: usize, const B: usize>(
+    birth_cells: &BirthCells<T, S, D, B>,
+    p_d: T,
+) -> [T; B] {
+    let mut detection = [T::zero(); B];
+    for cell in 0..birth_cells.count.min(B) {
+        let pool_cell = birth_cells.pool_cell.get(cell).copied().unwrap_or(NONE);
+        if birth_cells.in_field_of_view(cell) == Some(true)
+            && let Some(slot) = detection.get_mut(usize::from(pool_cell))
+        {
+            *slot = p_d;
+        }
+    }
+    detection
 }
 
 /// Per measurement, the posterior probability r_U that no object took it; per pool cell, the posterior

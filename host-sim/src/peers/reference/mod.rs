@@ -422,6 +422,7 @@ where
                 measurements,
                 unexplained: &posterior.unexplained,
                 born: &posterior.born,
+                detection: &pool_detection(&tables.scan, self.pool.cells().len()),
             };
             self.pool.update(measured, capacity, model, &scan);
         }
@@ -477,4 +478,15 @@ where
             .collect();
         Snapshot { hypotheses, tracks }
     }
+}
+
+/// Per pool cell, the scan sensor's p_D when the cell was in its field of view, else 0 (as the core's).
+fn pool_detection<G, const S: usize, const D: usize>(scan: &Scan<G, S, D>, cells: usize) -> Vec<f64> {
+    let mut detection = vec![0.0; cells];
+    for ((_, in_view), &(_, _, pool_cell)) in scan.births.iter().zip(&scan.cells) {
+        if let (true, Some(slot)) = (*in_view, pool_cell.and_then(|c| detection.get_mut(c))) {
+            *slot = scan.placed.detection.detection_probability;
+        }
+    }
+    detection
 }
