@@ -2,6 +2,7 @@
 //! `TrackerError` carrying `kind` and `message`, and `ScenarioError`, `InputError`, `StepError`); this
 //! module makes one from a message and a kind.
 
+use host_sim::scenario::cut_quotes;
 use pyo3::prelude::*;
 use tracker_core::StepError;
 
@@ -28,9 +29,11 @@ impl Class {
     }
 }
 
-/// The exception `class(message, kind)`.
+/// The exception `class(message, kind)`. The message is made one short line: line breaks become spaces
+/// and long quoted input (a 100,000-character sensor name, numpy's repr of a huge array) is cut to an
+/// excerpt, as the CLI's messages are (`host_sim::scenario::cut_quotes`).
 pub fn error(py: Python<'_>, class: Class, kind: &str, message: impl Into<String>) -> PyErr {
-    let message: String = message.into();
+    let message = cut_quotes(&message.into().replace(['\n', '\r'], " "));
     let made = py.import("rfisst.errors").and_then(|m| m.getattr(class.name())).and_then(|c| c.call1((message, kind)));
     match made {
         Ok(value) => PyErr::from_value(value),

@@ -152,9 +152,17 @@ impl Tracker {
             World::Orbital { kinds, .. } => kinds.get(sensor).map_or(self.measurement_dim(), |k| k.dimension()),
             World::Planar => self.measurement_dim(),
         };
-        let array = py.import("numpy")?.call_method1("asarray", (measurements, "float64")).map_err(|e| {
-            error(py, Class::Input, "NotNumeric", format!("measurements: not an array of numbers: {e}"))
-        })?;
+        let numpy = py.import("numpy")?;
+        let not_numeric =
+            |e: String| error(py, Class::Input, "NotNumeric", format!("measurements: not an array of numbers: {e}"));
+        // Complex, text, time and record arrays are refused rather than cast (numpy would drop an imaginary
+        // part with only a warning, and parse text).
+        let given = numpy.call_method1("asarray", (measurements,)).map_err(|e| not_numeric(e.to_string()))?;
+        let dtype_kind: String = given.getattr("dtype")?.getattr("kind")?.extract()?;
+        if matches!(dtype_kind.as_str(), "c" | "U" | "S" | "M" | "m" | "V") {
+            return Err(not_numeric(format!("dtype {}", given.getattr("dtype")?.str()?)));
+        }
+        let array = numpy.call_method1("asarray", (given, "float64")).map_err(|e| not_numeric(e.to_string()))?;
         let array: PyReadonlyArrayDyn<'_, f64> = array.extract()?;
         let view = array.as_array();
         if view.is_empty() {
@@ -273,10 +281,14 @@ impl Tracker {
     fn step<'py>(
         &mut self,
         py: Python<'py>,
-        time: f64,
+        time: &Bound<'py, PyAny>,
         measurements: &Bound<'py, PyAny>,
         sensor: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let time: f64 = time.extract().map_err(|_| {
+            let what = time.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
+            error(py, Class::Input, "NotNumeric", format!("time: {what} is not a number of seconds"))
+        })?;
         let sensor = self.sensor_index(py, sensor)?;
         let rows = self.measurement_rows(py, sensor, measurements)?;
         let mut engine = self.engine.take().ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err(LOST))?;
