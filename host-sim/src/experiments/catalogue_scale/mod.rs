@@ -25,7 +25,7 @@ use crate::partition::runner::{CLUSTER, Partitioned, posterior};
 use crate::partition::tracker::labels;
 use crate::pipeline::TrackerKind;
 use crate::pipeline::orbital::config3d;
-use crate::pipeline::output::{peak_resident_kib, write_json};
+use crate::pipeline::output::{cpu_time_ns, peak_resident_kib, write_json};
 use crate::plots::{self, Series};
 use score::Score;
 use std::collections::BTreeMap;
@@ -61,6 +61,8 @@ struct ScanFigures {
     in_view: usize,
     measurements: usize,
     ms: f64,
+    /// CPU ms of the step, summed over the process's threads (`None`: not known).
+    cpu_ms: Option<f64>,
 }
 
 /// Runs the experiment into `dir`.
@@ -123,9 +125,10 @@ pub(crate) fn run_on(
         let scan = world.scan(k)?;
         score.detected(k, scan.time, &scan.detected);
         let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
-        let step_started = Instant::now();
+        let (step_started, cpu_started) = (Instant::now(), cpu_time_ns());
         let stepped = tracker.step(&geometry, &scan.measurements);
         let ms = step_started.elapsed().as_secs_f64() * 1e3;
+        let cpu_ms = cpu_started.zip(cpu_time_ns()).map(|(a, b)| b.saturating_sub(a) as f64 / 1e6);
         match stepped {
             Ok(report) => {
                 clusters_max = clusters_max.max(report.clusters);
@@ -139,7 +142,7 @@ pub(crate) fn run_on(
             }
         }
         let m = scan.measurements.len();
-        figures.push(ScanFigures { sensor: scan.sensor, in_view: scan.in_view, measurements: m, ms });
+        figures.push(ScanFigures { sensor: scan.sensor, in_view: scan.in_view, measurements: m, ms, cpu_ms });
         if score.due(scan.time) || k == last {
             score.score(k, scan.time, &scan.truth, &posterior(&tracker));
         }
@@ -189,6 +192,7 @@ fn report(
     let ms: Vec<f64> = f.iter().map(|s| s.ms).collect();
     let wall_s = ms.iter().sum::<f64>() / 1e3;
     let scored = score.figures();
+    let cpu_ms: Option<Vec<f64>> = f.iter().map(|s| s.cpu_ms).collect();
     let c = CLUSTER;
     ScaleReport {
         objects,
@@ -202,6 +206,9 @@ fn report(
         ms_per_scan_mean: crate::experiments::common::mean(&ms),
         ms_per_scan_p99: p99(&ms),
         ms_per_scan_max: ms.iter().copied().fold(0.0, f64::max),
+        cpu_s: cpu_ms.as_ref().map(|c| c.iter().sum::<f64>() / 1e3),
+        cpu_ms_per_scan_mean: cpu_ms.as_ref().map(|c| crate::experiments::common::mean(c)),
+        cpu_ms_per_scan_p99: cpu_ms.as_ref().map(|c| p99(c)),
         clusters_max: outcome.clusters_max,
         largest_cluster: outcome.largest,
         births_total: scored.births_total,

@@ -3,8 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-/// `scale.json`. Wall-clock figures (`wall_s`, `realtime_factor`, `peak_rss_mib`, `ms_per_scan_*`,
-/// `total_wall_s`) vary from run to run; every other figure is the same for the same arguments, whatever
+/// `scale.json`. Wall-clock and CPU figures (`wall_s`, `realtime_factor`, `peak_rss_mib`, `ms_per_scan_*`,
+/// `cpu_*`, `total_wall_s`) vary from run to run; every other figure is the same for the same arguments, whatever
 /// `threads`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -31,6 +31,13 @@ pub struct ScaleReport {
     pub ms_per_scan_p99: f64,
     /// Wall-clock ms per scan: the slowest.
     pub ms_per_scan_max: f64,
+    /// CPU seconds of the tracker's steps, summed over the process's threads (schedstat; idle pool threads
+    /// spinning for work included): on a shared machine, what the steps cost apart from waiting for a core.
+    pub cpu_s: Option<f64>,
+    /// CPU ms per scan (as `cpu_s`): mean.
+    pub cpu_ms_per_scan_mean: Option<f64>,
+    /// CPU ms per scan (as `cpu_s`): 99th percentile (nearest rank).
+    pub cpu_ms_per_scan_p99: Option<f64>,
     /// Most clusters of objects after one scan.
     pub clusters_max: usize,
     /// Most objects (labels) in one cluster after one scan.
