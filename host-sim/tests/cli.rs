@@ -147,7 +147,18 @@ fn help_works_for_every_command() {
 
 #[test]
 fn bad_arguments_exit_2() {
-    for args in [&[][..], &["frobnicate"], &["generate", "linear-small"], &["run", FIXTURE], &["run", "--bogus"]] {
+    let scale = ["experiment", "catalogue-scale", "--out", "/nonexistent-rfisst/scale"];
+    let with = |extra: &'static [&'static str]| -> Vec<&'static str> { scale.iter().chain(extra).copied().collect() };
+    let scale_cases = [
+        with(&[]),
+        with(&["--objects", "0", "--hours", "1"]),
+        with(&["--objects", "10", "--hours", "-1"]),
+        with(&["--objects", "10", "--hours", "1", "--threads", "0"]),
+        with(&["--objects", "10", "--hours", "1", "--runs", "2"]),
+        vec!["experiment", "fifty", "--out", "/nonexistent-rfisst/fifty", "--objects", "10"],
+    ];
+    let plain = [&[][..], &["frobnicate"], &["generate", "linear-small"], &["run", FIXTURE], &["run", "--bogus"]];
+    for args in plain.into_iter().chain(scale_cases.iter().map(Vec::as_slice)) {
         let output = host_sim(args);
         assert_eq!(output.status.code(), Some(2), "{args:?}: {}", describe(&output));
         assert!(!stderr(&output).contains("panicked"), "{args:?}: {}", describe(&output));
@@ -225,7 +236,7 @@ fn help_lists_every_preset_experiment_tracker_and_profile() {
                 "tiny-3d",
             ][..],
         ),
-        ("experiment", &["fifty", "fifteen", "scaling", "debris", "ablation", "all"]),
+        ("experiment", &["fifty", "fifteen", "scaling", "debris", "ablation", "catalogue-scale", "all"]),
         ("run", &["reference", "homht", "rfisst", "embedded", "host"]),
         ("compare", &["reference", "homht", "rfisst", "embedded", "host"]),
     ] {

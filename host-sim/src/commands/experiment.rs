@@ -1,8 +1,10 @@
-//! `host-sim experiment`: a paper experiment, the ablation or the 24-hour catalogue
-//! ([`crate::experiments::run`]).
+//! `host-sim experiment`: a paper experiment, the ablation, the 24-hour catalogue
+//! ([`crate::experiments::run`]) or the catalogue at scale ([`crate::experiments::catalogue_scale`]).
 
 use super::CliError;
+use crate::error::Error;
 use crate::experiments::Experiment;
+use crate::experiments::catalogue_scale::{self, Settings};
 use std::path::PathBuf;
 
 /// The arguments of `experiment`.
@@ -20,6 +22,15 @@ pub struct Args {
     /// Number of seeds to run (seed, seed + 1, ...), in parallel; reports mean and spread.
     #[arg(long, default_value_t = 1)]
     runs: u64,
+    /// catalogue-scale: objects of the synthetic catalogue.
+    #[arg(long)]
+    objects: Option<usize>,
+    /// catalogue-scale: simulated hours.
+    #[arg(long)]
+    hours: Option<f64>,
+    /// catalogue-scale: threads of the tracker's pool [default: every core].
+    #[arg(long)]
+    threads: Option<usize>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -27,7 +38,29 @@ pub struct Args {
 
 /// Runs `experiment`.
 pub(super) fn execute(args: Args) -> Result<(), CliError> {
-    crate::experiments::run(args.experiment, &args.out, args.seed, args.runs, args.quiet)?;
-    println!("experiment {}: files in {}", args.experiment.name(), args.out.display());
+    let name = args.experiment.name();
+    if args.experiment == Experiment::CatalogueScale {
+        let (Some(objects), Some(hours)) = (args.objects, args.hours) else {
+            return Err(Error::input("experiment catalogue-scale: needs --objects N and --hours H").into());
+        };
+        if args.runs > 1 {
+            return Err(Error::input("experiment catalogue-scale: no --runs (one run, its own threads)").into());
+        }
+        let settings = Settings { objects, hours, seed: args.seed, threads: args.threads, quiet: args.quiet };
+        let report = catalogue_scale::run(&args.out, &settings)?;
+        eprintln!(
+            "catalogue-scale: {} objects, {} scans, {:.1} s of tracking ({:.0}x real time), {} rejected scans",
+            report.objects, report.scans, report.wall_s, report.realtime_factor, report.rejected_scans
+        );
+    } else {
+        if args.objects.is_some() || args.hours.is_some() || args.threads.is_some() {
+            return Err(Error::input(format!(
+                "experiment {name}: --objects, --hours and --threads are catalogue-scale's"
+            ))
+            .into());
+        }
+        crate::experiments::run(args.experiment, &args.out, args.seed, args.runs, args.quiet)?;
+    }
+    println!("experiment {name}: files in {}", args.out.display());
     Ok(())
 }

@@ -130,7 +130,8 @@ enum Command {
     /// Run the bounded tracker and the unbounded reference on the same scans; writes compare.json.
     Compare(compare::Args),
     /// Reproduce a paper experiment (fifty, fifteen, scaling, debris), the ablation, the 24-hour catalogue
-    /// (not in `all`), or all of them.
+    /// (not in `all`), the catalogue at scale (catalogue-scale --objects N --hours H, not in `all`), or all of
+    /// them.
     Experiment(experiment::Args),
     /// Measure speed and memory side by side in one process; writes a JSON file.
     Perf(perf::Args),

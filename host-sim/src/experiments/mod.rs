@@ -21,10 +21,15 @@
 //!   one fused tracker and with the same tracker on each single-kind subset of the sensors
 //!   ([`crate::experiments::network`]). Writes `network.json`. Not part of `all`.
 //!
+//! - `catalogue-scale`: a synthetic catalogue of `--objects N` seen for `--hours H` by a wide-field radar and
+//!   two radars, tracked by the partitioned tracker on `--threads T`, streamed scan by scan
+//!   ([`crate::experiments::catalogue_scale`]). Writes `scale.json` and two plots. Not part of `all`; no
+//!   `--runs`.
+//!
 //! `--runs K` runs seeds `seed..seed + K` in parallel and writes each run in `DIR/seed-S/` plus
 //! `DIR/runs.json` with the mean and spread of every numeric figure.
 //!
-//! A file per experiment (`fifty`, `fifteen`, `scaling`, `debris`, `ablation`, [`catalogue`]); `runs` picks one and
+//! A file per experiment (`fifty`, `fifteen`, `scaling`, `debris`, `ablation`, [`catalogue`], [`catalogue_scale`]); `runs` picks one and
 //! runs it over the seeds. [`perf`] is `host-sim perf`, the benchmarks.
 
 mod ablation;
@@ -36,6 +41,7 @@ mod runs;
 mod scaling;
 
 pub mod catalogue;
+pub mod catalogue_scale;
 pub mod network;
 pub mod perf;
 

@@ -33,7 +33,10 @@ pub enum Experiment {
     /// The `ssa-network` preset: one fused tracker against each single-kind subset of its sensors
     /// ([`crate::experiments::network`]); not part of `all` (a minute per seed).
     Network,
-    /// Every experiment above but `catalogue` and `network`, each in its own directory.
+    /// A synthetic catalogue of `--objects` objects for `--hours` hours through the partitioned tracker on
+    /// `--threads` threads ([`crate::experiments::catalogue_scale`]); not part of `all`.
+    CatalogueScale,
+    /// Every experiment above but `catalogue`, `network` and `catalogue-scale`, each in its own directory.
     All,
 }
 
@@ -52,6 +55,7 @@ impl Experiment {
             Experiment::Ablation => "ablation",
             Experiment::Catalogue => "catalogue",
             Experiment::Network => "network",
+            Experiment::CatalogueScale => "catalogue-scale",
             Experiment::All => "all",
         }
     }
@@ -134,6 +138,9 @@ fn run_one(experiment: Experiment, dir: &Path, seed: u64, quiet: bool) -> Result
         Experiment::Ablation => to_value(ablation(dir, seed)?),
         Experiment::Catalogue => to_value(crate::experiments::catalogue::run(dir, seed, quiet)?),
         Experiment::Network => to_value(crate::experiments::network::network(dir, seed, quiet)?),
+        Experiment::CatalogueScale => {
+            return Err(Error::input("catalogue-scale takes --objects and --hours and runs alone (no --runs)"));
+        }
         Experiment::All => return Err(err("`all` is not one experiment")),
     };
     Ok(figures)

@@ -23,7 +23,8 @@ use tracker_core::{StepError, report::NumericalDrops};
 pub const CLUSTER: Capacities =
     Capacities { hypotheses: 32, objects: 16, measurements: 64, tracks: 96, birth_cells: 32 };
 
-type Partitioned<G, const D: usize> = PartitionedTracker<
+/// The partitioned tracker of a network `G` with clusters of [`CLUSTER`]'s capacities.
+pub type Partitioned<G, const D: usize> = PartitionedTracker<
     TwoBodyJ2<f64>,
     G,
     6,
@@ -106,27 +107,7 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
     }
 
     fn posterior(&self) -> Posterior6 {
-        let mut objects = BTreeMap::new();
-        let mut posterior = Posterior6::default();
-        for cluster in self.tracker.clusters() {
-            marginal::add(&cluster.core, &mut objects);
-            posterior.hypotheses += cluster.core.hypotheses().len();
-            posterior.expected_cardinality += cluster.core.expected_cardinality();
-            // The product's MAP hypothesis is the union of the clusters' MAP hypotheses.
-            for t in cluster.core.map_hypothesis().tracks() {
-                posterior.map.push(Track6 {
-                    label: t.label.0,
-                    mean: t.state.mean.into(),
-                    existence: 0.0,
-                    covariance: core::array::from_fn(|i| core::array::from_fn(|j| t.state.covariance[(i, j)])),
-                });
-            }
-        }
-        posterior.existence = objects.iter().map(|(l, o)| (*l, o.existence)).collect::<HashMap<_, _>>();
-        for t in &mut posterior.map {
-            t.existence = posterior.existence.get(&t.label).copied().unwrap_or(0.0);
-        }
-        posterior
+        posterior(&self.tracker)
     }
 
     fn associate(&self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> (usize, Vec<Option<Association>>) {
@@ -145,4 +126,30 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
         }
         (dimension, best)
     }
+}
+
+/// The posterior of `tracker`: per-label existence from each cluster's marginals, the MAP hypothesis the
+/// union of the clusters' MAP hypotheses.
+pub fn posterior<G: ScenarioNetwork<D>, const D: usize>(tracker: &Partitioned<G, D>) -> Posterior6 {
+    let mut objects = BTreeMap::new();
+    let mut posterior = Posterior6::default();
+    for cluster in tracker.clusters() {
+        marginal::add(&cluster.core, &mut objects);
+        posterior.hypotheses += cluster.core.hypotheses().len();
+        posterior.expected_cardinality += cluster.core.expected_cardinality();
+        // The product's MAP hypothesis is the union of the clusters' MAP hypotheses.
+        for t in cluster.core.map_hypothesis().tracks() {
+            posterior.map.push(Track6 {
+                label: t.label.0,
+                mean: t.state.mean.into(),
+                existence: 0.0,
+                covariance: core::array::from_fn(|i| core::array::from_fn(|j| t.state.covariance[(i, j)])),
+            });
+        }
+    }
+    posterior.existence = objects.iter().map(|(l, o)| (*l, o.existence)).collect::<HashMap<_, _>>();
+    for t in &mut posterior.map {
+        t.existence = posterior.existence.get(&t.label).copied().unwrap_or(0.0);
+    }
+    posterior
 }

@@ -156,6 +156,35 @@ fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) 
     }
 }
 
+/// A scan of 20 measurements, more than one cluster's Z = 8, one in the gate of each of 20 objects 100
+/// apart: routed to their clusters, none lost (each object's posterior is a one-object tracker's given its
+/// own measurement), none left to the birth cluster.
+#[test]
+fn a_scan_larger_than_z_is_routed_across_the_clusters_without_loss() {
+    on_large_stack(|| {
+        let xs: Vec<f64> = (0..20).map(|i| 100.0 * f64::from(i)).collect();
+        let mut partitioned = Partitioned::new(config(), &objects(&xs), 0.0, 0.0).expect("tracker");
+        let zs: Vec<_> = xs.iter().enumerate().map(|(i, x)| z(x + 1.3, 0.1 * i as f64 - 0.5)).collect();
+        let report = partitioned.step(&scan(1.0), &zs).expect("a scan of 20 > Z = 8 measurements");
+        assert_eq!((report.clusters, report.clusters_with_measurements, report.unclaimed), (20, 20, 0));
+        let got = posteriors(&partitioned);
+        for (i, (x, zi)) in xs.iter().zip(&zs).enumerate() {
+            let mut alone = single(&[*x]);
+            alone.step(1.0, std::slice::from_ref(zi)).expect("one object");
+            let mut expected = BTreeMap::new();
+            marginal::add(&*alone, &mut expected);
+            let (want, have) = (&expected[&0], &got[&(i as u32)]);
+            assert_eq!((want.existence, want.mean, want.covariance), (have.existence, have.mean, have.covariance));
+            // The measurement was used: the position's variance is below the one-object tracker's without it.
+            let mut unseen = single(&[*x]);
+            unseen.step(1.0, &[]).expect("one object");
+            let mut without = BTreeMap::new();
+            marginal::add(&*unseen, &mut without);
+            assert!(have.covariance[(0, 0)] < without[&0].covariance[(0, 0)], "object {i}");
+        }
+    });
+}
+
 /// Two objects 6 apart; at scan 1 a measurement between them gates with both.
 fn merge_scans() -> Vec<(f64, Vec<SVector<f64, 2>>)> {
     vec![

@@ -33,6 +33,17 @@ pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Error> {
     crate::io::atomic::write_json(path, value, true)
 }
 
+/// CPU time (ns) the process's threads have run so far: the sum of the first field of every
+/// /proc/self/task/*/schedstat (threads that have ended not counted); `None` where there is none.
+pub fn cpu_time_ns() -> Option<u64> {
+    let mut total = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let stat = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
+        total += stat.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(total)
+}
+
 /// VmHWM of /proc/self/status in KiB, where there is one.
 pub fn peak_resident_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;

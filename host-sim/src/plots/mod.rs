@@ -9,14 +9,16 @@
 //! valid, labelled figure.
 //!
 //! A file per figure type: `snapshots`, `weights` (hypothesis-weight bars), `line_chart`, `sky` (az/el and
-//! RA/Dec) and `ground_tracks`; what they share is in `figure` (font, files, axes) and `legend` (markers and
+//! RA/Dec), `ground_tracks`, `scatter` and `histogram`; what they share is in `figure` (font, files, axes) and `legend` (markers and
 //! legends). The public names are re-exported here.
 
 mod clip;
 mod figure;
 mod ground_tracks;
+mod histogram;
 mod legend;
 mod line_chart;
+mod scatter;
 mod sky;
 mod snapshots;
 mod weights;
@@ -26,7 +28,9 @@ mod tests;
 
 pub use figure::{PlotError, Scale};
 pub use ground_tracks::ground_tracks;
+pub use histogram::histogram;
 pub use line_chart::{Series, plot_series};
+pub use scatter::scatter;
 pub use sky::{SkySeries, sky_plot_az_el, sky_plot_ra_dec};
 pub use snapshots::{FovLines, SnapshotPanel, plot_snapshots};
 pub use weights::plot_hypothesis_weights;

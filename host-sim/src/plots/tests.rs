@@ -515,3 +515,21 @@ fn ground_tracks_cut_at_the_antimeridian_and_refuse_bad_latitudes() {
     let error = ground_tracks(&dir.stem("bad"), "t", &[too_high], &[]).unwrap_err();
     assert!(error.0.contains("latitude") && error.0.contains("outside"), "{error}");
 }
+
+#[test]
+fn scatter_and_histogram_normal_and_empty() {
+    let dir = TestDir::new("scatter-histogram");
+    let dots = |name: &str, k: f64| Series {
+        name: name.into(),
+        points: (0..50).map(|i| (f64::from(i), k * f64::from(i) + 3.0)).chain([(f64::NAN, 1.0)]).collect(),
+        markers: true,
+    };
+    super::scatter(&dir.stem("scatter"), "cost", "objects in view", "ms", &[dots("a", 0.5), dots("b", 1.0)]).unwrap();
+    assert_eq!(assert_png_and_svg(&dir.stem("scatter")).0, LINE_CHART_SIZE.0);
+    super::scatter(&dir.stem("scatter-empty"), "none", "x", "y", &[]).unwrap();
+    assert_png_and_svg(&dir.stem("scatter-empty"));
+    super::histogram(&dir.stem("histogram"), "sizes", "objects", "clusters", &[(1, 980), (2, 9), (5, 1)]).unwrap();
+    assert_eq!(assert_png_and_svg(&dir.stem("histogram")).0, LINE_CHART_SIZE.0);
+    super::histogram(&dir.stem("histogram-empty"), "none", "x", "y", &[]).unwrap();
+    assert_png_and_svg(&dir.stem("histogram-empty"));
+}

@@ -230,6 +230,27 @@ pub(crate) fn observers(sensors: &[SensorSpec], epoch_jd: f64, schedule: &[(f64,
 pub fn draw_scan(
     seed: u64,
     k: usize,
+    scan: (f64, usize),
+    sensor: &SensorSpec,
+    observer: &Observer,
+    states: impl Iterator<Item = Option<[f64; 6]>>,
+    detection: &mut [Random],
+) -> Result<Scan3, SsaError> {
+    let scan = draw_scan_any_size(seed, k, scan, sensor, observer, states, detection)?;
+    if scan.measurements.len() > MAX_MEASUREMENTS {
+        return Err(SsaError::TooManyMeasurements { scan: k });
+    }
+    Ok(scan)
+}
+
+/// [`draw_scan`] without the cap on its measurements (`experiment catalogue-scale`'s wide-field radar sees
+/// hundreds of objects at once; its tracker routes them to clusters).
+///
+/// # Errors
+/// [`SsaError::EmptyFieldOfView`] from clutter.
+pub fn draw_scan_any_size(
+    seed: u64,
+    k: usize,
     (time, s): (f64, usize),
     sensor: &SensorSpec,
     observer: &Observer,
@@ -249,9 +270,6 @@ pub fn draw_scan(
     let mut clutter = Random::stream(seed, Stream::Clutter, k as u64);
     for _ in 0..clutter.poisson(sensor.clutter_rate) {
         items.push((sensor.clutter_point(observer, &mut clutter)?, None));
-    }
-    if items.len() > MAX_MEASUREMENTS {
-        return Err(SsaError::TooManyMeasurements { scan: k });
     }
     Random::stream(seed, Stream::Scenario, k as u64).shuffle(&mut items);
     for (j, (_, origin)) in items.iter().enumerate() {

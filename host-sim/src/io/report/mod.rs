@@ -6,7 +6,7 @@
 //!
 //! A file per output: `summary` (`summary.json`), `scans` (`scans.jsonl`), `compare`, `soak`, `sampler_check`,
 //! `experiments` (`runs.json`, `fifteen.json`, `scaling.json`, `debris.json`, the ablation), `perf`,
-//! `catalogue` (`catalogue.json`) and `ilrs` (`ilrs.json` of `track-ilrs`). The records are re-exported here.
+//! `catalogue` (`catalogue.json`), `scale` (`scale.json`) and `ilrs` (`ilrs.json` of `track-ilrs`). The records are re-exported here.
 
 mod catalogue;
 mod compare;
@@ -16,6 +16,7 @@ mod ilrs;
 mod perf;
 mod residuals;
 mod sampler_check;
+mod scale;
 mod scans;
 mod soak;
 mod summary;
@@ -35,6 +36,7 @@ pub use perf::{
 };
 pub use residuals::SensorResiduals;
 pub use sampler_check::{SamplerCheckReport, SamplerScores, SamplerSettings};
+pub use scale::ScaleReport;
 pub use scans::{LabelExistence, ScanHypothesis, ScanLine};
 pub use soak::{SoakError, SoakReport, SoakSetup, SoakTracking, SoakTruth};
 pub use summary::{BirthConfirmation, BirthFigures, BirthRecord, BirthsSummary, RejectedScan, RunSummary};

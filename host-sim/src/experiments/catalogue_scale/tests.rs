@@ -1,0 +1,95 @@
+//! The experiment on a small catalogue: every key of `scale.json`, the same figures whatever the thread
+//! count, a decaying element set dropped and counted.
+
+use super::*;
+use crate::io::catalogue::CatalogueEntry;
+
+fn temp(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rfisst-catalogue-scale-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn catalogue(objects: usize, seed: u64) -> Vec<CatalogueEntry> {
+    let epoch = crate::io::catalogue::parse_omm_epoch(START).expect("epoch");
+    let jd = crate::sim::time::parse_iso8601(START).expect("jd");
+    crate::sim::population::synthetic_catalogue(objects, seed, epoch, jd).expect("catalogue").entries
+}
+
+/// `scale.json` of a run on `threads` threads, as JSON, and the run's report.
+fn run_with(tag: &str, entries: Vec<CatalogueEntry>, hours: f64, threads: usize) -> (serde_json::Value, ScaleReport) {
+    let dir = temp(tag);
+    let settings = Settings { objects: entries.len(), hours, seed: 3, threads: Some(threads), quiet: true };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).stack_size(256 << 20).build().expect("pool");
+    let report = pool.install(|| run_on(&dir, &settings, threads, entries, Instant::now())).expect("run");
+    let text = std::fs::read_to_string(dir.join("scale.json")).expect("scale.json");
+    for plot in ["cost_per_scan.png", "cluster_sizes.png"] {
+        assert!(dir.join(plot).is_file(), "{plot}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    (serde_json::from_str(&text).expect("JSON"), report)
+}
+
+/// The figures that do not depend on the wall clock or the thread count.
+fn deterministic(mut json: serde_json::Value) -> serde_json::Value {
+    let object = json.as_object_mut().expect("object");
+    for key in ["wall_s", "realtime_factor", "peak_rss_mib", "ms_per_scan_mean", "ms_per_scan_p99", "ms_per_scan_max"] {
+        assert!(object.remove(key).is_some(), "{key}");
+    }
+    for key in ["cpu_s", "cpu_ms_per_scan_mean", "cpu_ms_per_scan_p99", "total_wall_s", "threads"] {
+        assert!(object.remove(key).is_some(), "{key}");
+    }
+    json
+}
+
+#[test]
+fn a_small_catalogue_writes_every_key_and_one_two_and_four_threads_agree() {
+    let (json, report) = run_with("one", catalogue(40, 3), 0.1, 1);
+    for key in [
+        "objects",
+        "scans",
+        "observations",
+        "hours",
+        "threads",
+        "wall_s",
+        "realtime_factor",
+        "peak_rss_mib",
+        "ms_per_scan_mean",
+        "ms_per_scan_p99",
+        "clusters_max",
+        "largest_cluster",
+        "births_total",
+        "births_confirmed",
+        "false_tracks",
+        "mean_gospa",
+        "observed_objects",
+        "observed_median_error_km",
+        "unobserved_median_error_km",
+        "label_switches",
+        "dropped_objects",
+    ] {
+        assert!(json.get(key).is_some(), "{key} missing from scale.json");
+    }
+    // 0.1 h of a scan every 20 s / 3 sensors: 55 scans; some objects seen, none refused.
+    assert_eq!((report.objects, report.scans, report.threads), (40, 55, 1));
+    assert_eq!(report.rejected_scans, 0);
+    assert!(report.observations > 0 && report.observed_objects > 0, "{report:?}");
+    assert!(report.clusters_max >= 35 && report.largest_cluster >= 1, "{report:?}");
+    assert_eq!(report.births_total, 1, "2 % of 40");
+    assert!(report.mean_gospa.is_finite() && report.scored_scans >= 6, "{report:?}");
+    let expected = deterministic(json);
+    assert_eq!(deterministic(run_with("two", catalogue(40, 3), 0.1, 2).0), expected);
+    assert_eq!(deterministic(run_with("four", catalogue(40, 3), 0.1, 4).0), expected);
+}
+
+#[test]
+fn an_element_set_sgp4_cannot_propagate_is_dropped_and_counted() {
+    let mut entries = catalogue(10, 5);
+    // A decayed object: its mean perigee inside the Earth.
+    let mut decayed = entries[0].clone();
+    decayed.norad_id = 99_999;
+    decayed.eccentricity = 0.9;
+    entries.push(decayed);
+    let (_, report) = run_with("dropped", entries, 0.05, 1);
+    assert_eq!((report.dropped_objects, report.objects), (1, 10));
+}
