@@ -280,7 +280,9 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
 
     /// The cells of the best tracklet through `z` (docs/maths.md §5.10), written to `out`: `Some(count)`
     /// when tracklets are on, `z` is a direction and it links with the sensor's earlier frames and its
-    /// region gives cells; `None` otherwise (the caller falls back to `z`'s own cells).
+    /// region gives cells; `None` otherwise (the caller falls back to `z`'s own cells). Never inlined: its
+    /// frame (the linked arcs and the attributable) is on the stack only when tracklets are on.
+    #[inline(never)]
     fn tracklet_components<G: MeasurementModel<T, S, D>, const D: usize>(
         &self,
         settings: &MeasuredBirths<T>,
