@@ -19,6 +19,9 @@ pub enum PropagationError {
     Elements(sgp4::ElementsError),
     /// The propagation diverged (`sgp4::Error`).
     Propagation(sgp4::Error),
+    /// SGP4 returned a state that is not finite (elements far outside its domain, such as a mean motion of
+    /// 1e141 revolutions a day, which it does not refuse).
+    NonFinite,
 }
 
 impl PropagationError {
@@ -39,6 +42,7 @@ impl PropagationError {
                 "diverging-perturbed-eccentricity"
             }
             PropagationError::Propagation(sgp4::Error::NegativeSemiLatusRectum { .. }) => "negative-semi-latus-rectum",
+            PropagationError::NonFinite => "non-finite-state",
         }
     }
 }
@@ -48,6 +52,7 @@ impl fmt::Display for PropagationError {
         match self {
             PropagationError::Elements(e) => write!(f, "SGP4 initialisation: {e}"),
             PropagationError::Propagation(e) => write!(f, "SGP4: {e}"),
+            PropagationError::NonFinite => write!(f, "SGP4: the state is not finite (elements outside SGP4's domain)"),
         }
     }
 }
@@ -69,6 +74,9 @@ impl Satellite {
             .constants
             .propagate_afspc_compatibility_mode(sgp4::MinutesSinceEpoch(minutes))
             .map_err(PropagationError::Propagation)?;
+        if !p.position.iter().chain(&p.velocity).all(|x| x.is_finite()) {
+            return Err(PropagationError::NonFinite);
+        }
         Ok((p.position, p.velocity))
     }
 

@@ -89,6 +89,22 @@ fn omm_json_and_csv_give_the_tle_elements() {
 }
 
 #[test]
+fn a_state_sgp4_cannot_make_finite_is_an_error() {
+    // Found by the `catalogue` fuzz target: SGP4 accepts a mean motion of 1.6e141 revolutions a day and
+    // returns NaN; the propagator refuses the state instead.
+    let json = r#"[{"OBJECT_NAME":"X","OBJECT_ID":"1998-067A","EPOCH":"2024-03-15T12:00:00.000000",
+        "MEAN_MOTION":1.5888888e141,"ECCENTRICITY":0.0005,"INCLINATION":51.64,"RA_OF_ASC_NODE":120.5,
+        "ARG_OF_PERICENTER":80.0,"MEAN_ANOMALY":10.0,"NORAD_CAT_ID":25544,"BSTAR":0.0001,
+        "MEAN_MOTION_DOT":0,"MEAN_MOTION_DDOT":0}]"#;
+    let Ok(mut entries) = parse("o", json) else { return };
+    let Ok(sat) = Satellite::new(entries.remove(0)) else { return };
+    assert_eq!(sat.teme(0.0).map_err(|e| e.kind()), Err("non-finite-state"));
+    if let Ok((r, v)) = sat.teme(1440.0) {
+        assert!(r.iter().chain(&v).all(|x| x.is_finite()), "{r:?} {v:?}");
+    }
+}
+
+#[test]
 fn tracker_time_is_minutes_since_the_element_epoch() {
     let sat = Satellite::new(parse("t", &format!("{L1}\n{L2}\n")).unwrap().remove(0)).unwrap();
     let start = parse_omm_epoch("2000-06-28T00:00:00").unwrap();
