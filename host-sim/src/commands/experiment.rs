@@ -31,6 +31,9 @@ pub struct Args {
     /// catalogue-scale: threads of the tracker's pool [default: every core].
     #[arg(long)]
     threads: Option<usize>,
+    /// catalogue-scale: step every cluster at every scan, not only those a sensor may see (for comparison).
+    #[arg(long)]
+    step_every_cluster: bool,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -46,16 +49,23 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
         if args.runs > 1 {
             return Err(Error::input("experiment catalogue-scale: no --runs (one run, its own threads)").into());
         }
-        let settings = Settings { objects, hours, seed: args.seed, threads: args.threads, quiet: args.quiet };
+        let settings = Settings {
+            objects,
+            hours,
+            seed: args.seed,
+            threads: args.threads,
+            quiet: args.quiet,
+            step_every_cluster: args.step_every_cluster,
+        };
         let report = catalogue_scale::run(&args.out, &settings)?;
         eprintln!(
             "catalogue-scale: {} objects, {} scans, {:.1} s of tracking ({:.0}x real time), {} rejected scans",
             report.objects, report.scans, report.wall_s, report.realtime_factor, report.rejected_scans
         );
     } else {
-        if args.objects.is_some() || args.hours.is_some() || args.threads.is_some() {
+        if args.objects.is_some() || args.hours.is_some() || args.threads.is_some() || args.step_every_cluster {
             return Err(Error::input(format!(
-                "experiment {name}: --objects, --hours and --threads are catalogue-scale's"
+                "experiment {name}: --objects, --hours, --threads and --step-every-cluster are catalogue-scale's"
             ))
             .into());
         }

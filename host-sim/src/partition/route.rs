@@ -1,10 +1,12 @@
 //! Routing a scan's measurements to clusters (docs/maths.md §13.2): each cluster's tracks predicted to the
 //! scan and gated with the core's own test (an entry δ > −∞: in the field of view and d² within the
 //! configuration's gate), clusters sharing a measurement grouped for a merge (union–find, in cluster
-//! order), and the measurements in no gate left to the birth cluster.
+//! order), and the measurements in no gate left to the birth cluster. With a speed bound, also how long the
+//! cluster stays beyond the sensor's range window, so that it can be left unstepped (§13.2).
 
 use nalgebra::SVector;
 use tracker_core::model::{MeasurementModel, MotionModel};
+use tracker_core::sensor::Region;
 use tracker_core::tracker::{PlacedScan, in_field_of_view};
 use tracker_core::{Track, ekf};
 
@@ -15,17 +17,26 @@ pub struct Gated {
     pub measurements: Vec<usize>,
     /// Whether some track is predicted in the field of view.
     pub in_view: bool,
+    /// Seconds from the scan during which no track can come within the sensor's range window: every
+    /// track beyond it and closing in no faster than the speed bound (docs/maths.md §13.2). `None` when
+    /// not asked for, when some track is within the window's range or its range is not known.
+    pub clear_for: Option<f64>,
 }
+
+/// A bound (km/s) on how fast an object of state `x` can close in on any sensor of the network.
+pub type SpeedBound<const S: usize> = fn(&SVector<f64, S>) -> f64;
 
 /// The measurements of `measurements` in the gates of `tracks` predicted by `dt` with `motion`, as the core
 /// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`]). A track whose prediction or
-/// innovation fails gates nothing (the core drops it from the scan or fails the scan).
+/// innovation fails gates nothing (the core drops it from the scan or fails the scan). With `speed`, also
+/// [`Gated::clear_for`].
 pub fn gate<M, G, const S: usize, const D: usize>(
     motion: &M,
     placed: &PlacedScan<f64, G>,
     tracks: &[Track<f64, S>],
     dt: f64,
     measurements: &[SVector<f64, D>],
+    speed: Option<SpeedBound<S>>,
 ) -> Gated
 where
     M: MotionModel<f64, S>,
@@ -33,9 +44,31 @@ where
 {
     let mut hit = vec![false; measurements.len()];
     let mut in_view = false;
+    let max_range = match placed.detection.field_of_view {
+        Region::Look { range: Some([_, max]), .. } => Some(max),
+        _ => None,
+    };
+    // min over tracks of (range − max range) / speed bound; None once some track cannot be bounded.
+    let mut clear_for = speed.and(max_range).map(|_| f64::INFINITY);
     for track in tracks {
-        let Ok(state) = ekf::predict(motion, &track.state, dt) else { continue };
-        let Ok(innovation) = ekf::innovation(&placed.model, &state) else { continue };
+        let Ok(state) = ekf::predict(motion, &track.state, dt) else {
+            clear_for = None;
+            continue;
+        };
+        let Ok(innovation) = ekf::innovation(&placed.model, &state) else {
+            clear_for = None;
+            continue;
+        };
+        if let (Some(bound), Some(speed), Some(max)) = (clear_for, speed, max_range) {
+            let look = placed.model.look_of_state(&state.mean).or_else(|| placed.model.look(&innovation.predicted));
+            let closing = speed(&state.mean);
+            clear_for = match look.and_then(|l| l.range) {
+                Some(range) if range > max && closing.is_finite() && closing > 0.0 => {
+                    Some(bound.min((range - max) / closing))
+                }
+                _ => None,
+            };
+        }
         if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted) {
             continue;
         }
@@ -47,7 +80,8 @@ where
             }
         }
     }
-    Gated { measurements: hit.iter().enumerate().filter(|(_, h)| **h).map(|(i, _)| i).collect(), in_view }
+    let measurements = hit.iter().enumerate().filter(|(_, h)| **h).map(|(i, _)| i).collect();
+    Gated { measurements, in_view, clear_for: clear_for.filter(|c| c.is_finite() && *c > 0.0) }
 }
 
 /// The scan's routing: the groups of clusters to merge and each group's measurements.
@@ -119,7 +153,7 @@ mod tests {
     use super::*;
 
     fn gated(measurements: &[usize]) -> Gated {
-        Gated { measurements: measurements.to_vec(), in_view: true }
+        Gated { measurements: measurements.to_vec(), in_view: true, clear_for: None }
     }
 
     #[test]

@@ -16,12 +16,32 @@ use nalgebra::SVector;
 use std::collections::{BTreeMap, HashMap};
 use tracker_core::model::TwoBodyJ2;
 use tracker_core::sensor::ScanGeometry;
-use tracker_core::{StepError, report::NumericalDrops};
+use tracker_core::{StepError, ekf, report::NumericalDrops};
 
 /// A cluster's capacities: H, N, Z (the measurements routed to one cluster, the birth cluster's included),
 /// K and B (the birth cluster's cells, fixed and measured).
 pub const CLUSTER: Capacities =
     Capacities { hypotheses: 32, objects: 16, measurements: 64, tracks: 96, birth_cells: 32 };
+
+/// The smallest radius (km) a two-body + J2 prediction passes through: its default `min_radius`, below
+/// which a prediction fails.
+const MIN_RADIUS_KM: f64 = tracker_core::model::EARTH_MIN_RADIUS;
+
+/// A ground site's largest speed (km/s) in the inertial frame: the Earth's rotation at 7,000 km from its
+/// axis (0.465 km/s at the equator at sea level).
+const SITE_SPEED_KM_S: f64 = 0.52;
+
+/// A bound (km/s) on how fast the object of the two-body + J2 state `x` (km, km/s) closes in on a ground
+/// site (docs/maths.md §13.2): its speed anywhere outside [`MIN_RADIUS_KM`] by conservation of energy,
+/// v_max² = v² + 2μ (1/r_min − 1/r), times 1.02 for J2 (its potential changes by less than 0.2 km²/s²
+/// outside r_min, under 2 % of v_max² for any orbit) and integration error, plus the site's own speed.
+pub fn ground_closing_speed(x: &SVector<f64, 6>) -> f64 {
+    let r = x.fixed_rows::<3>(0).norm();
+    let v2 = x.fixed_rows::<3>(3).norm_squared();
+    let mu = tracker_core::model::EARTH_MU;
+    let v2_max = v2 + 2.0 * mu * (1.0 / MIN_RADIUS_KM - 1.0 / r).max(0.0);
+    1.02 * v2_max.sqrt() + SITE_SPEED_KM_S
+}
 
 /// The partitioned tracker of a network `G` with clusters of [`CLUSTER`]'s capacities.
 pub type Partitioned<G, const D: usize> = PartitionedTracker<
@@ -131,19 +151,30 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
 /// The posterior of `tracker`: per-label existence from each cluster's marginals, the MAP hypothesis the
 /// union of the clusters' MAP hypotheses.
 pub fn posterior<G: ScenarioNetwork<D>, const D: usize>(tracker: &Partitioned<G, D>) -> Posterior6 {
+    posterior_at(tracker, tracker.time())
+}
+
+/// [`posterior`] with the MAP tracks of clusters left behind by a view skip (§13.2) predicted to `time`
+/// (a track whose prediction fails is given as it is).
+pub fn posterior_at<G: ScenarioNetwork<D>, const D: usize>(tracker: &Partitioned<G, D>, time: f64) -> Posterior6 {
     let mut objects = BTreeMap::new();
     let mut posterior = Posterior6::default();
     for cluster in tracker.clusters() {
         marginal::add(&cluster.core, &mut objects);
         posterior.hypotheses += cluster.core.hypotheses().len();
         posterior.expected_cardinality += cluster.core.expected_cardinality();
+        let dt = time - cluster.core.time();
         // The product's MAP hypothesis is the union of the clusters' MAP hypotheses.
         for t in cluster.core.map_hypothesis().tracks() {
+            let state = match dt > 0.0 {
+                true => ekf::predict(tracker.motion(), &t.state, dt).unwrap_or(t.state),
+                false => t.state,
+            };
             posterior.map.push(Track6 {
                 label: t.label.0,
-                mean: t.state.mean.into(),
+                mean: state.mean.into(),
                 existence: 0.0,
-                covariance: core::array::from_fn(|i| core::array::from_fn(|j| t.state.covariance[(i, j)])),
+                covariance: core::array::from_fn(|i| core::array::from_fn(|j| state.covariance[(i, j)])),
             });
         }
     }

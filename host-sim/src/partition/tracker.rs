@@ -7,7 +7,7 @@
 
 use super::error::{ClusterId, PartitionError};
 use super::hypotheses::{self, Hypothesis};
-use super::route::{self, Gated};
+use super::route::{self, Gated, SpeedBound};
 use super::split;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -44,6 +44,43 @@ pub struct Cluster<
 > {
     pub id: ClusterId,
     pub core: Box<Core<M, G, S, D, H, N, Z, K, B>>,
+    /// Per sensor, the time until which the cluster is certainly beyond that sensor's range window and is
+    /// left unstepped by its scans (docs/maths.md §13.2); empty without a view skip.
+    pub clear_until: Vec<f64>,
+}
+
+impl<
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Cluster<M, G, S, D, H, N, Z, K, B>
+{
+    /// The cluster `id` of `core`, due at every sensor's next scan.
+    pub fn new(id: ClusterId, core: Box<Core<M, G, S, D, H, N, Z, K, B>>) -> Self {
+        Self { id, core, clear_until: vec![] }
+    }
+
+    /// Whether a scan of `sensor` at `time` may leave the cluster unstepped.
+    fn clear_at(&self, sensor: usize, time: f64) -> bool {
+        self.clear_until.get(sensor).is_some_and(|&until| time < until)
+    }
+}
+
+/// What a scan does with one cluster.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Fate {
+    /// Certainly out of the sensor's range window: not touched (§13.2).
+    Skipped,
+    /// No measurement and no track in view: stepped in place with an empty scan.
+    Quiet,
+    /// Stepped on a copy (alone or merged) with its measurements.
+    Stepped,
 }
 
 /// What one partitioned scan did.
@@ -69,6 +106,8 @@ pub struct PartitionReport {
     pub unclaimed: usize,
     /// Clusters stepped in place with an empty scan: no measurement and no track in view (§13.2).
     pub quiet: usize,
+    /// Clusters not stepped at all: certainly beyond the sensor's range window (§13.2, view skip).
+    pub skipped: usize,
     /// Clusters stepped with at least one measurement.
     pub clusters_with_measurements: usize,
     /// Σ over clusters of the core's hypotheses after the scan.
@@ -112,6 +151,10 @@ pub struct PartitionedTracker<
     next_label: u32,
     time: f64,
     epsilon: f64,
+    /// With a view skip, the bound on how fast an object closes in on a sensor (§13.2).
+    skip: Option<SpeedBound<S>>,
+    /// The last scan's geometry (`None` before the first).
+    last: Option<ScanGeometry<f64>>,
 }
 
 impl<
@@ -157,15 +200,32 @@ where
             next_label: labels.last().map_or(0, |l| l + 1),
             time,
             epsilon: if epsilon.is_finite() { epsilon.max(0.0) } else { 0.0 },
+            skip: None,
+            last: None,
         };
         for object in objects {
             let set = [Hypothesis { weight: 1.0, objects: vec![*object] }];
             let id = ClusterId(tracker.next_cluster);
             tracker.next_cluster += 1;
             let core = tracker.build(id, &set)?;
-            tracker.clusters.push(Cluster { id, core });
+            tracker.clusters.push(Cluster::new(id, core));
         }
         Ok(tracker)
+    }
+
+    /// The tracker that leaves a cluster unstepped while all its tracks are certainly beyond the scanning
+    /// sensor's range window, `speed` bounding how fast each track's object closes in on a ground sensor
+    /// (docs/maths.md §13.2): the cost of a scan then follows the objects near the sensor, not the
+    /// catalogue. Not bit-identical to stepping every cluster at every scan: a skipped cluster is predicted
+    /// over the longer interval when it is next due. Scans from a spacecraft observer skip nothing.
+    pub fn with_view_skip(mut self, speed: SpeedBound<S>) -> Self {
+        self.skip = Some(speed);
+        self
+    }
+
+    /// The motion model of every cluster.
+    pub fn motion(&self) -> &M {
+        &self.config.motion
     }
 
     /// A core of the configuration without births holding `set`, at the tracker's time.
@@ -212,30 +272,44 @@ where
     ) -> Result<PartitionReport, PartitionError> {
         let placed =
             place_scan(&self.config, geometry, self.time, measurements, usize::MAX).map_err(PartitionError::Scan)?;
+        let quiet_allowed = self.quiet_steps_cannot_fail();
+        let skip = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
+        let due: Vec<bool> =
+            self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
+        let mut caught = self.catch_up(&due, geometry.time)?;
         let motion = &self.config.motion;
-        let gated: Vec<Gated> = self
-            .clusters
-            .par_iter()
-            .map(|c| route::gate(motion, &placed, c.core.tracks(), geometry.time - c.core.time(), measurements))
+        let gated: Vec<Gated> = (self.clusters.par_iter().zip(&due).zip(&caught))
+            .map(|((c, &due), caught)| {
+                let core = caught.as_deref().unwrap_or(&c.core);
+                let dt = geometry.time - core.time();
+                if due { route::gate(motion, &placed, core.tracks(), dt, measurements, skip) } else { Gated::default() }
+            })
             .collect();
         let routing = route::route(&gated, measurements.len());
         let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
-        // Quiet clusters (no measurement, no track in view) are stepped in place at the end (§13.2).
-        let quiet_allowed = self.quiet_steps_cannot_fail();
-        let mut quiet = vec![false; self.clusters.len()];
-        // The work of the scan: each other group's core (a clone, or a merge's new core) and its measurements.
+        // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped in place
+        // at the end (§13.2); the work of the scan is each other group's core (a copy, or a merge's new core)
+        // and its measurements.
+        let mut fate = vec![Fate::Stepped; self.clusters.len()];
         let mut work: Vec<Work<M, G, S, D, H, N, Z, K, B>> = vec![];
         for (group, rows) in routing.groups.iter().zip(&routing.measurements) {
             let id = self.clusters[group[0]].id;
             check_capacity(id, rows.len(), Z)?;
             if quiet_allowed && group.len() == 1 && rows.is_empty() && !gated[group[0]].in_view {
-                quiet[group[0]] = true;
+                fate[group[0]] = if due[group[0]] { Fate::Quiet } else { Fate::Skipped };
                 continue;
             }
             let core = if group.len() == 1 {
-                self.clusters[group[0]].core.clone()
+                caught[group[0]].take().unwrap_or_else(|| self.clusters[group[0]].core.clone())
             } else {
-                let (core, pruned) = self.merge(id, group)?;
+                let mut cores = vec![];
+                for &i in group {
+                    cores.push(match caught[i].take() {
+                        Some(core) => core,
+                        None => self.caught_up(&self.clusters[i])?.unwrap_or_else(|| self.clusters[i].core.clone()),
+                    });
+                }
+                let (core, pruned) = self.merge(id, &cores)?;
                 report.merged += group.len() - 1;
                 report.merge_pruned_mass += pruned;
                 core
@@ -252,26 +326,20 @@ where
         }
         report.clusters_with_measurements = work.iter().filter(|w| !w.2.is_empty()).count();
         let birth = work.pop().expect("the birth cluster's work").1;
-        let stepped: Vec<_> = work.into_iter().map(|(id, core, _)| Cluster { id, core }).collect();
+        let stepped: Vec<_> = work.into_iter().map(|(id, core, _)| Cluster::new(id, core)).collect();
         let (stepped, counters) = self.rebuild(geometry.time, stepped, &birth, &mut report)?;
         let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
         // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
-        report.quiet = quiet.iter().filter(|q| **q).count();
-        let quiet_results: Vec<Result<StepReport<f64>, StepError>> = self
-            .clusters
-            .par_iter_mut()
-            .zip(&quiet)
-            .filter(|(_, q)| **q)
-            .map(|(c, _)| c.core.step_scan(geometry, &[]))
+        let clear = Clearance { sensor: geometry.sensor, time: geometry.time, cap: self.config.motion.max_time_step() };
+        self.step_quiet(geometry, &fate, &mut caught, &gated, clear)?;
+        report.quiet = fate.iter().filter(|f| **f == Fate::Quiet).count();
+        report.skipped = fate.iter().filter(|f| **f == Fate::Skipped).count();
+        let mut clusters: Vec<_> = std::mem::take(&mut self.clusters)
+            .into_iter()
+            .zip(&fate)
+            .filter(|(_, f)| **f != Fate::Stepped)
+            .map(|(c, _)| c)
             .collect();
-        // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
-        // stepped before it would have moved on (docs/maths.md §13.6).
-        let quiet_ids = self.clusters.iter().zip(&quiet).filter(|(_, q)| **q).map(|(c, _)| c.id);
-        if let Some((id, Err(error))) = quiet_ids.zip(quiet_results).find(|(_, r)| r.is_err()) {
-            return Err(PartitionError::Cluster { cluster: id, error });
-        }
-        let mut clusters: Vec<_> =
-            std::mem::take(&mut self.clusters).into_iter().zip(&quiet).filter(|(_, q)| **q).map(|(c, _)| c).collect();
         clusters.extend(stepped);
         clusters.retain(|c| !c.core.tracks().is_empty());
         clusters.sort_by_key(|c| c.id);
@@ -280,8 +348,74 @@ where
         report.hypotheses = clusters.iter().map(|c| c.core.hypotheses().len()).sum();
         self.clusters = clusters;
         self.birth = birth;
+        self.last = Some(*geometry);
         (self.next_cluster, self.next_label, self.time) = (counters.next_cluster, counters.next_label, counters.time);
         Ok(report)
+    }
+
+    /// Copies of the `due` clusters left behind by more than the motion model's longest prediction by a
+    /// scan at `time`, caught up ([`Self::caught_up`]); `None` for the others, which are gated and stepped
+    /// from their own time.
+    #[allow(clippy::type_complexity)]
+    fn catch_up(
+        &self,
+        due: &[bool],
+        time: f64,
+    ) -> Result<Vec<Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>>, PartitionError> {
+        let limit = self.config.motion.max_time_step().unwrap_or(f64::INFINITY);
+        self.clusters
+            .par_iter()
+            .zip(due)
+            .map(|(c, &due)| if due && time - c.core.time() > limit { self.caught_up(c) } else { Ok(None) })
+            .collect()
+    }
+
+    /// A copy of cluster `c`, when the view skip left it out of the last scan, stepped to that scan with an
+    /// empty scan as it would have been had it not been skipped (it was certainly out of that sensor's range
+    /// window, so the step only predicts it); `None` when it is at the tracker's time.
+    #[allow(clippy::type_complexity)]
+    fn caught_up(
+        &self,
+        c: &Cluster<M, G, S, D, H, N, Z, K, B>,
+    ) -> Result<Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>, PartitionError> {
+        let Some(last) = self.last.filter(|_| c.core.time() < self.time) else { return Ok(None) };
+        let mut core = c.core.clone();
+        core.step_scan(&last, &[]).map_err(|error| PartitionError::Cluster { cluster: c.id, error })?;
+        Ok(Some(core))
+    }
+
+    /// Steps the quiet clusters in place (their caught-up copies where there are), and gives each the time
+    /// until which this scan's sensor cannot see it.
+    #[allow(clippy::type_complexity)]
+    fn step_quiet(
+        &mut self,
+        geometry: &ScanGeometry<f64>,
+        fate: &[Fate],
+        caught: &mut [Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>],
+        gated: &[Gated],
+        clear: Clearance,
+    ) -> Result<(), PartitionError> {
+        let results: Vec<Result<StepReport<f64>, StepError>> = self
+            .clusters
+            .par_iter_mut()
+            .zip(caught)
+            .zip(fate.par_iter().zip(gated))
+            .filter(|(_, (f, _))| **f == Fate::Quiet)
+            .map(|((c, caught), (_, gated))| {
+                if let Some(core) = caught.take() {
+                    c.core = core;
+                }
+                clear.record(&mut c.clear_until, gated.clear_for);
+                c.core.step_scan(geometry, &[])
+            })
+            .collect();
+        // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
+        // stepped before it would have moved on (docs/maths.md §13.6).
+        let quiet_ids = self.clusters.iter().zip(fate).filter(|(_, f)| **f == Fate::Quiet).map(|(c, _)| c.id);
+        if let Some((id, Err(error))) = quiet_ids.zip(results).find(|(_, r)| r.is_err()) {
+            return Err(PartitionError::Cluster { cluster: id, error });
+        }
+        Ok(())
     }
 
     /// Whether an empty scan of a cluster with no track in view cannot fail: a prediction failure drops the
@@ -305,16 +439,16 @@ where
         Ok(core)
     }
 
-    /// The merge of the clusters at `group` (indices): their product, pruned to H after it, as a new core
+    /// The merge of the cores of `group` (clusters at the tracker's time): their product, pruned to H after it, as a new core
     /// with the id `id`; and the mass pruned.
     fn merge(
         &self,
         id: ClusterId,
-        group: &[usize],
+        group: &[Box<Core<M, G, S, D, H, N, Z, K, B>>],
     ) -> Result<(Box<Core<M, G, S, D, H, N, Z, K, B>>, f64), PartitionError> {
         let mut set = vec![Hypothesis { weight: 1.0, objects: vec![] }];
-        for &i in group {
-            set = hypotheses::product(&set, &hypotheses::read(&self.clusters[i].core), H);
+        for core in group {
+            set = hypotheses::product(&set, &hypotheses::read(core), H);
         }
         // Keep the heaviest hypotheses whose tracks fit the store K.
         while set.len() > 1 && hypotheses::distinct_tracks(&set) > K {
@@ -367,7 +501,7 @@ where
         if !birth.tracks().is_empty() {
             let set = next.relabel(hypotheses::read(birth));
             let id = next.fresh_cluster();
-            clusters.push(Cluster { id, core: self.build_at(id, &set, time)? });
+            clusters.push(Cluster::new(id, self.build_at(id, &set, time)?));
             report.born_clusters += 1;
         }
         let factors: Vec<Option<split::Factors<S>>> =
@@ -381,7 +515,7 @@ where
                     report.split_moved_mass += f.moved;
                     for (k, set) in f.groups.iter().enumerate() {
                         let id = if k == 0 { cluster.id } else { next.fresh_cluster() };
-                        out.push(Cluster { id, core: self.build_at(id, set, time)? });
+                        out.push(Cluster::new(id, self.build_at(id, set, time)?));
                     }
                 }
             }
@@ -403,6 +537,31 @@ where
         let mut core = Box::new(Core::empty(self.quiet.clone()));
         core.reset(&hypotheses::as_prior(set), time).map_err(|error| PartitionError::Rebuild { cluster: id, error })?;
         Ok(core)
+    }
+}
+
+/// How long a quiet cluster is left out of its sensor's scans (§13.2).
+#[derive(Debug, Clone, Copy)]
+struct Clearance {
+    sensor: usize,
+    time: f64,
+    /// The motion model's longest prediction: a skipped cluster is caught up over at most this.
+    cap: Option<f64>,
+}
+
+impl Clearance {
+    /// Sets the sensor's entry of `until` to the scan's time plus `clear_for` (at most the cap), or clears it.
+    fn record(&self, until: &mut Vec<f64>, clear_for: Option<f64>) {
+        let Some(clear_for) = clear_for else {
+            if let Some(entry) = until.get_mut(self.sensor) {
+                *entry = f64::NEG_INFINITY;
+            }
+            return;
+        };
+        if until.len() <= self.sensor {
+            until.resize(self.sensor + 1, f64::NEG_INFINITY);
+        }
+        until[self.sensor] = self.time + clear_for.min(self.cap.unwrap_or(f64::INFINITY));
     }
 }
 

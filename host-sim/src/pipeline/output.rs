@@ -46,7 +46,16 @@ pub fn cpu_time_ns() -> Option<u64> {
 
 /// VmHWM of /proc/self/status in KiB, where there is one.
 pub fn peak_resident_kib() -> Option<u64> {
+    status_kib("VmHWM:")
+}
+
+/// The process's resident memory now (KiB, VmRSS of /proc/self/status), where there is one.
+pub fn resident_kib() -> Option<u64> {
+    status_kib("VmRSS:")
+}
+
+fn status_kib(key: &str) -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let line = status.lines().find(|l| l.starts_with(key))?;
     line.split_whitespace().nth(1)?.parse().ok()
 }

@@ -21,11 +21,11 @@ mod tests;
 
 use crate::error::Error;
 use crate::io::report::ScaleReport;
-use crate::partition::runner::{CLUSTER, Partitioned, posterior};
+use crate::partition::runner::{CLUSTER, Partitioned, ground_closing_speed, posterior_at};
 use crate::partition::tracker::labels;
 use crate::pipeline::TrackerKind;
 use crate::pipeline::orbital::config3d;
-use crate::pipeline::output::{cpu_time_ns, peak_resident_kib, write_json};
+use crate::pipeline::output::{cpu_time_ns, peak_resident_kib, resident_kib, write_json};
 use crate::plots::{self, Series};
 use score::Score;
 use std::collections::BTreeMap;
@@ -53,6 +53,9 @@ pub struct Settings {
     /// Threads of the pool (`None`: every core).
     pub threads: Option<usize>,
     pub quiet: bool,
+    /// Step every cluster at every scan (`--step-every-cluster`) instead of leaving the clusters beyond a
+    /// sensor's range window out of its scans (docs/maths.md §13.2, the default).
+    pub step_every_cluster: bool,
 }
 
 /// One scan's figures.
@@ -61,6 +64,8 @@ struct ScanFigures {
     in_view: usize,
     measurements: usize,
     ms: f64,
+    /// Clusters the scan stepped (in place or on a copy; the skipped ones not counted).
+    stepped: usize,
     /// CPU ms of the step, summed over the process's threads (`None`: not known).
     cpu_ms: Option<f64>,
 }
@@ -111,6 +116,9 @@ pub(crate) fn run_on(
     let objects = prior.first().map(|(_, o)| o.as_slice()).unwrap_or(&[]);
     let mut tracker = Partitioned::<Radars, 3>::new(config, objects, scenario.prior.time, 0.0)
         .map_err(|e| Error::input(format!("partitioned tracker: {e}")))?;
+    if !settings.step_every_cluster {
+        tracker = tracker.with_view_skip(ground_closing_speed);
+    }
     let known: Vec<bool> = {
         let mut known = vec![false; world.objects()];
         objects.iter().for_each(|o| known[o.label.0 as usize] = true);
@@ -120,6 +128,7 @@ pub(crate) fn run_on(
     let prior_labels = objects.iter().map(|o| o.label.0).collect();
     let mut score = Score::new(scenario.evaluation, births, prior_labels);
     let (mut figures, mut rejected, mut clusters_max, mut largest) = (vec![], 0usize, 0usize, 0usize);
+    let mut rss_by_hour = vec![];
     let last = world.scans() - 1;
     for k in 0..=last {
         let scan = world.scan(k)?;
@@ -129,10 +138,12 @@ pub(crate) fn run_on(
         let stepped = tracker.step(&geometry, &scan.measurements);
         let ms = step_started.elapsed().as_secs_f64() * 1e3;
         let cpu_ms = cpu_started.zip(cpu_time_ns()).map(|(a, b)| b.saturating_sub(a) as f64 / 1e6);
+        let mut stepped_clusters = 0;
         match stepped {
             Ok(report) => {
                 clusters_max = clusters_max.max(report.clusters);
                 largest = largest.max(report.largest_cluster);
+                stepped_clusters = report.clusters.saturating_sub(report.skipped);
             }
             Err(e) => {
                 rejected += 1;
@@ -142,9 +153,14 @@ pub(crate) fn run_on(
             }
         }
         let m = scan.measurements.len();
-        figures.push(ScanFigures { sensor: scan.sensor, in_view: scan.in_view, measurements: m, ms, cpu_ms });
+        let (sensor, in_view) = (scan.sensor, scan.in_view);
+        figures.push(ScanFigures { sensor, in_view, measurements: m, ms, stepped: stepped_clusters, cpu_ms });
         if score.due(scan.time) || k == last {
-            score.score(k, scan.time, &scan.truth, &posterior(&tracker));
+            score.score(k, scan.time, &scan.truth, &posterior_at(&tracker, scan.time));
+        }
+        // The resident memory at each simulated hour (the first scan of the hour).
+        if scan.time - scenario.prior.time >= 3600.0 * rss_by_hour.len() as f64 {
+            rss_by_hour.push(resident_kib().map_or(f64::NAN, |kib| kib as f64 / 1024.0));
         }
         if !settings.quiet && (k + 1) % (last / 10).max(1) == 0 {
             eprintln!("catalogue-scale: scan {} of {}, {} clusters", k + 1, last + 1, tracker.clusters().len());
@@ -155,8 +171,15 @@ pub(crate) fn run_on(
     }
     let sizes: Vec<usize> = tracker.clusters().iter().map(|c| labels(&c.core).len()).collect();
     plot(dir, &world.sensors, &figures, &sizes)?;
-    let outcome =
-        Outcome { figures, rejected, clusters_max, largest, digest: tracker.digest(), dropped: world.dropped };
+    let outcome = Outcome {
+        figures,
+        rejected,
+        clusters_max,
+        largest,
+        digest: tracker.digest(),
+        dropped: world.dropped,
+        rss_by_hour,
+    };
     let report = report(settings, threads, world.tracked(), &outcome, &score, started);
     write_json(&dir.join("scale.json"), &report)?;
     Ok(report)
@@ -170,6 +193,8 @@ struct Outcome {
     largest: usize,
     digest: u64,
     dropped: usize,
+    /// Resident memory (MiB) at the first scan of each simulated hour.
+    rss_by_hour: Vec<f64>,
 }
 
 /// The 99th percentile (nearest rank) of `values`.
@@ -229,6 +254,11 @@ fn report(
         digest: format!("{:016x}", outcome.digest),
         profile: format!("{}/{}/{}/{}/{}", c.hypotheses, c.objects, c.measurements, c.tracks, c.birth_cells),
         seed: settings.seed,
+        view_skip: !settings.step_every_cluster,
+        clusters_stepped_mean: crate::experiments::common::mean(
+            &f.iter().map(|s| s.stepped as f64).collect::<Vec<_>>(),
+        ),
+        rss_mib_by_hour: outcome.rss_by_hour.clone(),
     }
 }
 

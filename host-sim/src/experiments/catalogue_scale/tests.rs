@@ -18,8 +18,26 @@ fn catalogue(objects: usize, seed: u64) -> Vec<CatalogueEntry> {
 
 /// `scale.json` of a run on `threads` threads, as JSON, and the run's report.
 fn run_with(tag: &str, entries: Vec<CatalogueEntry>, hours: f64, threads: usize) -> (serde_json::Value, ScaleReport) {
+    run_skip(tag, entries, hours, threads, false)
+}
+
+/// As [`run_with`], stepping every cluster at every scan when `every` (no view skip).
+fn run_skip(
+    tag: &str,
+    entries: Vec<CatalogueEntry>,
+    hours: f64,
+    threads: usize,
+    every: bool,
+) -> (serde_json::Value, ScaleReport) {
     let dir = temp(tag);
-    let settings = Settings { objects: entries.len(), hours, seed: 3, threads: Some(threads), quiet: true };
+    let settings = Settings {
+        objects: entries.len(),
+        hours,
+        seed: 3,
+        threads: Some(threads),
+        quiet: true,
+        step_every_cluster: every,
+    };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).stack_size(256 << 20).build().expect("pool");
     let report = pool.install(|| run_on(&dir, &settings, threads, entries, Instant::now())).expect("run");
     let text = std::fs::read_to_string(dir.join("scale.json")).expect("scale.json");
@@ -36,7 +54,7 @@ fn deterministic(mut json: serde_json::Value) -> serde_json::Value {
     for key in ["wall_s", "realtime_factor", "peak_rss_mib", "ms_per_scan_mean", "ms_per_scan_p99", "ms_per_scan_max"] {
         assert!(object.remove(key).is_some(), "{key}");
     }
-    for key in ["cpu_s", "cpu_ms_per_scan_mean", "cpu_ms_per_scan_p99", "total_wall_s", "threads"] {
+    for key in ["cpu_s", "cpu_ms_per_scan_mean", "cpu_ms_per_scan_p99", "total_wall_s", "threads", "rss_mib_by_hour"] {
         assert!(object.remove(key).is_some(), "{key}");
     }
     json
@@ -92,4 +110,23 @@ fn an_element_set_sgp4_cannot_propagate_is_dropped_and_counted() {
     entries.push(decayed);
     let (_, report) = run_with("dropped", entries, 0.05, 1);
     assert_eq!((report.dropped_objects, report.objects), (1, 10));
+}
+
+#[test]
+fn the_view_skip_leaves_most_clusters_out_of_a_scan_and_tracks_as_stepping_every_cluster() {
+    let (_, skip) = run_skip("skip", catalogue(60, 4), 0.25, 1, false);
+    let (_, every) = run_skip("every", catalogue(60, 4), 0.25, 1, true);
+    assert!(skip.view_skip && !every.view_skip);
+    // Every cluster stepped at every scan without the skip; with it, those within a sensor's range window.
+    assert!(every.clusters_stepped_mean >= 55.0, "{every:?}");
+    assert!(skip.clusters_stepped_mean < 0.5 * every.clusters_stepped_mean, "{skip:?}");
+    assert!(skip.observations > 0 && skip.observed_objects >= 3, "{skip:?}");
+    // The same objects observed, births and tracks; the errors differ only by the longer predictions.
+    let same =
+        |r: &ScaleReport| (r.observations, r.observed_objects, r.births_confirmed, r.false_tracks, r.label_switches);
+    assert_eq!(same(&skip), same(&every));
+    assert!((skip.mean_gospa - every.mean_gospa).abs() <= 1e-3 * every.mean_gospa, "{skip:?} {every:?}");
+    let (a, b) = (skip.observed_median_error_km.expect("observed"), every.observed_median_error_km.expect("observed"));
+    assert!((a - b).abs() < 1e-3, "observed median error {a} km with the skip, {b} km without");
+    assert_ne!(skip.digest, every.digest, "not bit-identical: the skipped clusters are predicted in longer steps");
 }

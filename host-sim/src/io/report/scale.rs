@@ -78,4 +78,13 @@ pub struct ScaleReport {
     pub profile: String,
     /// The seed.
     pub seed: u64,
+    /// Whether clusters beyond a sensor's range window were left out of its scans (docs/maths.md §13.2;
+    /// `false` with `--step-every-cluster`).
+    pub view_skip: bool,
+    /// Clusters stepped per scan (in place or on a copy), mean over the scans: with the view skip, those
+    /// near the scanning sensor; without it, every cluster.
+    pub clusters_stepped_mean: f64,
+    /// Resident memory (MiB, VmRSS) at the first scan of each simulated hour, from hour 0: flat after
+    /// warm-up when memory follows the objects. Varies from run to run.
+    pub rss_mib_by_hour: Vec<f64>,
 }
