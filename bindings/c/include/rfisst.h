@@ -17,8 +17,9 @@
 // Birth cells a configuration holds.
 #define RFISST_MAX_BIRTH_CELLS 8
 
-// Prior objects, over all hypotheses together, that `rfisst_tracker_init` and `rfisst_tracker_reset`
-// take without `std` (they are converted on the stack); the JSON path has no such limit.
+// Objects one prior hypothesis holds (as `RFISST_MAX_OBJECTS`). Kept for compatibility: the prior
+// is no longer limited over all its hypotheses together, since its objects are converted one at a time
+// as the tracker reads them (no buffer), with or without `std`.
 #define RFISST_MAX_PRIOR_OBJECTS 64
 
 // Measurements one scan may hold (the trackers' Z).

@@ -13,8 +13,9 @@ pub const RFISST_MAX_SENSORS: usize = 8;
 pub const RFISST_MAX_SENSORS_SINGLE_KIND: usize = 4;
 /// Birth cells a configuration holds.
 pub const RFISST_MAX_BIRTH_CELLS: usize = 8;
-/// Prior objects, over all hypotheses together, that `rfisst_tracker_init` and `rfisst_tracker_reset`
-/// take without `std` (they are converted on the stack); the JSON path has no such limit.
+/// Objects one prior hypothesis holds (as `RFISST_MAX_OBJECTS`). Kept for compatibility: the prior
+/// is no longer limited over all its hypotheses together, since its objects are converted one at a time
+/// as the tracker reads them (no buffer), with or without `std`.
 pub const RFISST_MAX_PRIOR_OBJECTS: usize = 64;
 /// Measurements one scan may hold (the trackers' Z).
 pub const RFISST_MAX_MEASUREMENTS: usize = 32;

@@ -3,16 +3,14 @@
 //! with any tracker, implemented once for every `Tracker`; [`with_kind`] turns a kind code into the
 //! concrete tracker type. No allocation: a step converts its measurements on the stack.
 
-#[cfg(not(feature = "std"))]
-use crate::config::RFISST_MAX_PRIOR_OBJECTS;
 use crate::config::{RfisstConfig, RfisstPriorHypothesis, RfisstPriorObject, RfisstStepReport, RfisstTrack, sensor};
 use crate::status::{Failure, RfisstStatus};
 use crate::{convert, placeholder};
 use core::fmt::Write as _;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::{
-    Config, Network, NetworkTracker, OpticalNetwork, OpticalTracker, PriorHypothesis, PriorObject, RadarNetwork,
+    Config, Gaussian, Network, NetworkTracker, OpticalNetwork, OpticalTracker, PriorObject, PriorSource, RadarNetwork,
     RadarTracker, Real, ScanGeometry, SsaTracker, StepError, TrackLabel, Tracker, ssa_caps,
 };
 
@@ -268,7 +266,9 @@ where
 }
 
 /// Loads the C prior at `time` into `tracker`, with `config` installed too when given
-/// ([`Tracker::reset_with`]) or the tracker's own ([`Tracker::reset`]); on failure the tracker is unchanged.
+/// ([`Tracker::reset_with_from`]) or the tracker's own ([`Tracker::reset_from`]); on failure the tracker is
+/// unchanged. The objects are converted one at a time as the tracker reads them ([`CPrior`]): no buffer
+/// of converted objects (11 KiB on the stack for 64 objects of a 6-state `f32` tracker).
 fn load<
     T,
     M,
@@ -291,52 +291,68 @@ where
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D> + Clone,
 {
-    let mut objects: Objects<T, S> = Objects::new();
-    let mut ranges: heapless::Vec<(T, usize, usize), H> = heapless::Vec::new();
-    for (index, hypothesis) in prior.iter().enumerate() {
-        let start = objects.len();
-        for object in c_slice(hypothesis.objects, hypothesis.object_count, index)? {
-            let state = convert::gaussian(&object.state);
-            push_object(&mut objects, PriorObject { label: TrackLabel(object.label), state })?;
-        }
-        ranges
-            .push((T::of_f64(hypothesis.weight), start, objects.len()))
-            .map_err(|_| Failure::Config(tracker_core::ConfigError::PriorTooManyHypotheses))?;
-    }
-    let mut hypotheses: heapless::Vec<PriorHypothesis<'_, T, S>, H> = heapless::Vec::new();
-    for &(weight, start, end) in &ranges {
-        let objects = objects.get(start..end).unwrap_or(&[]);
-        // Same capacity as `ranges`: cannot overflow.
-        let _ = hypotheses.push(PriorHypothesis { weight, objects });
-    }
+    let source = CPrior::<H>::new(prior)?;
     match config {
-        Some(config) => tracker.reset_with(config, &hypotheses, time),
-        None => tracker.reset(&hypotheses, time),
+        Some(config) => tracker.reset_with_from(config, &source, time),
+        None => tracker.reset_from(&source, time),
     }
     .map_err(Failure::Config)
 }
 
-/// The converted prior objects: bounded without `std`, growable with it.
-#[cfg(not(feature = "std"))]
-type Objects<T, const S: usize> = heapless::Vec<PriorObject<T, S>, RFISST_MAX_PRIOR_OBJECTS>;
-#[cfg(feature = "std")]
-type Objects<T, const S: usize> = std::vec::Vec<PriorObject<T, S>>;
-
-#[cfg(not(feature = "std"))]
-fn push_object<T: Real, const S: usize>(objects: &mut Objects<T, S>, object: PriorObject<T, S>) -> Result<(), Failure> {
-    objects.push(object).map_err(|_| {
-        Failure::Indexed(
-            RfisstStatus::RfisstInvalidConfig,
-            "prior: objects over all hypotheses above",
-            RFISST_MAX_PRIOR_OBJECTS,
-        )
-    })
+/// The C prior as tracker-core reads it ([`PriorSource`]): each hypothesis's weight and objects (pointers
+/// checked), an object converted to the tracker's scalar when the tracker asks for it.
+struct CPrior<'a, const H: usize> {
+    /// The C hypotheses.
+    hypotheses: &'a [RfisstPriorHypothesis],
+    /// Their objects, as checked slices.
+    objects: heapless::Vec<&'a [RfisstPriorObject], H>,
 }
 
-#[cfg(feature = "std")]
-fn push_object<T: Real, const S: usize>(objects: &mut Objects<T, S>, object: PriorObject<T, S>) -> Result<(), Failure> {
-    objects.push(object);
-    Ok(())
+impl<'a, const H: usize> CPrior<'a, H> {
+    /// Checks every hypothesis's objects pointer; more than `H` hypotheses is the core's error.
+    fn new(hypotheses: &'a [RfisstPriorHypothesis]) -> Result<Self, Failure> {
+        let mut objects = heapless::Vec::new();
+        for (index, hypothesis) in hypotheses.iter().enumerate() {
+            objects
+                .push(c_slice(hypothesis.objects, hypothesis.object_count, index)?)
+                .map_err(|_| Failure::Config(tracker_core::ConfigError::PriorTooManyHypotheses))?;
+        }
+        Ok(Self { hypotheses, objects })
+    }
+
+    /// Object `object` of `hypothesis`, when in range.
+    fn get(&self, hypothesis: usize, object: usize) -> Option<&RfisstPriorObject> {
+        self.objects.get(hypothesis).and_then(|objects| objects.get(object))
+    }
+}
+
+impl<T: Real, const S: usize, const H: usize> PriorSource<T, S> for CPrior<'_, H> {
+    fn hypotheses(&self) -> usize {
+        self.objects.len()
+    }
+
+    fn weight(&self, hypothesis: usize) -> T {
+        T::of_f64(self.hypotheses.get(hypothesis).map_or(f64::NAN, |h| h.weight))
+    }
+
+    fn objects(&self, hypothesis: usize) -> usize {
+        self.objects.get(hypothesis).map_or(0, |objects| objects.len())
+    }
+
+    fn label(&self, hypothesis: usize, object: usize) -> TrackLabel {
+        TrackLabel(self.get(hypothesis, object).map_or(0, |o| o.label))
+    }
+
+    fn object(&self, hypothesis: usize, object: usize) -> PriorObject<T, S> {
+        match self.get(hypothesis, object) {
+            Some(o) => PriorObject { label: TrackLabel(o.label), state: convert::gaussian(&o.state) },
+            // Out of range (never, by the trait's contract): a NaN mean, which the tracker refuses.
+            None => {
+                let state = Gaussian { mean: SVector::repeat(T::of_f64(f64::NAN)), covariance: SMatrix::zeros() };
+                PriorObject { label: TrackLabel(0), state }
+            }
+        }
+    }
 }
 
 /// The C array `(pointer, count)` as a slice: null is allowed for an empty array only.

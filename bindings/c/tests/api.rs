@@ -398,3 +398,63 @@ fn bad_arguments() {
     }
     assert_eq!(text(rfisst_status_message(13)), "unknown status code");
 }
+
+/// A prior of several hypotheses sharing objects, read object by object from the C arrays
+/// (`PriorSource`), is the tracker tracker-core's `reset` builds from the same objects converted first;
+/// `rfisst_tracker_reset` reloads it; a label twice in a hypothesis is the core's error.
+#[test]
+fn a_prior_of_several_hypotheses_loads_as_the_core_loads_it() {
+    with_big_stack(|| {
+        let mut scenario = from_json(&planar_scenario(3), RfisstKind::RfisstSsaF32, None).expect("planar");
+        let objects = scenario.prior[0].1.clone();
+        assert!(objects.len() >= 3, "the preset's prior has objects");
+        let (first, rest) = (objects[..objects.len() - 1].to_vec(), objects[1..].to_vec());
+        scenario.prior = vec![(3.0, first), (1.0, rest), (0.0, objects[..1].to_vec())];
+        let mut storage = Storage::new();
+        let tracker = init(&mut storage, RfisstKind::RfisstSsaF32, &scenario);
+        let c_digest = |tracker| {
+            let mut digest = 0;
+            // SAFETY: a handle.
+            assert_eq!(unsafe { rfisst_tracker_digest(tracker, &mut digest) }, RfisstStatus::RfisstOk);
+            digest
+        };
+        let digest = c_digest(tracker);
+
+        let converted: Vec<Vec<tracker_core::PriorObject<f32, 4>>> = scenario
+            .prior
+            .iter()
+            .map(|(_, objects)| {
+                let object = |o: &RfisstPriorObject| tracker_core::PriorObject {
+                    label: tracker_core::TrackLabel(o.label),
+                    state: rfisst::convert::gaussian(&o.state),
+                };
+                objects.iter().map(object).collect()
+            })
+            .collect();
+        let prior: Vec<tracker_core::PriorHypothesis<'_, f32, 4>> = scenario
+            .prior
+            .iter()
+            .zip(&converted)
+            .map(|((weight, _), objects)| tracker_core::PriorHypothesis { weight: *weight as f32, objects })
+            .collect();
+        let config = rfisst::convert::planar::<f32>(&scenario.config).expect("config");
+        let core = tracker_core::SsaTracker::<f32>::new(config, &prior, scenario.prior_time).expect("core");
+        assert_eq!(digest, core.digest(), "C prior and core prior");
+        assert_eq!(core.hypotheses().len(), 2, "the zero-weight hypothesis is dropped");
+
+        let hypotheses = scenario.hypotheses();
+        // SAFETY: a handle and the prior's hypotheses.
+        let status = unsafe { rfisst_tracker_reset(tracker, hypotheses.as_ptr(), hypotheses.len(), 0.0) };
+        assert_eq!(status, RfisstStatus::RfisstOk);
+        assert_eq!(c_digest(tracker), digest, "reset from the same prior at the same time");
+
+        let mut twice = scenario.prior[1].1.clone();
+        twice.push(twice[0]);
+        let bad = [RfisstPriorHypothesis { weight: 1.0, objects: twice.as_ptr(), object_count: twice.len() }];
+        // SAFETY: as above.
+        let status = unsafe { rfisst_tracker_reset(tracker, bad.as_ptr(), 1, 0.0) };
+        assert_eq!(status, RfisstStatus::RfisstConfigRejected);
+        assert!(last_error(tracker).contains("a label appears twice"), "{}", last_error(tracker));
+        assert_eq!(c_digest(tracker), digest, "a rejected prior leaves the tracker unchanged");
+    });
+}

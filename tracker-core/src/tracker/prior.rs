@@ -1,7 +1,7 @@
 //! Loading a tracker: the configuration check and the prior.
 
-use super::PriorHypothesis;
 use super::finish_hypotheses;
+use super::{PriorHypothesis, PriorObject};
 use crate::config::{BirthDetection, BirthEvents, ChildGeneration, Config};
 use crate::ekf;
 use crate::error::ConfigError;
@@ -9,7 +9,56 @@ use crate::hypothesis::{Hypothesis, HypothesisSet};
 use crate::index::insertion_sort_by;
 use crate::model::{MeasurementModel, MotionModel};
 use crate::real::{Real, ln};
-use crate::store::{Track, TrackStore};
+use crate::store::{Track, TrackLabel, TrackStore};
+
+/// A prior read one object at a time: what [`Tracker::reset_from`](super::Tracker::reset_from) and
+/// [`Tracker::reset_with_from`](super::Tracker::reset_with_from) load, for a caller that holds its prior in
+/// another form (the C interface's doubles) and would otherwise convert every object into a buffer on the
+/// stack first. A slice of [`PriorHypothesis`] is one; the tracker reads it exactly as it reads the slice
+/// given to [`Tracker::reset`](super::Tracker::reset), hypothesis by hypothesis and object by object.
+///
+/// Indices passed to the methods are in range (`hypothesis < hypotheses()`,
+/// `object < objects(hypothesis)`).
+pub trait PriorSource<T: Real, const S: usize> {
+    /// Hypotheses in the prior.
+    fn hypotheses(&self) -> usize;
+    /// Relative weight of `hypothesis`.
+    fn weight(&self, hypothesis: usize) -> T;
+    /// Objects in `hypothesis`.
+    fn objects(&self, hypothesis: usize) -> usize;
+    /// The label of object `object` of `hypothesis`.
+    fn label(&self, hypothesis: usize, object: usize) -> TrackLabel;
+    /// Object `object` of `hypothesis`.
+    fn object(&self, hypothesis: usize, object: usize) -> PriorObject<T, S>;
+}
+
+impl<T: Real, const S: usize> PriorSource<T, S> for [PriorHypothesis<'_, T, S>] {
+    fn hypotheses(&self) -> usize {
+        self.len()
+    }
+
+    fn weight(&self, hypothesis: usize) -> T {
+        self.get(hypothesis).map_or(T::zero(), |h| h.weight)
+    }
+
+    fn objects(&self, hypothesis: usize) -> usize {
+        self.get(hypothesis).map_or(0, |h| h.objects.len())
+    }
+
+    fn label(&self, hypothesis: usize, object: usize) -> TrackLabel {
+        self.get(hypothesis).and_then(|h| h.objects.get(object)).map_or(TrackLabel(0), |o| o.label)
+    }
+
+    fn object(&self, hypothesis: usize, object: usize) -> PriorObject<T, S> {
+        let found = self.get(hypothesis).and_then(|h| h.objects.get(object)).copied();
+        // In range by the trait's contract; otherwise an object of NaN mean, which the tracker refuses.
+        found.unwrap_or_else(|| {
+            let mut state = crate::gaussian::Gaussian::<T, S>::ZERO;
+            state.mean.fill(T::of_f64(f64::NAN));
+            PriorObject { label: TrackLabel(0), state }
+        })
+    }
+}
 
 /// Checks every parameter of `config` for a tracker of at most `N` objects per hypothesis, the birth cells
 /// as the measurement model sees them before its first placement included.
@@ -109,26 +158,31 @@ fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, cons
 /// # Errors
 /// [`ConfigError`] naming the first invalid prior entry; `store` and `set` are then partly written (they
 /// are the tracker's inactive buffers).
-pub(super) fn load_prior<T: Real, const S: usize, const N: usize, const H: usize, const K: usize>(
-    prior: &[PriorHypothesis<'_, T, S>],
+pub(super) fn load_prior<T: Real, P, const S: usize, const N: usize, const H: usize, const K: usize>(
+    prior: &P,
     store: &mut TrackStore<T, S, K>,
     set: &mut HypothesisSet<T, N, H>,
-) -> Result<u32, ConfigError> {
-    let total = prior_weight_total::<T, S, H>(prior)?;
+) -> Result<u32, ConfigError>
+where
+    P: PriorSource<T, S> + ?Sized,
+{
+    let total = prior_weight_total::<T, P, S, H>(prior)?;
     store.clear();
     set.clear();
     let mut next_label: u32 = 0;
-    for (index, hypothesis) in prior.iter().enumerate() {
-        if hypothesis.objects.len() > N {
+    for index in 0..prior.hypotheses() {
+        let count = prior.objects(index);
+        if count > N {
             return Err(ConfigError::PriorTooManyObjects { hypothesis: index });
         }
         let mut slots = [0u16; N];
-        for (position, (object, slot)) in hypothesis.objects.iter().zip(slots.iter_mut()).enumerate() {
+        for (position, slot) in slots.iter_mut().enumerate().take(count) {
+            let object = prior.object(index, position);
             let state = &object.state;
             if !(state.mean.iter().all(|v| v.is_finite_value()) && ekf::is_valid_covariance(&state.covariance)) {
                 return Err(ConfigError::PriorObject { hypothesis: index, object: position });
             }
-            if hypothesis.objects.iter().take(position).any(|other| other.label == object.label) {
+            if (0..position).any(|other| prior.label(index, other) == object.label) {
                 return Err(ConfigError::PriorDuplicateLabel { hypothesis: index });
             }
             next_label = next_label.max(object.label.0.saturating_add(1));
@@ -140,16 +194,17 @@ pub(super) fn load_prior<T: Real, const S: usize, const N: usize, const H: usize
                     .map_err(|_| ConfigError::PriorTrackStoreFull)?,
             };
         }
-        if hypothesis.weight == T::zero() {
+        let weight = prior.weight(index);
+        if weight == T::zero() {
             continue;
         }
-        let slots = &mut slots[..hypothesis.objects.len()];
+        let slots = &mut slots[..count];
         // Labels are distinct within a hypothesis, so the order is unique.
         let tracks = store.as_slice();
         let label = |slot: u16| tracks.get(usize::from(slot)).map(|track| track.label);
         insertion_sort_by(slots, |&a, &b| label(a) < label(b));
         // The prior has at most H hypotheses, so this push cannot fail.
-        let _ = set.push(Hypothesis::new(ln(hypothesis.weight / total), slots));
+        let _ = set.push(Hypothesis::new(ln(weight / total), slots));
     }
     finish_hypotheses(set, store);
     Ok(next_label)
@@ -157,21 +212,23 @@ pub(super) fn load_prior<T: Real, const S: usize, const N: usize, const H: usize
 
 /// The sum of the prior's weights, after checking that there are 1 to `H` hypotheses with finite
 /// non-negative weights and a finite positive sum.
-fn prior_weight_total<T: Real, const S: usize, const H: usize>(
-    prior: &[PriorHypothesis<'_, T, S>],
+fn prior_weight_total<T: Real, P: PriorSource<T, S> + ?Sized, const S: usize, const H: usize>(
+    prior: &P,
 ) -> Result<T, ConfigError> {
-    if prior.is_empty() {
+    let count = prior.hypotheses();
+    if count == 0 {
         return Err(ConfigError::PriorEmpty);
     }
-    if prior.len() > H {
+    if count > H {
         return Err(ConfigError::PriorTooManyHypotheses);
     }
     let mut total = T::zero();
-    for (index, hypothesis) in prior.iter().enumerate() {
-        if !(hypothesis.weight.is_finite_value() && hypothesis.weight >= T::zero()) {
+    for index in 0..count {
+        let weight = prior.weight(index);
+        if !(weight.is_finite_value() && weight >= T::zero()) {
             return Err(ConfigError::PriorWeight { hypothesis: index });
         }
-        total += hypothesis.weight;
+        total += weight;
     }
     if !(total > T::zero() && total.is_finite_value()) {
         return Err(ConfigError::PriorWeightTotal);
@@ -200,7 +257,7 @@ mod tests {
         let prior = [PriorHypothesis { weight: 3.0, objects: &[a] }, PriorHypothesis { weight: 1.0, objects: &[b, a] }];
         let mut store = TrackStore::<f64, 4, 8>::new();
         let mut set = HypothesisSet::<f64, 4, 4>::new();
-        assert_eq!(load_prior(&prior, &mut store, &mut set), Ok(10));
+        assert_eq!(load_prior(&prior[..], &mut store, &mut set), Ok(10));
         assert_eq!(store.len(), 2, "object 4 is one track in both hypotheses");
         let weights: std::vec::Vec<f64> = set.as_slice().iter().map(|h| h.log_weight.exp()).collect();
         assert!((weights[0] - 0.75).abs() < 1e-15 && (weights[1] - 0.25).abs() < 1e-15);
@@ -217,12 +274,62 @@ mod tests {
         let mut store = TrackStore::<f64, 4, 8>::new();
         let mut set = HypothesisSet::<f64, 4, 1>::new();
         let twice = [PriorHypothesis { weight: 1.0, objects: &[a, a] }];
-        assert_eq!(load_prior(&twice, &mut store, &mut set), Err(ConfigError::PriorDuplicateLabel { hypothesis: 0 }));
+        assert_eq!(
+            load_prior(&twice[..], &mut store, &mut set),
+            Err(ConfigError::PriorDuplicateLabel { hypothesis: 0 })
+        );
         let two = [PriorHypothesis { weight: 1.0, objects: &[a] }, PriorHypothesis { weight: 1.0, objects: &[a] }];
-        assert_eq!(load_prior(&two, &mut store, &mut set), Err(ConfigError::PriorTooManyHypotheses));
+        assert_eq!(load_prior(&two[..], &mut store, &mut set), Err(ConfigError::PriorTooManyHypotheses));
         let overflow = [PriorHypothesis { weight: f64::MAX, objects: &[a] }];
         let mut set2 = HypothesisSet::<f64, 4, 2>::new();
         let both = [overflow[0], overflow[0]];
-        assert_eq!(load_prior(&both, &mut store, &mut set2), Err(ConfigError::PriorWeightTotal));
+        assert_eq!(load_prior(&both[..], &mut store, &mut set2), Err(ConfigError::PriorWeightTotal));
+    }
+
+    /// A prior held as labels and x positions, each object built when the tracker reads it.
+    struct Compact<'a>(&'a [(f64, &'a [(u32, f64)])]);
+
+    impl PriorSource<f64, 4> for Compact<'_> {
+        fn hypotheses(&self) -> usize {
+            self.0.len()
+        }
+        fn weight(&self, hypothesis: usize) -> f64 {
+            self.0[hypothesis].0
+        }
+        fn objects(&self, hypothesis: usize) -> usize {
+            self.0[hypothesis].1.len()
+        }
+        fn label(&self, hypothesis: usize, object: usize) -> TrackLabel {
+            TrackLabel(self.0[hypothesis].1[object].0)
+        }
+        fn object(&self, hypothesis: usize, object: usize) -> PriorObject<f64, 4> {
+            let (label, x) = self.0[hypothesis].1[object];
+            super::tests::object(label, x)
+        }
+    }
+
+    #[test]
+    fn a_prior_source_loads_as_the_slice_of_the_same_objects() {
+        let (a, b, c) = (object(4, 0.0), object(9, 5.0), object(2, -3.0));
+        let slice =
+            [PriorHypothesis { weight: 3.0, objects: &[a, c] }, PriorHypothesis { weight: 1.0, objects: &[b, a] }];
+        let compact = Compact(&[(3.0, &[(4, 0.0), (2, -3.0)]), (1.0, &[(9, 5.0), (4, 0.0)])]);
+        let (mut store, mut set) = (TrackStore::<f64, 4, 8>::new(), HypothesisSet::<f64, 4, 4>::new());
+        let (mut store2, mut set2) = (TrackStore::<f64, 4, 8>::new(), HypothesisSet::<f64, 4, 4>::new());
+        assert_eq!(load_prior(&slice[..], &mut store, &mut set), Ok(10));
+        assert_eq!(load_prior(&compact, &mut store2, &mut set2), Ok(10));
+        assert_eq!(store.as_slice(), store2.as_slice());
+        assert_eq!(set.len(), 2);
+        for (h, h2) in set.as_slice().iter().zip(set2.as_slice()) {
+            assert_eq!((h.log_weight.to_bits(), h.slots()), (h2.log_weight.to_bits(), h2.slots()));
+        }
+        let twice = Compact(&[(1.0, &[(1, 0.0), (1, 2.0)])]);
+        assert_eq!(load_prior(&twice, &mut store2, &mut set2), Err(ConfigError::PriorDuplicateLabel { hypothesis: 0 }));
+        let nan = Compact(&[(1.0, &[(1, f64::NAN)])]);
+        assert_eq!(
+            load_prior(&nan, &mut store2, &mut set2),
+            Err(ConfigError::PriorObject { hypothesis: 0, object: 0 })
+        );
+        assert_eq!(load_prior(&Compact(&[]), &mut store2, &mut set2), Err(ConfigError::PriorEmpty));
     }
 }
