@@ -90,7 +90,7 @@ pub use real::Real;
 pub use report::StepReport;
 pub use sensor::{Look, LookShape, Placement, Region, ScanGeometry, Sensor};
 pub use store::{Track, TrackLabel};
-pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, PriorSource, Tracker};
+pub use tracker::{HypothesisView, PriorHypothesis, PriorObject, PriorSource, Tracker, TrackerState};
 
 /// The README's rust examples, compiled and run as doctests.
 #[cfg(doctest)]

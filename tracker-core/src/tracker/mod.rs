@@ -19,7 +19,8 @@
 //!
 //! Around the pipeline: `prior` checks a configuration and loads a prior, [`check_scan`] and [`place_scan`]
 //! check a scan and place the measurement model at it, and `view` is what a caller reads between scans
-//! ([`HypothesisView`], label existence, cardinality, the digest). The examples share one set-up, the hidden
+//! ([`HypothesisView`], label existence, cardinality, the digest), and `resume` reads out and loads back
+//! the state a tracker carries between scans ([`TrackerState`]). The examples share one set-up, the hidden
 //! `tracker_core::examples` module.
 //!
 //! # Panics
@@ -38,11 +39,13 @@
 mod generate;
 mod materialise;
 mod prior;
+mod resume;
 mod scan;
 mod score;
 mod view;
 
 pub use prior::PriorSource;
+pub use resume::TrackerState;
 pub use scan::{PlacedScan, check_scan, place_scan};
 pub use score::{in_field_of_view, unseen_scans};
 pub use view::HypothesisView;
