@@ -35,6 +35,8 @@ pub enum PartitionError {
     Rebuild { cluster: ClusterId, error: ConfigError },
     /// A cluster's own core step failed.
     Cluster { cluster: ClusterId, error: StepError },
+    /// A cluster's core holds state a cluster at rest cannot keep (a birth pool with cells).
+    Unresumable { cluster: ClusterId },
 }
 
 impl fmt::Display for PartitionError {
@@ -51,6 +53,9 @@ impl fmt::Display for PartitionError {
             ),
             PartitionError::Rebuild { cluster, error } => write!(f, "{cluster}: rebuilding it: {error}"),
             PartitionError::Cluster { cluster, error } => write!(f, "{cluster}: {error}"),
+            PartitionError::Unresumable { cluster } => {
+                write!(f, "{cluster}: its core holds a birth pool, which a cluster at rest does not keep")
+            }
         }
     }
 }

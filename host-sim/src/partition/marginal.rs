@@ -4,8 +4,8 @@
 
 use nalgebra::{SMatrix, SVector};
 use std::collections::BTreeMap;
-use tracker_core::Tracker;
 use tracker_core::model::{MeasurementModel, MotionModel};
+use tracker_core::{Track, Tracker};
 
 /// One object's posterior.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,22 +33,34 @@ pub fn add<
     M: MotionModel<f64, S>,
     G: MeasurementModel<f64, S, D>,
 {
+    let tracks = core.tracks();
+    let weighted =
+        || core.hypotheses().map(|h| (h.weight(), h.slots().iter().filter_map(|&slot| tracks.get(usize::from(slot)))));
+    add_weighted(weighted, out);
+}
+
+/// Adds the per-label posteriors of the hypotheses `hypotheses()` yields (each one's weight and tracks;
+/// called twice) to `out`.
+pub fn add_weighted<'a, const S: usize, I, T>(hypotheses: impl Fn() -> I, out: &mut BTreeMap<u32, ObjectPosterior<S>>)
+where
+    I: Iterator<Item = (f64, T)>,
+    T: Iterator<Item = &'a Track<f64, S>>,
+{
     // Two passes (the mean, then the spread about it), so that large means do not cancel the covariance.
     let mut sums: BTreeMap<u32, (f64, SVector<f64, S>)> = BTreeMap::new();
-    for h in core.hypotheses() {
-        for t in h.tracks() {
+    for (weight, tracks) in hypotheses() {
+        for t in tracks {
             let (w, m) = sums.entry(t.label.0).or_insert((0.0, SVector::zeros()));
-            *w += h.weight();
-            *m += t.state.mean * h.weight();
+            *w += weight;
+            *m += t.state.mean * weight;
         }
     }
     let means: BTreeMap<u32, SVector<f64, S>> = sums.iter().map(|(l, (w, m))| (*l, m / *w)).collect();
     let mut spread: BTreeMap<u32, SMatrix<f64, S, S>> = BTreeMap::new();
-    for h in core.hypotheses() {
-        for t in h.tracks() {
+    for (weight, tracks) in hypotheses() {
+        for t in tracks {
             let d = t.state.mean - means[&t.label.0];
-            *spread.entry(t.label.0).or_insert(SMatrix::zeros()) +=
-                (t.state.covariance + d * d.transpose()) * h.weight();
+            *spread.entry(t.label.0).or_insert(SMatrix::zeros()) += (t.state.covariance + d * d.transpose()) * weight;
         }
     }
     for (label, (w, _)) in sums {

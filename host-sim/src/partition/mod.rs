@@ -3,12 +3,16 @@
 //! gates with two of them and split when their hypotheses factor, stepped in parallel.
 //!
 //! - [`tracker`]: [`PartitionedTracker`], the scan loop (route, merge, step, births, split, commit).
+//! - [`cluster`]: one cluster at rest ([`Rest`]: what its core carries between scans) and its clearances.
+//! - [`cores`]: the pool of reused cores a scan steps the clusters in.
 //! - [`route`]: gating a scan's measurements against each cluster and grouping clusters to merge.
 //! - [`hypotheses`]: a cluster's hypothesis set as owned data and the product of two of them.
 //! - [`split`]: the factorisation of a cluster into independent groups of labels (exact or within ε).
 //! - [`marginal`]: per-object posteriors (existence, mean, covariance) of a cluster or a single tracker.
 //! - [`error`]: cluster ids and the typed errors.
 
+pub mod cluster;
+pub mod cores;
 pub mod error;
 pub mod hypotheses;
 pub mod marginal;
@@ -19,5 +23,6 @@ pub mod split;
 mod tests;
 pub mod tracker;
 
+pub use cluster::{Cluster, Rest};
 pub use error::{ClusterId, PartitionError};
-pub use tracker::{Cluster, PartitionReport, PartitionedTracker};
+pub use tracker::{PartitionReport, PartitionedTracker};

@@ -133,8 +133,9 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
     fn associate(&self, sensor: usize, time: f64, measurements: &[Vec<f64>]) -> (usize, Vec<Option<Association>>) {
         let mut best: Vec<Option<Association>> = vec![None; measurements.len()];
         let mut dimension = D;
-        for cluster in self.tracker.clusters() {
-            let (d, found) = associate(&cluster.core, sensor, time, measurements);
+        // A cluster's rest always loads (the tracker made it), so every cluster is read.
+        let _ = self.tracker.for_each_core(|_, core| {
+            let (d, found) = associate(core, sensor, time, measurements);
             dimension = d;
             for (best, found) in best.iter_mut().zip(found) {
                 if let Some(a) = found
@@ -143,7 +144,7 @@ impl<G: ScenarioNetwork<D>, const D: usize> Runner3d for Runner<G, D> {
                     *best = Some(a);
                 }
             }
-        }
+        });
         (dimension, best)
     }
 }
@@ -160,12 +161,13 @@ pub fn posterior_at<G: ScenarioNetwork<D>, const D: usize>(tracker: &Partitioned
     let mut objects = BTreeMap::new();
     let mut posterior = Posterior6::default();
     for cluster in tracker.clusters() {
-        marginal::add(&cluster.core, &mut objects);
-        posterior.hypotheses += cluster.core.hypotheses().len();
-        posterior.expected_cardinality += cluster.core.expected_cardinality();
-        let dt = time - cluster.core.time();
-        // The product's MAP hypothesis is the union of the clusters' MAP hypotheses.
-        for t in cluster.core.map_hypothesis().tracks() {
+        let rest = &cluster.rest;
+        marginal::add_weighted(|| rest.weighted(), &mut objects);
+        posterior.hypotheses += rest.hypothesis_count();
+        posterior.expected_cardinality += rest.expected_cardinality();
+        let dt = time - rest.time();
+        // The product's MAP hypothesis is the union of the clusters' MAP hypotheses (each one's first).
+        for t in rest.weighted().next().into_iter().flat_map(|(_, tracks)| tracks) {
             let state = match dt > 0.0 {
                 true => ekf::predict(tracker.motion(), &t.state, dt).unwrap_or(t.state),
                 false => t.state,

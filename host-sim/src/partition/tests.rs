@@ -78,9 +78,7 @@ fn single(xs: &[f64]) -> Box<Single> {
 
 fn posteriors(tracker: &Partitioned) -> BTreeMap<u32, ObjectPosterior<4>> {
     let mut out = BTreeMap::new();
-    for c in tracker.clusters() {
-        marginal::add(&c.core, &mut out);
-    }
+    tracker.for_each_core(|_, core| marginal::add(core, &mut out)).expect("every rest loads");
     out
 }
 
@@ -150,8 +148,8 @@ fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) 
             assert_equal(&posteriors(&partitioned), &expected);
         }
         // The check can fail: the hypotheses did branch, and every object moved.
-        assert!(partitioned.clusters()[0].core.hypotheses().len() > 1);
-        assert!(partitioned.clusters().iter().all(|c| c.core.time() == 3.0));
+        assert!(partitioned.clusters()[0].rest.hypothesis_count() > 1);
+        assert!(partitioned.clusters().iter().all(|c| c.rest.time() == 3.0));
         quiet
     }
 }
@@ -213,18 +211,19 @@ fn a_merge_is_the_single_tracker_before_pruning() {
         }
         assert_eq!(merged, 1);
         // One cluster of both objects, whose hypotheses are the single tracker's.
-        let cluster = &partitioned.clusters()[0].core;
+        let cluster = &partitioned.clusters()[0].rest;
         assert_eq!(partitioned.clusters().len(), 1);
         let weights = |w: Vec<f64>| w.into_iter().map(|w| (w * 1e9).round()).collect::<Vec<_>>();
         assert_eq!(
-            weights(cluster.hypotheses().map(|h| h.weight()).collect()),
+            weights(cluster.weighted().map(|(w, _)| w).collect()),
             weights(single.hypotheses().map(|h| h.weight()).collect())
         );
     });
 }
 
-/// A scenario with a merge, a birth (promoted from the birth cluster) and ε-splits.
-fn busy_run(epsilon: f64) -> (Vec<u64>, Vec<PartitionReport>) {
+/// A scenario with a merge, a birth (promoted from the birth cluster) and ε-splits; and the cores the
+/// tracker's pool made.
+fn busy_run(epsilon: f64) -> (Vec<u64>, Vec<PartitionReport>, usize) {
     let mut tracker = Partitioned::new(with_birth_cell(config()), &objects(&[0.0, 6.0, 100.0, 200.0]), 0.0, epsilon)
         .expect("tracker");
     let scans = [
@@ -239,7 +238,7 @@ fn busy_run(epsilon: f64) -> (Vec<u64>, Vec<PartitionReport>) {
         reports.push(tracker.step(&scan(time), &zs).expect("step"));
         digests.push(tracker.digest());
     }
-    (digests, reports)
+    (digests, reports, tracker.pooled_cores())
 }
 
 #[test]
@@ -248,12 +247,17 @@ fn one_two_and_four_threads_give_the_same_bits() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
         pool.install(|| busy_run(0.05))
     };
-    let (one, reports) = run(1);
+    let (one, reports, cores) = run(1);
     assert!(reports.iter().any(|r| r.merged > 0), "{reports:?}");
     assert!(reports.iter().any(|r| r.born_clusters > 0), "{reports:?}");
     assert!(reports.iter().any(|r| r.split > 0), "{reports:?}");
-    assert_eq!(run(2), (one.clone(), reports.clone()));
-    assert_eq!(run(4), (one, reports));
+    // Every cluster was stepped in the one core a single thread needs.
+    assert!(reports.iter().all(|r| r.clusters >= 3), "{reports:?}");
+    assert_eq!(cores, 1);
+    for threads in [2, 4] {
+        let (digests, other, _) = run(threads);
+        assert_eq!((&digests, &other), (&one, &reports), "{threads} threads");
+    }
 }
 
 #[test]

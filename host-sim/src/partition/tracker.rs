@@ -4,17 +4,23 @@
 //! (rayon; each cluster's result depends on its own inputs only, so any thread count gives the same
 //! bits), promote a birth cluster that gave birth, split clusters that factor. Nothing is committed until
 //! every cluster has stepped, so a failed scan leaves the tracker unchanged.
+//!
+//! Between scans a cluster is held at rest ([`Rest`]: what its core carries from one scan to the next);
+//! each step loads it into a core leased from the tracker's pool ([`Cores`]), steps it and stores it back,
+//! so memory is the objects' rests plus one core per concurrent task (docs/maths.md §13.2), and the bits
+//! are those of a core held per cluster.
 
+use super::cluster::{Clearance, Cluster, Fate, Rest};
+use super::cores::{self, Cores};
 use super::error::{ClusterId, PartitionError};
 use super::hypotheses::{self, Hypothesis};
 use super::route::{self, Gated, SpeedBound};
 use super::split;
 use nalgebra::SVector;
 use rayon::prelude::*;
-use tracker_core::StepError;
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::sensor::ScanGeometry;
-use tracker_core::tracker::place_scan;
+use tracker_core::tracker::{PlacedScan, place_scan};
 use tracker_core::{BirthModel, Config, PriorHypothesis, PriorObject, StepReport, TrackLabel, Tracker};
 
 type Core<
@@ -28,60 +34,6 @@ type Core<
     const K: usize,
     const B: usize,
 > = Tracker<f64, M, G, S, D, H, N, Z, K, B>;
-
-/// One cluster: its identity and its core tracker.
-#[derive(Clone)]
-pub struct Cluster<
-    M,
-    G,
-    const S: usize,
-    const D: usize,
-    const H: usize,
-    const N: usize,
-    const Z: usize,
-    const K: usize,
-    const B: usize,
-> {
-    pub id: ClusterId,
-    pub core: Box<Core<M, G, S, D, H, N, Z, K, B>>,
-    /// Per sensor, the time until which the cluster is certainly beyond that sensor's range window and is
-    /// left unstepped by its scans (docs/maths.md §13.2); empty without a view skip.
-    pub clear_until: Vec<f64>,
-}
-
-impl<
-    M,
-    G,
-    const S: usize,
-    const D: usize,
-    const H: usize,
-    const N: usize,
-    const Z: usize,
-    const K: usize,
-    const B: usize,
-> Cluster<M, G, S, D, H, N, Z, K, B>
-{
-    /// The cluster `id` of `core`, due at every sensor's next scan.
-    pub fn new(id: ClusterId, core: Box<Core<M, G, S, D, H, N, Z, K, B>>) -> Self {
-        Self { id, core, clear_until: vec![] }
-    }
-
-    /// Whether a scan of `sensor` at `time` may leave the cluster unstepped.
-    fn clear_at(&self, sensor: usize, time: f64) -> bool {
-        self.clear_until.get(sensor).is_some_and(|&until| time < until)
-    }
-}
-
-/// What a scan does with one cluster.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Fate {
-    /// Certainly out of the sensor's range window: not touched (§13.2).
-    Skipped,
-    /// No measurement and no track in view: stepped in place with an empty scan.
-    Quiet,
-    /// Stepped on a copy (alone or merged) with its measurements.
-    Stepped,
-}
 
 /// What one partitioned scan did.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -114,19 +66,13 @@ pub struct PartitionReport {
     pub hypotheses: usize,
 }
 
-/// One cluster's part of a scan: its id, the core to step (a clone, or a merge's new core) and its
+/// One cluster's part of a scan: its id, its state to step (its own, caught up, or a merge's) and its
 /// measurements.
-type Work<
-    M,
-    G,
-    const S: usize,
-    const D: usize,
-    const H: usize,
-    const N: usize,
-    const Z: usize,
-    const K: usize,
-    const B: usize,
-> = (ClusterId, Box<Core<M, G, S, D, H, N, Z, K, B>>, Vec<SVector<f64, D>>);
+type Work<const S: usize, const N: usize, const D: usize> = (ClusterId, Rest<S, N>, Vec<SVector<f64, D>>);
+
+/// What stepping one cluster's work gave: the core's report, the state after the step and the cluster's
+/// factorisation (§13.4), read while the core held it.
+type Stepped<const S: usize, const N: usize> = (StepReport<f64>, Rest<S, N>, Option<split::Factors<S>>);
 
 /// The partitioned tracker of the scans of one sensor network.
 #[derive(Clone)]
@@ -143,9 +89,10 @@ pub struct PartitionedTracker<
 > {
     /// The configuration with births: the birth cluster's.
     config: Config<f64, M, G, S, B>,
-    /// The configuration without births: every cluster of objects'.
-    quiet: Config<f64, M, G, S, B>,
-    clusters: Vec<Cluster<M, G, S, D, H, N, Z, K, B>>,
+    /// The reused cores of the configuration without births: every cluster of objects' (a clone starts an
+    /// empty pool).
+    cores: Cores<M, G, S, D, H, N, Z, K, B>,
+    clusters: Vec<Cluster<S, N>>,
     birth: Box<Core<M, G, S, D, H, N, Z, K, B>>,
     next_cluster: u64,
     next_label: u32,
@@ -193,7 +140,7 @@ where
         }
         let mut tracker = Self {
             config,
-            quiet,
+            cores: Cores::new(quiet),
             clusters: Vec::with_capacity(objects.len()),
             birth,
             next_cluster: 0,
@@ -203,13 +150,15 @@ where
             skip: None,
             last: None,
         };
+        let mut core = tracker.cores.lease();
         for object in objects {
             let set = [Hypothesis { weight: 1.0, objects: vec![*object] }];
             let id = ClusterId(tracker.next_cluster);
             tracker.next_cluster += 1;
-            let core = tracker.build(id, &set)?;
-            tracker.clusters.push(Cluster::new(id, core));
+            let rest = cores::build(&mut core, id, &set, time)?;
+            tracker.clusters.push(Cluster::new(id, rest));
         }
+        drop(core);
         Ok(tracker)
     }
 
@@ -228,21 +177,32 @@ where
         &self.config.motion
     }
 
-    /// A core of the configuration without births holding `set`, at the tracker's time.
-    fn build(
-        &self,
-        id: ClusterId,
-        set: &[Hypothesis<S>],
-    ) -> Result<Box<Core<M, G, S, D, H, N, Z, K, B>>, PartitionError> {
-        let mut core = Box::new(Core::empty(self.quiet.clone()));
-        core.reset(&hypotheses::as_prior(set), self.time)
-            .map_err(|error| PartitionError::Rebuild { cluster: id, error })?;
-        Ok(core)
+    /// The clusters of objects, in id order.
+    pub fn clusters(&self) -> &[Cluster<S, N>] {
+        &self.clusters
     }
 
-    /// The clusters of objects, in id order.
-    pub fn clusters(&self) -> &[Cluster<M, G, S, D, H, N, Z, K, B>] {
-        &self.clusters
+    /// Calls `f` with each cluster (in id order) and a core holding it, loaded from its rest into one
+    /// leased core: the readers of a core (marginals, associations, views) read a cluster through it.
+    ///
+    /// # Errors
+    /// [`PartitionError::Rebuild`] when a rest does not load (not for a rest the tracker made).
+    pub fn for_each_core(
+        &self,
+        mut f: impl FnMut(&Cluster<S, N>, &Core<M, G, S, D, H, N, Z, K, B>),
+    ) -> Result<(), PartitionError> {
+        let mut core = self.cores.lease();
+        for cluster in &self.clusters {
+            cores::load(&mut core, cluster.id, &cluster.rest)?;
+            f(cluster, &core);
+        }
+        Ok(())
+    }
+
+    /// How many cores the pool holds (every one of them free between scans): at most one per task that ran
+    /// at once, whatever the number of clusters.
+    pub fn pooled_cores(&self) -> usize {
+        self.cores.made()
     }
 
     /// The time of the last scan (or of the prior).
@@ -250,10 +210,15 @@ where
         self.time
     }
 
-    /// A digest of the whole state: the time, each cluster's id and core digest, the birth cluster's.
+    /// A digest of the whole state: the time, each cluster's id and core digest (its rest loaded into a
+    /// core), the birth cluster's. A rest that does not load (not one the tracker made) digests as 0.
     pub fn digest(&self) -> u64 {
         let mut words = vec![self.time.to_bits(), self.next_cluster, u64::from(self.next_label), self.birth.digest()];
-        words.extend(self.clusters.iter().flat_map(|c| [c.id.0, c.core.digest()]));
+        let mut core = self.cores.lease();
+        for c in &self.clusters {
+            let digest = cores::load(&mut core, c.id, &c.rest).map_or(0, |()| core.digest());
+            words.extend([c.id.0, digest]);
+        }
         // FNV-1a over the words' bytes.
         words
             .iter()
@@ -276,22 +241,14 @@ where
         let skip = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
         let due: Vec<bool> =
             self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
-        let mut caught = self.catch_up(&due, geometry.time)?;
-        let motion = &self.config.motion;
-        let gated: Vec<Gated> = (self.clusters.par_iter().zip(&due).zip(&caught))
-            .map(|((c, &due), caught)| {
-                let core = caught.as_deref().unwrap_or(&c.core);
-                let dt = geometry.time - core.time();
-                if due { route::gate(motion, &placed, core.tracks(), dt, measurements, skip) } else { Gated::default() }
-            })
-            .collect();
+        let (gated, mut caught) = self.gate_all(&placed, geometry.time, &due, measurements, skip)?;
         let routing = route::route(&gated, measurements.len());
         let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
-        // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped in place
-        // at the end (§13.2); the work of the scan is each other group's core (a copy, or a merge's new core)
+        // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped at the
+        // end (§13.2); the work of the scan is each other group's state (its own, caught up, or a merge's)
         // and its measurements.
         let mut fate = vec![Fate::Stepped; self.clusters.len()];
-        let mut work: Vec<Work<M, G, S, D, H, N, Z, K, B>> = vec![];
+        let mut work: Vec<Work<S, N, D>> = vec![];
         for (group, rows) in routing.groups.iter().zip(&routing.measurements) {
             let id = self.clusters[group[0]].id;
             check_capacity(id, rows.len(), Z)?;
@@ -299,34 +256,12 @@ where
                 fate[group[0]] = if due[group[0]] { Fate::Quiet } else { Fate::Skipped };
                 continue;
             }
-            let core = if group.len() == 1 {
-                caught[group[0]].take().unwrap_or_else(|| self.clusters[group[0]].core.clone())
-            } else {
-                let mut cores = vec![];
-                for &i in group {
-                    cores.push(match caught[i].take() {
-                        Some(core) => core,
-                        None => self.caught_up(&self.clusters[i])?.unwrap_or_else(|| self.clusters[i].core.clone()),
-                    });
-                }
-                let (core, pruned) = self.merge(id, &cores)?;
-                report.merged += group.len() - 1;
-                report.merge_pruned_mass += pruned;
-                core
-            };
-            work.push((id, core, rows.iter().map(|&m| measurements[m]).collect()));
+            let rest = self.group_rest(id, group, &mut caught, &mut report)?;
+            work.push((id, rest, rows.iter().map(|&m| measurements[m]).collect()));
         }
         check_capacity(ClusterId::BIRTH, routing.unclaimed.len(), Z)?;
-        work.push((ClusterId::BIRTH, self.birth.clone(), routing.unclaimed.iter().map(|&m| measurements[m]).collect()));
-        let results: Vec<Result<StepReport<f64>, StepError>> =
-            work.par_iter_mut().map(|(_, core, zs)| core.step_scan(geometry, zs)).collect();
-        for ((id, _, _), result) in work.iter().zip(&results) {
-            let step = result.map_err(|error| PartitionError::Cluster { cluster: *id, error })?;
-            report.step_pruned_mass += (1.0 - step.captured_mass).max(0.0);
-        }
-        report.clusters_with_measurements = work.iter().filter(|w| !w.2.is_empty()).count();
-        let birth = work.pop().expect("the birth cluster's work").1;
-        let stepped: Vec<_> = work.into_iter().map(|(id, core, _)| Cluster::new(id, core)).collect();
+        let unclaimed: Vec<_> = routing.unclaimed.iter().map(|&m| measurements[m]).collect();
+        let (stepped, birth) = self.step_work(geometry, &work, &unclaimed, &mut report)?;
         let (stepped, counters) = self.rebuild(geometry.time, stepped, &birth, &mut report)?;
         let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
         // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
@@ -341,11 +276,11 @@ where
             .map(|(c, _)| c)
             .collect();
         clusters.extend(stepped);
-        clusters.retain(|c| !c.core.tracks().is_empty());
+        clusters.retain(|c| !c.rest.tracks().is_empty());
         clusters.sort_by_key(|c| c.id);
         report.clusters = clusters.len();
-        report.largest_cluster = clusters.iter().map(|c| labels(&c.core).len()).max().unwrap_or(0);
-        report.hypotheses = clusters.iter().map(|c| c.core.hypotheses().len()).sum();
+        report.largest_cluster = clusters.iter().map(|c| c.rest.labels().len()).max().unwrap_or(0);
+        report.hypotheses = clusters.iter().map(|c| c.rest.hypothesis_count()).sum();
         self.clusters = clusters;
         self.birth = birth;
         self.last = Some(*geometry);
@@ -353,82 +288,166 @@ where
         Ok(report)
     }
 
-    /// Copies of the `due` clusters left behind by more than the motion model's longest prediction by a
-    /// scan at `time`, caught up ([`Self::caught_up`]); `None` for the others, which are gated and stepped
-    /// from their own time.
+    /// Each cluster's gates for a scan at `time` (none for a cluster not `due`), and the states of the due
+    /// clusters left behind by more than the motion model's longest prediction, caught up
+    /// ([`Self::caught_up`]); `None` for the others, which are gated and stepped from their own time.
     #[allow(clippy::type_complexity)]
-    fn catch_up(
+    fn gate_all(
         &self,
-        due: &[bool],
+        placed: &PlacedScan<f64, G>,
         time: f64,
-    ) -> Result<Vec<Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>>, PartitionError> {
+        due: &[bool],
+        measurements: &[SVector<f64, D>],
+        skip: Option<SpeedBound<S>>,
+    ) -> Result<(Vec<Gated>, Vec<Option<Rest<S, N>>>), PartitionError> {
         let limit = self.config.motion.max_time_step().unwrap_or(f64::INFINITY);
-        self.clusters
-            .par_iter()
-            .zip(due)
-            .map(|(c, &due)| if due && time - c.core.time() > limit { self.caught_up(c) } else { Ok(None) })
-            .collect()
+        let motion = &self.config.motion;
+        let each: Vec<Result<(Gated, Option<Rest<S, N>>), PartitionError>> = (self.clusters.par_iter().zip(due))
+            .map_init(
+                || self.cores.lease(),
+                |core, (c, &due)| {
+                    if !due {
+                        return Ok((Gated::default(), None));
+                    }
+                    let caught = if time - c.rest.time() > limit { self.caught_up(core, c)? } else { None };
+                    let rest = caught.as_ref().unwrap_or(&c.rest);
+                    let gated = route::gate(motion, placed, rest.tracks(), time - rest.time(), measurements, skip);
+                    Ok((gated, caught))
+                },
+            )
+            .collect();
+        let each: Vec<(Gated, Option<Rest<S, N>>)> = each.into_iter().collect::<Result<_, _>>()?;
+        Ok(each.into_iter().unzip())
     }
 
-    /// A copy of cluster `c`, when the view skip left it out of the last scan, stepped to that scan with an
-    /// empty scan as it would have been had it not been skipped (it was certainly out of that sensor's range
-    /// window, so the step only predicts it); `None` when it is at the tracker's time.
-    #[allow(clippy::type_complexity)]
+    /// The state of cluster `c`, when the view skip left it out of the last scan, stepped (in `core`) to that
+    /// scan with an empty scan as it would have been had it not been skipped (it was certainly out of that
+    /// sensor's range window, so the step only predicts it); `None` when it is at the tracker's time.
     fn caught_up(
         &self,
-        c: &Cluster<M, G, S, D, H, N, Z, K, B>,
-    ) -> Result<Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>, PartitionError> {
-        let Some(last) = self.last.filter(|_| c.core.time() < self.time) else { return Ok(None) };
-        let mut core = c.core.clone();
+        core: &mut Core<M, G, S, D, H, N, Z, K, B>,
+        c: &Cluster<S, N>,
+    ) -> Result<Option<Rest<S, N>>, PartitionError> {
+        let Some(last) = self.last.filter(|_| c.rest.time() < self.time) else { return Ok(None) };
+        cores::load(core, c.id, &c.rest)?;
         core.step_scan(&last, &[]).map_err(|error| PartitionError::Cluster { cluster: c.id, error })?;
-        Ok(Some(core))
+        Rest::of(c.id, core).map(Some)
     }
 
-    /// Steps the quiet clusters in place (their caught-up copies where there are), and gives each the time
-    /// until which this scan's sensor cannot see it.
+    /// The state a group of clusters (indices, in id order) is stepped from: a lone cluster's own (or its
+    /// caught-up copy), or the merge of the members' states caught up to the tracker's time.
+    fn group_rest(
+        &self,
+        id: ClusterId,
+        group: &[usize],
+        caught: &mut [Option<Rest<S, N>>],
+        report: &mut PartitionReport,
+    ) -> Result<Rest<S, N>, PartitionError> {
+        if let [only] = group {
+            return Ok(caught[*only].take().unwrap_or_else(|| self.clusters[*only].rest.clone()));
+        }
+        let mut core = self.cores.lease();
+        let mut members = vec![];
+        for &i in group {
+            let c = &self.clusters[i];
+            members.push(match caught[i].take() {
+                Some(rest) => rest,
+                None => self.caught_up(&mut core, c)?.unwrap_or_else(|| c.rest.clone()),
+            });
+        }
+        let (rest, pruned) = self.merge(&mut core, id, &members)?;
+        report.merged += group.len() - 1;
+        report.merge_pruned_mass += pruned;
+        Ok(rest)
+    }
+
+    /// Steps each work item in a leased core and the birth cluster (a copy) with the `unclaimed`
+    /// measurements, all in parallel; the step reports' pruned mass goes into `report`.
     #[allow(clippy::type_complexity)]
+    fn step_work(
+        &self,
+        geometry: &ScanGeometry<f64>,
+        work: &[Work<S, N, D>],
+        unclaimed: &[SVector<f64, D>],
+        report: &mut PartitionReport,
+    ) -> Result<(Vec<(ClusterId, Stepped<S, N>)>, Box<Core<M, G, S, D, H, N, Z, K, B>>), PartitionError> {
+        let epsilon = self.epsilon;
+        let (results, (birth, birth_step)) = rayon::join(
+            || {
+                work.par_iter()
+                    .map_init(
+                        || self.cores.lease(),
+                        |core, (id, rest, zs)| step_one(core, *id, rest, geometry, zs, epsilon),
+                    )
+                    .collect::<Vec<_>>()
+            },
+            || {
+                let mut birth = self.birth.clone();
+                let step = birth.step_scan(geometry, unclaimed);
+                (birth, step)
+            },
+        );
+        let mut stepped = Vec::with_capacity(work.len());
+        for ((id, _, _), result) in work.iter().zip(results) {
+            let result = result?;
+            report.step_pruned_mass += (1.0 - result.0.captured_mass).max(0.0);
+            stepped.push((*id, result));
+        }
+        let step = birth_step.map_err(|error| PartitionError::Cluster { cluster: ClusterId::BIRTH, error })?;
+        report.step_pruned_mass += (1.0 - step.captured_mass).max(0.0);
+        report.clusters_with_measurements =
+            work.iter().filter(|w| !w.2.is_empty()).count() + usize::from(!unclaimed.is_empty());
+        Ok((stepped, birth))
+    }
+
+    /// Steps the quiet clusters (from their caught-up states where there are) in leased cores, and gives
+    /// each the time until which this scan's sensor cannot see it.
     fn step_quiet(
         &mut self,
         geometry: &ScanGeometry<f64>,
         fate: &[Fate],
-        caught: &mut [Option<Box<Core<M, G, S, D, H, N, Z, K, B>>>],
+        caught: &mut [Option<Rest<S, N>>],
         gated: &[Gated],
         clear: Clearance,
     ) -> Result<(), PartitionError> {
-        let results: Vec<Result<StepReport<f64>, StepError>> = self
+        let cores = &self.cores;
+        let results: Vec<Result<(), PartitionError>> = self
             .clusters
             .par_iter_mut()
             .zip(caught)
             .zip(fate.par_iter().zip(gated))
             .filter(|(_, (f, _))| **f == Fate::Quiet)
-            .map(|((c, caught), (_, gated))| {
-                if let Some(core) = caught.take() {
-                    c.core = core;
-                }
-                clear.record(&mut c.clear_until, gated.clear_for);
-                c.core.step_scan(geometry, &[])
-            })
+            .map_init(
+                || cores.lease(),
+                |core, ((c, caught), (_, gated))| {
+                    if let Some(rest) = caught.take() {
+                        c.rest = rest;
+                    }
+                    clear.record(&mut c.clear_until, gated.clear_for);
+                    cores::load(core, c.id, &c.rest)?;
+                    core.step_scan(geometry, &[]).map_err(|error| PartitionError::Cluster { cluster: c.id, error })?;
+                    c.rest = Rest::of(c.id, &**core)?;
+                    Ok(())
+                },
+            )
             .collect();
         // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
         // stepped before it would have moved on (docs/maths.md §13.6).
-        let quiet_ids = self.clusters.iter().zip(fate).filter(|(_, f)| **f == Fate::Quiet).map(|(c, _)| c.id);
-        if let Some((id, Err(error))) = quiet_ids.zip(results).find(|(_, r)| r.is_err()) {
-            return Err(PartitionError::Cluster { cluster: id, error });
-        }
-        Ok(())
+        results.into_iter().find(Result::is_err).unwrap_or(Ok(()))
     }
 
     /// Whether an empty scan of a cluster with no track in view cannot fail: a prediction failure drops the
     /// track (`NumericalFailure::DropTrack`), each parent has its one no-event child (no measurement, no
     /// birth, no death out of view) and the child budget holds H of them.
     fn quiet_steps_cannot_fail(&self) -> bool {
-        let budget = match self.quiet.children {
+        let quiet = self.cores.config();
+        let budget = match quiet.children {
             tracker_core::config::ChildGeneration::Exhaustive { max_children_per_scan } => {
                 max_children_per_scan >= H as u64
             }
             tracker_core::config::ChildGeneration::Sampled(_) => true,
         };
-        budget && self.quiet.numerical_failure == tracker_core::NumericalFailure::DropTrack
+        budget && quiet.numerical_failure == tracker_core::NumericalFailure::DropTrack
     }
 
     /// A fresh birth cluster at `time` (the configuration with births, one empty hypothesis).
@@ -439,16 +458,17 @@ where
         Ok(core)
     }
 
-    /// The merge of the cores of `group` (clusters at the tracker's time): their product, pruned to H after it, as a new core
-    /// with the id `id`; and the mass pruned.
+    /// The merge of the `members`' states (clusters at the tracker's time): their product, pruned to H after
+    /// it, as the state of a cluster `id` (loaded through `core`); and the mass pruned.
     fn merge(
         &self,
+        core: &mut Core<M, G, S, D, H, N, Z, K, B>,
         id: ClusterId,
-        group: &[Box<Core<M, G, S, D, H, N, Z, K, B>>],
-    ) -> Result<(Box<Core<M, G, S, D, H, N, Z, K, B>>, f64), PartitionError> {
+        members: &[Rest<S, N>],
+    ) -> Result<(Rest<S, N>, f64), PartitionError> {
         let mut set = vec![Hypothesis { weight: 1.0, objects: vec![] }];
-        for core in group {
-            set = hypotheses::product(&set, &hypotheses::read(core), H);
+        for member in members {
+            set = hypotheses::product(&set, &member.read(), H);
         }
         // Keep the heaviest hypotheses whose tracks fit the store K.
         while set.len() > 1 && hypotheses::distinct_tracks(&set) > K {
@@ -458,18 +478,53 @@ where
             return Err(PartitionError::MergeTooLarge { cluster: id, objects: large, capacity: N });
         }
         let kept: f64 = set.iter().map(|h| h.weight).sum();
-        Ok((self.build(id, &set)?, (1.0 - kept).max(0.0)))
+        Ok((cores::build(core, id, &set, self.time)?, (1.0 - kept).max(0.0)))
+    }
+
+    /// The clusters a scan stepped, rebuilt: a birth cluster holding tracks becomes a cluster of objects
+    /// (fresh labels); clusters that factor are split (§13.4); and the counters after the scan. Nothing of
+    /// the tracker changes here, so a failed rebuild leaves it as it was.
+    #[allow(clippy::type_complexity)]
+    fn rebuild(
+        &self,
+        time: f64,
+        stepped: Vec<(ClusterId, Stepped<S, N>)>,
+        birth: &Core<M, G, S, D, H, N, Z, K, B>,
+        report: &mut PartitionReport,
+    ) -> Result<(Vec<Cluster<S, N>>, Counters), PartitionError> {
+        let mut next = Counters { next_cluster: self.next_cluster, next_label: self.next_label, time };
+        let mut clusters: Vec<_> =
+            stepped.into_iter().map(|(id, (_, rest, factors))| (Cluster::new(id, rest), factors)).collect();
+        let mut core = self.cores.lease();
+        if !birth.tracks().is_empty() {
+            let set = next.relabel(hypotheses::read(birth));
+            let id = next.fresh_cluster();
+            let rest = cores::build(&mut core, id, &set, time)?;
+            clusters.push((Cluster::new(id, rest), split::factor(&*core, self.epsilon)));
+            report.born_clusters += 1;
+        }
+        let mut out = Vec::with_capacity(clusters.len());
+        for (cluster, factors) in clusters {
+            match factors {
+                None => out.push(cluster),
+                Some(f) => {
+                    report.split += f.groups.len() - 1;
+                    report.split_moved_mass += f.moved;
+                    for (k, set) in f.groups.iter().enumerate() {
+                        let id = if k == 0 { cluster.id } else { next.fresh_cluster() };
+                        out.push(Cluster::new(id, cores::build(&mut core, id, set, time)?));
+                    }
+                }
+            }
+        }
+        Ok((out, next))
     }
 }
 
-fn check_capacity(cluster: ClusterId, received: usize, capacity: usize) -> Result<(), PartitionError> {
-    if received > capacity {
-        return Err(PartitionError::TooManyMeasurements { cluster, received, capacity });
-    }
-    Ok(())
-}
-
-impl<
+/// Steps cluster `id`'s `rest` with `zs` in `core`: the report, the state after the step and the cluster's
+/// factorisation within `epsilon` (§13.4).
+#[allow(clippy::type_complexity)]
+fn step_one<
     M,
     G,
     const S: usize,
@@ -479,90 +534,28 @@ impl<
     const Z: usize,
     const K: usize,
     const B: usize,
-> PartitionedTracker<M, G, S, D, H, N, Z, K, B>
+>(
+    core: &mut Core<M, G, S, D, H, N, Z, K, B>,
+    id: ClusterId,
+    rest: &Rest<S, N>,
+    geometry: &ScanGeometry<f64>,
+    zs: &[SVector<f64, D>],
+    epsilon: f64,
+) -> Result<Stepped<S, N>, PartitionError>
 where
-    M: MotionModel<f64, S> + Clone + Send + Sync,
-    G: MeasurementModel<f64, S, D> + Clone + Send + Sync,
+    M: MotionModel<f64, S>,
+    G: MeasurementModel<f64, S, D> + Clone,
 {
-    /// The clusters a scan stepped, rebuilt: a birth cluster holding tracks becomes a cluster of objects
-    /// (fresh labels); clusters that factor are split (§13.4); and the counters after the scan. Nothing of
-    /// the tracker changes here, so a failed rebuild leaves it as it was.
-    #[allow(clippy::type_complexity)]
-    fn rebuild(
-        &self,
-        time: f64,
-        stepped: Vec<Cluster<M, G, S, D, H, N, Z, K, B>>,
-        birth: &Core<M, G, S, D, H, N, Z, K, B>,
-        report: &mut PartitionReport,
-    ) -> Result<(Vec<Cluster<M, G, S, D, H, N, Z, K, B>>, Counters), PartitionError> {
-        let mut next = self.clone_counters();
-        next.time = time;
-        let mut clusters = stepped;
-        if !birth.tracks().is_empty() {
-            let set = next.relabel(hypotheses::read(birth));
-            let id = next.fresh_cluster();
-            clusters.push(Cluster::new(id, self.build_at(id, &set, time)?));
-            report.born_clusters += 1;
-        }
-        let factors: Vec<Option<split::Factors<S>>> =
-            clusters.par_iter().map(|c| split::factor(&c.core, self.epsilon)).collect();
-        let mut out = Vec::with_capacity(clusters.len());
-        for (cluster, factors) in clusters.into_iter().zip(factors) {
-            match factors {
-                None => out.push(cluster),
-                Some(f) => {
-                    report.split += f.groups.len() - 1;
-                    report.split_moved_mass += f.moved;
-                    for (k, set) in f.groups.iter().enumerate() {
-                        let id = if k == 0 { cluster.id } else { next.fresh_cluster() };
-                        out.push(Cluster::new(id, self.build_at(id, set, time)?));
-                    }
-                }
-            }
-        }
-        Ok((out, next))
-    }
-
-    fn clone_counters(&self) -> Counters {
-        Counters { next_cluster: self.next_cluster, next_label: self.next_label, time: self.time }
-    }
-
-    /// As [`Self::build`] at `time`.
-    fn build_at(
-        &self,
-        id: ClusterId,
-        set: &[Hypothesis<S>],
-        time: f64,
-    ) -> Result<Box<Core<M, G, S, D, H, N, Z, K, B>>, PartitionError> {
-        let mut core = Box::new(Core::empty(self.quiet.clone()));
-        core.reset(&hypotheses::as_prior(set), time).map_err(|error| PartitionError::Rebuild { cluster: id, error })?;
-        Ok(core)
-    }
+    cores::load(core, id, rest)?;
+    let step = core.step_scan(geometry, zs).map_err(|error| PartitionError::Cluster { cluster: id, error })?;
+    Ok((step, Rest::of(id, core)?, split::factor(core, epsilon)))
 }
 
-/// How long a quiet cluster is left out of its sensor's scans (§13.2).
-#[derive(Debug, Clone, Copy)]
-struct Clearance {
-    sensor: usize,
-    time: f64,
-    /// The motion model's longest prediction: a skipped cluster is caught up over at most this.
-    cap: Option<f64>,
-}
-
-impl Clearance {
-    /// Sets the sensor's entry of `until` to the scan's time plus `clear_for` (at most the cap), or clears it.
-    fn record(&self, until: &mut Vec<f64>, clear_for: Option<f64>) {
-        let Some(clear_for) = clear_for else {
-            if let Some(entry) = until.get_mut(self.sensor) {
-                *entry = f64::NEG_INFINITY;
-            }
-            return;
-        };
-        if until.len() <= self.sensor {
-            until.resize(self.sensor + 1, f64::NEG_INFINITY);
-        }
-        until[self.sensor] = self.time + clear_for.min(self.cap.unwrap_or(f64::INFINITY));
+fn check_capacity(cluster: ClusterId, received: usize, capacity: usize) -> Result<(), PartitionError> {
+    if received > capacity {
+        return Err(PartitionError::TooManyMeasurements { cluster, received, capacity });
     }
+    Ok(())
 }
 
 /// The counters a scan advances, committed with it.
@@ -590,28 +583,4 @@ impl Counters {
         }
         set
     }
-}
-
-/// The distinct labels of `core`'s tracks, in order.
-pub fn labels<
-    M,
-    G,
-    const S: usize,
-    const D: usize,
-    const H: usize,
-    const N: usize,
-    const Z: usize,
-    const K: usize,
-    const B: usize,
->(
-    core: &Core<M, G, S, D, H, N, Z, K, B>,
-) -> Vec<u32>
-where
-    M: MotionModel<f64, S>,
-    G: MeasurementModel<f64, S, D>,
-{
-    let mut labels: Vec<u32> = core.tracks().iter().map(|t| t.label.0).collect();
-    labels.sort_unstable();
-    labels.dedup();
-    labels
 }

@@ -22,7 +22,6 @@ mod tests;
 use crate::error::Error;
 use crate::io::report::ScaleReport;
 use crate::partition::runner::{CLUSTER, Partitioned, ground_closing_speed, posterior_at};
-use crate::partition::tracker::labels;
 use crate::pipeline::TrackerKind;
 use crate::pipeline::orbital::config3d;
 use crate::pipeline::output::{cpu_time_ns, peak_resident_kib, resident_kib, write_json};
@@ -169,7 +168,7 @@ pub(crate) fn run_on(
     if rejected > WARNING_LINES {
         eprintln!("warning: {} more scans refused (rejected_scans in scale.json)", rejected - WARNING_LINES);
     }
-    let sizes: Vec<usize> = tracker.clusters().iter().map(|c| labels(&c.core).len()).collect();
+    let sizes: Vec<usize> = tracker.clusters().iter().map(|c| c.rest.labels().len()).collect();
     plot(dir, &world.sensors, &figures, &sizes)?;
     let outcome = Outcome {
         figures,
