@@ -56,7 +56,7 @@ pub struct PartitionReport {
     pub born_clusters: usize,
     /// Measurements routed to the birth cluster.
     pub unclaimed: usize,
-    /// Clusters stepped in place with an empty scan: no measurement and no track in view (§13.2).
+    /// Clusters stepped last with an empty scan: no measurement and no track in view (§13.2).
     pub quiet: usize,
     /// Clusters not stepped at all: certainly beyond the sensor's range window (§13.2, view skip).
     pub skipped: usize,
