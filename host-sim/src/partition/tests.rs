@@ -1,6 +1,7 @@
 //! The partition's checks (issue 30): exactness against one core tracker where objects never interact and
-//! through a merge, bit-identical results whatever the thread count, a cluster's Z overflow as a typed error
-//! naming it, and the exact and ε splits.
+//! through a merge, bit-identical results whatever the thread count (in one reused core on one thread), a
+//! cluster at rest reading as its core, a cluster's Z overflow as a typed error naming it, and the exact and
+//! ε splits.
 
 use super::marginal::{self, ObjectPosterior};
 use super::*;
@@ -258,6 +259,27 @@ fn one_two_and_four_threads_give_the_same_bits() {
         let (digests, other, _) = run(threads);
         assert_eq!((&digests, &other), (&one, &reports), "{threads} threads");
     }
+}
+
+#[test]
+fn a_clusters_rest_reads_as_its_core() {
+    let mut tracker =
+        Partitioned::new(with_birth_cell(config()), &objects(&[0.0, 6.0, 100.0, 200.0]), 0.0, 0.0).expect("tracker");
+    tracker.step(&scan(1.0), &[z(4.0, 0.0), z(7.2, 0.1), z(101.0, 0.0), z(50.5, 0.2)]).expect("step");
+    let mut branched = 0;
+    tracker
+        .for_each_core(|c, core| {
+            let (mut from_core, mut from_rest) = (BTreeMap::new(), BTreeMap::new());
+            marginal::add(core, &mut from_core);
+            marginal::add_weighted(|| c.rest.weighted(), &mut from_rest);
+            assert_eq!(from_rest, from_core, "{}", c.id);
+            assert_eq!(c.rest.read(), hypotheses::read(core), "{}", c.id);
+            assert_eq!(c.rest.expected_cardinality().to_bits(), core.expected_cardinality().to_bits());
+            assert_eq!((c.rest.time(), c.rest.tracks()), (core.time(), core.tracks()));
+            branched += usize::from(core.hypotheses().len() > 1);
+        })
+        .expect("every rest loads");
+    assert!(branched > 0, "some cluster holds several hypotheses");
 }
 
 #[test]
