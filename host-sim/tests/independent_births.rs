@@ -89,7 +89,9 @@ fn config(children: ChildGeneration) -> Linear {
 }
 
 /// The scenario's configuration with measured births (docs/maths.md §5.8) in place of the three cells.
-fn measured_config(children: ChildGeneration) -> Config<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 16> {
+fn measured_config<const B: usize>(
+    children: ChildGeneration,
+) -> Config<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, B> {
     let linear = config(children);
     Config {
         birth: BirthModel {
@@ -198,6 +200,41 @@ fn independent_births_exhaustive_core_is_exact() {
 fn independent_births_sampled_core_agrees() {
     let figures = compare(ChildGeneration::Sampled(SamplerConfig::DEFAULT));
     check(&figures, 1e-3);
+}
+
+/// A pool of one cell for the scan of two births: the cell it cannot keep waits, and the next
+/// measurement of that object links with it (docs/maths.md §5.8, "Births in clutter"). The linked cells are
+/// made from earlier scans only, so the core still equals the reference.
+#[test]
+fn measured_births_with_waiting_links_are_exact() {
+    let (figures, linked) = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(|| {
+            let mut config = measured_config::<1>(ChildGeneration::Exhaustive { max_children_per_scan: 10_000_000 });
+            if let Some(measured) = config.birth.measured.as_mut() {
+                measured.link_waiting = true;
+            }
+            let figures =
+                compare_scans::<_, _, 4, 2, 256, 12, 16, 1024, 1>(&config, &prior(), 0.0, 1 << 30, &scans()).unwrap();
+            let hypotheses: Vec<tracker_core::PriorHypothesis<'_, f64, 4>> = prior()
+                .iter()
+                .map(|(weight, objects)| tracker_core::PriorHypothesis {
+                    weight: *weight,
+                    objects: objects.clone().leak(),
+                })
+                .collect();
+            let mut core = Box::new(
+                tracker_core::Tracker::<f64, _, _, 4, 2, 256, 12, 16, 1024, 1>::new(config, &hypotheses, 0.0).unwrap(),
+            );
+            let linked: usize =
+                scans().iter().map(|(geometry, zs)| core.step_scan(geometry, zs).unwrap().birth_pool.linked).sum();
+            (figures, linked)
+        })
+        .unwrap()
+        .join()
+        .unwrap();
+    check(&figures, 1e-12);
+    assert!(linked > 0, "no measurement linked with a waiting cell");
 }
 
 #[test]

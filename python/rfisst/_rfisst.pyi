@@ -25,6 +25,9 @@ class BirthPool(TypedDict):
     evicted: int
     expired: int
     without_density: int
+    tracklets: int
+    linked: int
+    waiting: int
 
 class StepReport(TypedDict):
     scan: int

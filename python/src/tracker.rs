@@ -240,6 +240,9 @@ fn report_dict<'py>(py: Python<'py>, report: &StepReport<f64>) -> PyResult<Bound
     pool.set_item("evicted", report.birth_pool.evicted)?;
     pool.set_item("expired", report.birth_pool.expired)?;
     pool.set_item("without_density", report.birth_pool.without_density)?;
+    pool.set_item("tracklets", report.birth_pool.tracklets)?;
+    pool.set_item("linked", report.birth_pool.linked)?;
+    pool.set_item("waiting", report.birth_pool.waiting)?;
     out.set_item("birth_pool", pool)?;
     Ok(out)
 }

@@ -119,6 +119,10 @@ pub struct MeasuredBirthsSpec {
     /// Tracklet births for sensors that measure directions (none: single-frame cells only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracklets: Option<TrackletSpec>,
+    /// Whether the cells the full pool does not keep wait for a later measurement to link with (default:
+    /// no; docs/maths.md §5.8 "Births in clutter").
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub link_waiting: bool,
 }
 
 fn default_velocity_sigma() -> f64 {
@@ -141,6 +145,7 @@ impl MeasuredBirthsSpec {
             min_unexplained: self.min_unexplained,
             lifetime: self.lifetime,
             tracklets: self.tracklets.map(|t| t.core()),
+            link_waiting: self.link_waiting,
         }
     }
 

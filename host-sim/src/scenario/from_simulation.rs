@@ -191,6 +191,7 @@ pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     min_unexplained: 0.5,
     lifetime: 60.0,
     tracklets: None,
+    link_waiting: false,
 };
 
 /// The birth pool a telescope preset writes when objects are unknown to the prior: the GEO belt, one
@@ -208,6 +209,7 @@ pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     min_unexplained: 0.5,
     lifetime: 1200.0,
     tracklets: None,
+    link_waiting: false,
 };
 
 /// Figures of a generated file.

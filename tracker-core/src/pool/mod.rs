@@ -19,6 +19,7 @@
 //! (1 − p_D) / (1 − α p_D). When the pool is full the cells with the smallest α give way.
 
 pub mod tracklets;
+pub mod waiting;
 
 use crate::ekf;
 use crate::gaussian::Gaussian;
@@ -26,6 +27,7 @@ use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionMod
 use crate::real::Real;
 use nalgebra::SVector;
 pub use tracklets::{MAX_LINKED_FRAMES, TRACKLET_FRAMES, TRACKLET_POINTS, TrackletBirths, TrackletBuffer};
+pub use waiting::{Linking, WaitingCell, WaitingCells};
 
 /// The settings of measurement-driven births.
 ///
@@ -56,6 +58,10 @@ pub struct MeasuredBirths<T> {
     /// own. `None`: single-frame cells only.
     #[cfg_attr(feature = "serde", serde(default))]
     pub tracklets: Option<TrackletBirths<T>>,
+    /// Whether the cells the full pool does not keep wait for a later measurement to link with
+    /// ([`waiting`], docs/maths.md §5.8 "Births in clutter"). `false`: they are dropped.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub link_waiting: bool,
 }
 
 impl<T: Real> MeasuredBirths<T> {
@@ -68,6 +74,7 @@ impl<T: Real> MeasuredBirths<T> {
             min_unexplained: T::of_f64(0.5),
             lifetime: 600.0,
             tracklets: None,
+            link_waiting: false,
         }
     }
 
@@ -106,6 +113,10 @@ pub struct PoolCell<T: Real, const S: usize> {
     pub time: f64,
     /// α: the probability that the cell gives birth at a scan.
     pub probability: T,
+    /// The candidate object the cell is one alternative of: the cells of one measurement's (or one
+    /// tracklet's) mixture share it and age as one Bernoulli (docs/maths.md §5.8).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub group: u32,
 }
 
 /// What one pool update did.
@@ -124,6 +135,12 @@ pub struct PoolUpdate {
     pub without_density: usize,
     /// Unexplained measurements whose cells came from a tracklet (docs/maths.md §5.10).
     pub tracklets: usize,
+    /// Unexplained measurements whose cells came from a waiting candidate they linked with (§5.8).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub linked: usize,
+    /// New cells the full pool did not keep that wait for a link.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub waiting: usize,
 }
 
 /// What one scan tells the pool: its time and measurements, each measurement's r_U and each pool cell's
@@ -151,6 +168,11 @@ pub struct BirthPool<T: Real, const S: usize, const B: usize> {
     cells: heapless::Vec<PoolCell<T, S>, B>,
     /// The earlier frames' unexplained directions, for tracklets.
     tracklets: TrackletBuffer<T>,
+    /// The cells the full pool did not keep, waiting for a link.
+    waiting: WaitingCells<T, S, B>,
+    /// The group of the next measurement's cells (wrapping: a group lives at most `lifetime`, far fewer
+    /// than 2³² measurements).
+    next_group: u32,
 }
 
 impl<T: Real, const S: usize, const B: usize> Default for BirthPool<T, S, B> {
@@ -162,12 +184,22 @@ impl<T: Real, const S: usize, const B: usize> Default for BirthPool<T, S, B> {
 impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     /// An empty pool.
     pub const fn new() -> Self {
-        Self { cells: heapless::Vec::new(), tracklets: TrackletBuffer::new() }
+        Self {
+            cells: heapless::Vec::new(),
+            tracklets: TrackletBuffer::new(),
+            waiting: WaitingCells::new(),
+            next_group: 0,
+        }
     }
 
     /// The cells, oldest first.
     pub fn cells(&self) -> &[PoolCell<T, S>] {
         &self.cells
+    }
+
+    /// The cells waiting for a link.
+    pub fn waiting(&self) -> &[WaitingCell<T, S>] {
+        self.waiting.cells()
     }
 
     /// The earlier frames kept for tracklets.
@@ -179,6 +211,8 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     pub fn clear(&mut self) {
         self.cells.clear();
         self.tracklets.clear();
+        self.waiting.clear();
+        self.next_group = 0;
     }
 
     /// The cells predicted to `time` with `motion`, with their α; a cell whose prediction fails is left
@@ -198,30 +232,29 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     /// cell l gave birth in the scan; missing entries count as 0) and (1 − p_D) / (1 − α p_D) with p_D =
     /// `detection[l]` (docs/maths.md §5.8), cells past their lifetime removed, then
     /// the cells of every measurement whose `unexplained[z]` (r_U) is at least the settings' minimum added,
-    /// made by `model` (the measurement model placed at the scan). At most
+    /// made by `model` (the measurement model placed at the scan), or, when it links with a waiting
+    /// candidate (`settings.link_waiting`, with `linking`), that candidate's posterior. At most
     /// `capacity` (≤ `B`) cells are kept: the smallest α give way, the older first among equals.
-    pub fn update<G: MeasurementModel<T, S, D>, const D: usize>(
+    pub fn update<G: MeasurementModel<T, S, D>, M: MotionModel<T, S>, const D: usize>(
         &mut self,
         settings: &MeasuredBirths<T>,
         capacity: usize,
         model: &G,
+        linking: &Linking<'_, T, M>,
         scan: &ScanUse<'_, T, D>,
     ) -> PoolUpdate {
         let ScanUse { time, sensor, measurements, unexplained, born, detection } = *scan;
         let capacity = capacity.min(B);
         let mut update = PoolUpdate::default();
-        // Age the old cells.
+        // Age the old cells, each group as one Bernoulli (docs/maths.md §5.8).
+        let factors = self.ageing_factors(born, detection);
         let mut index = 0;
         let mut old_index = 0;
         while index < self.cells.len() {
-            let given_birth = unit(born.get(old_index).copied().unwrap_or(T::zero()));
-            let p_d = unit(detection.get(old_index).copied().unwrap_or(T::zero()));
+            let (unborn, missed, unseen) = factors.get(old_index).copied().unwrap_or((T::one(), T::one(), T::one()));
             old_index += 1;
             let Some(cell) = self.cells.get_mut(index) else { break };
-            // The candidate object, had it existed, was missed: the Bernoulli update α (1 − p_D) / (1 − α p_D)
-            // of what did not give birth (docs/maths.md §5.8).
-            let alpha = cell.probability;
-            cell.probability = alpha * (T::one() - given_birth) * (T::one() - p_d) / (T::one() - alpha * p_d);
+            cell.probability = cell.probability * unborn * missed / unseen;
             if !(time - cell.time <= settings.lifetime && cell.probability > T::zero()) {
                 self.remove_at(index);
                 update.expired += 1;
@@ -233,6 +266,9 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             self.remove_smallest();
             update.evicted += 1;
         }
+        if settings.link_waiting {
+            self.waiting.prepare(model, linking, time, settings.lifetime);
+        }
         // Σ_z r_U(z) over the measurements that make cells.
         let minimum = settings.min_unexplained;
         let total = unexplained
@@ -240,6 +276,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             .take(measurements.len())
             .fold(T::zero(), |sum, &r_u| if r_u >= minimum && r_u > T::zero() { sum + r_u } else { sum });
         if !(total > T::zero()) {
+            self.waiting.settle(time, linking.detection_probability);
             self.record_frame(settings, sensor, model, scan);
             return update;
         }
@@ -250,32 +287,99 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             }
             let share = settings.expected_births * r_u / total;
             let alpha = if share < settings.max_probability { share } else { settings.max_probability };
-            let linked = self.tracklet_components(settings, sensor, time, model, z, &mut components);
-            update.tracklets += usize::from(linked.is_some());
-            let awaits_link = settings.tracklets.is_some_and(|t| !t.single_frame) && model.sky_point(z).is_some();
-            if linked.is_none() && awaits_link {
+            let Some((alpha, count)) = self
+                .cells_of(settings, sensor, time, model, linking, z, &mut components, &mut update)
+                .map(|(linked, count)| (if linked { T::one() } else { alpha }, count))
+            else {
                 continue;
-            }
-            let own = || model.birth_components(z, &settings.region, &mut components);
-            let count = match linked.map_or_else(own, Ok) {
-                Ok(count) if count > 0 => count.min(B),
-                _ => {
-                    update.without_density += 1;
-                    continue;
-                }
             };
+            let group = self.next_group;
+            self.next_group = self.next_group.wrapping_add(1);
             for component in components.iter().take(count) {
-                let cell = PoolCell { state: component.state, time, probability: alpha * component.weight };
+                let cell = PoolCell { state: component.state, time, probability: alpha * component.weight, group };
                 if !(cell.probability > T::zero()) {
                     continue;
                 }
                 let (kept, gave_way) = self.insert(cell, capacity);
                 update.added += usize::from(kept);
-                update.evicted += usize::from(gave_way);
+                update.evicted += usize::from(gave_way.is_some() || !kept);
+                // A new cell not kept (this one, or one of this scan's that gave way) waits for a link.
+                let unkept = if kept { gave_way.filter(|old| old.time == time) } else { Some(cell) };
+                if let Some(unkept) = unkept.filter(|_| settings.link_waiting) {
+                    self.waiting.offer(unkept, time);
+                    update.waiting += 1;
+                }
             }
         }
+        self.waiting.settle(time, linking.detection_probability);
         self.record_frame(settings, sensor, model, scan);
         update
+    }
+
+    /// Per cell (in order), the factors (1 − b_g, 1 − p_D,k, 1 − Σ_{j∈g} α_j p_D,j) of the missed-detection
+    /// and no-birth update of its group's Bernoulli mixture (docs/maths.md §5.8),
+    ///
+    /// ```text
+    /// α_k ← α_k (1 − b_g) (1 − p_D,k) / (1 − Σ_{j∈g} α_j p_D,j),     b_g = Σ_{j∈g} b_j
+    /// ```
+    ///
+    /// with `born[j]` = b_j and `detection[j]` = p_D,j (missing entries 0, each clamped into [0, 1]). A
+    /// group of one cell gives the single Bernoulli's α (1 − b)(1 − p_D)/(1 − α p_D). O(B²), B the cap.
+    fn ageing_factors(&self, born: &[T], detection: &[T]) -> [(T, T, T); B] {
+        let at = |values: &[T], index: usize| unit(values.get(index).copied().unwrap_or(T::zero()));
+        let mut factors = [(T::one(), T::one(), T::one()); B];
+        for (index, (cell, factor)) in self.cells.iter().zip(factors.iter_mut()).enumerate() {
+            let mut given_birth = T::zero();
+            let mut seen = T::zero();
+            for (other, member) in self.cells.iter().enumerate().filter(|(_, member)| member.group == cell.group) {
+                given_birth += at(born, other);
+                seen += member.probability * at(detection, other);
+            }
+            let p_d = at(detection, index);
+            *factor = (T::one() - unit(given_birth), T::one() - p_d, T::one() - unit(seen));
+        }
+        factors
+    }
+
+    /// The birth components of unexplained `z` in `out`: a waiting candidate's posterior when `z` links with
+    /// one (`Some((true, count))`, weights the cells' α), else its tracklet's or its own region's
+    /// (`Some((false, count))`, weights summing to 1); `None` when it gives none (counted) or awaits a link
+    /// of its tracklet.
+    #[allow(clippy::too_many_arguments)]
+    fn cells_of<G: MeasurementModel<T, S, D>, M, const D: usize>(
+        &mut self,
+        settings: &MeasuredBirths<T>,
+        sensor: usize,
+        time: f64,
+        model: &G,
+        linking: &Linking<'_, T, M>,
+        z: &SVector<T, D>,
+        out: &mut [BirthComponent<T, S>],
+        update: &mut PoolUpdate,
+    ) -> Option<(bool, usize)> {
+        if settings.link_waiting
+            && let Some(link) = self.waiting.best_link(model, linking, time, z)
+        {
+            let count = self.waiting.linked_cells(link, model, linking.weights, z, out);
+            if count > 0 {
+                update.linked += 1;
+                return Some((true, count));
+            }
+        }
+        let linked = self.tracklet_components(settings, sensor, time, model, z, out);
+        update.tracklets += usize::from(linked.is_some());
+        let awaits_link = settings.tracklets.is_some_and(|t| !t.single_frame) && model.sky_point(z).is_some();
+        if linked.is_none() && awaits_link {
+            return None;
+        }
+        let own = || model.birth_components(z, &settings.region, out);
+        match linked.map_or_else(own, Ok) {
+            Ok(count) if count > 0 => Some((false, count.min(B))),
+            _ => {
+                update.without_density += 1;
+                None
+            }
+        }
     }
 
     /// The cells of the best tracklet through `z` (docs/maths.md §5.10), written to `out`: `Some(count)`
@@ -328,17 +432,18 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
     }
 
     /// Adds `cell`, making room by removing the (oldest) cell of smallest α unless that α is larger than
-    /// the new one's; returns whether `cell` was kept and whether a cell (old or new) gave way.
-    fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> (bool, bool) {
+    /// the new one's; returns whether `cell` was kept and the cell that gave way to it.
+    fn insert(&mut self, cell: PoolCell<T, S>, capacity: usize) -> (bool, Option<PoolCell<T, S>>) {
         if self.cells.len() < capacity {
-            return (self.cells.push(cell).is_ok(), false);
+            return (self.cells.push(cell).is_ok(), None);
         }
         match self.smallest() {
             Some((index, probability)) if probability <= cell.probability => {
+                let removed = self.cells.get(index).copied();
                 self.remove_at(index);
-                (self.cells.push(cell).is_ok(), true)
+                (self.cells.push(cell).is_ok(), removed)
             }
-            _ => (false, true),
+            _ => (false, None),
         }
     }
 
@@ -384,7 +489,24 @@ fn unit<T: Real>(x: T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::PositionMeasurement;
+    use crate::model::{ConstantVelocity, PositionMeasurement};
+    use crate::weight::WeightModel;
+    use crate::{BirthDetection, Region, Sensor};
+
+    /// Linking for the tests: constant velocity, p_D 0.8, λ_C = 1 / 100, gate d² ≤ 16.
+    fn linking() -> Linking<'static, f64, ConstantVelocity<f64>> {
+        Linking { motion: &MOTION, field_of_view: &FIELD, weights: &WEIGHTS, detection_probability: 0.8 }
+    }
+    static MOTION: ConstantVelocity<f64> = ConstantVelocity { acceleration_noise: 0.01 };
+    static FIELD: Region<f64> = Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] };
+    static WEIGHTS: std::sync::LazyLock<WeightModel<f64>> = std::sync::LazyLock::new(|| {
+        let sensor = Sensor {
+            detection_probability: 0.8,
+            clutter_rate: 1.0,
+            field_of_view: Region::Rectangle { min: [0.0, 0.0], max: [10.0, 10.0] },
+        };
+        WeightModel::new(&sensor, Some(16.0), 0.0, 0, BirthDetection::AllDetected, 0.0)
+    });
 
     fn settings() -> MeasuredBirths<f64> {
         MeasuredBirths {
@@ -406,12 +528,12 @@ mod tests {
         let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0]), SVector::from([9.0, 0.0])];
         let mut pool = BirthPool::<f64, 4, 4>::new();
         // r_U 0.9 and 0.3 (below the minimum) and 0.1: only the first makes a cell, α = min(0.3, 1 · 0.9 / 0.9).
-        let update = pool.update(&settings(), 4, &model, &scan(1.0, &zs, &[0.9, 0.3, 0.1], &[]));
+        let update = pool.update(&settings(), 4, &model, &linking(), &scan(1.0, &zs, &[0.9, 0.3, 0.1], &[]));
         assert_eq!((update.added, update.evicted, update.expired), (1, 0, 0));
         assert_eq!(pool.cells()[0].probability, 0.3);
         assert_eq!(pool.cells()[0].state.mean, SVector::from([1.0, 2.0, 0.0, 0.0]));
         // Two unexplained measurements share λ_B = 1: α = 0.6 / 1.1 and 0.5 / 1.1, capped at 0.3.
-        let update = pool.update(&settings(), 4, &model, &scan(2.0, &zs[1..], &[0.6, 0.5], &[0.5]));
+        let update = pool.update(&settings(), 4, &model, &linking(), &scan(2.0, &zs[1..], &[0.6, 0.5], &[0.5]));
         assert_eq!(update.added, 2);
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
         assert_eq!(alphas, [0.15, 0.3, 0.3], "the first cell gave birth with probability 1/2");
@@ -424,7 +546,7 @@ mod tests {
         let mut pool = BirthPool::<f64, 4, 4>::new();
         let settings = MeasuredBirths { max_probability: 0.9, ..settings() };
         // Two cells of α = 0.5 each (r_U 1 and 1 share λ_B = 1).
-        pool.update(&settings, 4, &model, &scan(0.0, &zs, &[1.0, 1.0], &[]));
+        pool.update(&settings, 4, &model, &linking(), &scan(0.0, &zs, &[1.0, 1.0], &[]));
         // The first in view of a sensor of p_D 0.8, no birth: 0.5 · 0.2 / (1 − 0.4) = 1/6; the second out
         // of view and born with probability 0.2: 0.5 · 0.8 = 0.4.
         let in_view = ScanUse {
@@ -435,13 +557,98 @@ mod tests {
             born: &[0.0, 0.2],
             detection: &[0.8, 0.0],
         };
-        pool.update(&settings, 4, &model, &in_view);
+        pool.update(&settings, 4, &model, &linking(), &in_view);
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
         assert!((alphas[0] - 1.0 / 6.0).abs() < 1e-15 && (alphas[1] - 0.4).abs() < 1e-15, "{alphas:?}");
         // p_D = 1 in view: the candidate would have been seen, so the cell is gone.
         let certain = ScanUse { detection: &[1.0, 0.0], born: &[], ..in_view };
-        let update = pool.update(&settings, 4, &model, &ScanUse { time: 2.0, ..certain });
+        let update = pool.update(&settings, 4, &model, &linking(), &ScanUse { time: 2.0, ..certain });
         assert_eq!((update.expired, pool.cells().len()), (1, 1));
+    }
+
+    #[test]
+    fn the_cells_of_one_measurement_age_as_one_bernoulli() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let mut pool = BirthPool::<f64, 4, 4>::new();
+        let settings = MeasuredBirths { max_probability: 0.9, ..settings() };
+        // Two groups: cells 0 and 1 one candidate (α 0.2 + 0.3), cell 2 another (α 0.4).
+        for (probability, group) in [(0.2, 7), (0.3, 7), (0.4, 8)] {
+            let cell = PoolCell { state: Gaussian::default(), time: 0.0, probability, group };
+            assert!(pool.cells.push(cell).is_ok());
+        }
+        // Cell 0 gave birth with probability 0.5: its sibling gave none in that child, but the candidate is
+        // now a track there, so both lose the factor 1 − 0.5; cell 2 is in view of p_D 0.5 and was missed.
+        let ageing = ScanUse {
+            time: 1.0,
+            sensor: 0,
+            measurements: &[],
+            unexplained: &[],
+            born: &[0.5, 0.0, 0.0],
+            detection: &[0.0, 0.0, 0.5],
+        };
+        pool.update(&settings, 4, &model, &linking(), &ageing);
+        let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
+        assert_eq!(alphas, [0.1, 0.15, 0.4 * 0.5 / (1.0 - 0.2)]);
+        // The group's cell 1 in view (p_D 0.8) and cell 0 not: the mixture's missed update moves the
+        // group's mass to cell 0, α_k (1 − p_D,k) / (1 − Σ α_j p_D,j) with Σ = 0.15 · 0.8.
+        let missed = ScanUse { born: &[], detection: &[0.0, 0.8, 0.0], time: 2.0, ..ageing };
+        pool.update(&settings, 4, &model, &linking(), &missed);
+        let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
+        let unseen = 1.0 - 0.15 * 0.8;
+        assert!(
+            (alphas[0] - 0.1 / unseen).abs() < 1e-15 && (alphas[1] - 0.15 * 0.2 / unseen).abs() < 1e-15,
+            "{alphas:?}"
+        );
+        // Cells of one measurement share a fresh group.
+        let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0])];
+        pool.clear();
+        pool.update(&settings, 4, &model, &linking(), &scan(3.0, &zs, &[1.0, 1.0], &[]));
+        let groups: std::vec::Vec<u32> = pool.cells().iter().map(|c| c.group).collect();
+        assert_eq!(groups, [0, 1]);
+    }
+
+    #[test]
+    fn a_cell_the_full_pool_does_not_keep_waits_and_a_later_measurement_links_with_it() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let settings = MeasuredBirths { link_waiting: true, ..settings() };
+        let mut pool = BirthPool::<f64, 4, 2>::new();
+        // Two candidates of α 0.3 for a pool of one: the first gives way to the second and waits.
+        let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0])];
+        let update = pool.update(&settings, 1, &model, &linking(), &scan(0.0, &zs, &[1.0, 1.0], &[]));
+        assert_eq!((update.added, update.evicted, update.waiting), (2, 1, 1));
+        assert_eq!(pool.cells()[0].state.mean, SVector::from([5.0, 5.0, 0.0, 0.0]));
+        assert_eq!(pool.waiting()[0].cell.state.mean, SVector::from([1.0, 2.0, 0.0, 0.0]));
+        // One second later a measurement at the waiting candidate's predicted position links with it:
+        // S = P_position + R = (0.25 + 1 + q/3) + 0.25, ĝ = 1 / (2π S), λ_C = 1/100, p_D = 0.8.
+        let z = [SVector::from([1.0, 2.0])];
+        let update = pool.update(&settings, 1, &model, &linking(), &scan(1.0, &z, &[1.0], &[]));
+        assert_eq!(update.linked, 1);
+        let s = 0.25 + 1.0 + 0.01 / 3.0 + 0.25;
+        let evidence = 0.3 * 0.8 / (2.0 * core::f64::consts::PI * s) / 0.01;
+        let expected = evidence / (evidence + 1.0 - 0.3 * 0.8);
+        let linked = pool.cells().iter().find(|c| c.time == 1.0).expect("the linked cell is kept");
+        assert!((linked.probability - expected).abs() < 1e-12, "{} against {expected}", linked.probability);
+        assert_eq!((linked.state.mean[0], linked.state.mean[1]), (1.0, 2.0));
+        assert!(pool.waiting().is_empty(), "the linked candidate no longer waits");
+    }
+
+    #[test]
+    fn a_waiting_candidate_in_view_and_not_linked_was_missed() {
+        let model = PositionMeasurement::isotropic(0.5);
+        let settings = MeasuredBirths { link_waiting: true, ..settings() };
+        let mut pool = BirthPool::<f64, 4, 2>::new();
+        let zs = [SVector::from([1.0, 2.0]), SVector::from([5.0, 5.0])];
+        pool.update(&settings, 1, &model, &linking(), &scan(0.0, &zs, &[1.0, 1.0], &[]));
+        // A scan with nothing near it: α 0.3 (1 − 0.8) / (1 − 0.3 · 0.8).
+        let far = [SVector::from([9.0, 9.0])];
+        pool.update(&settings, 1, &model, &linking(), &scan(1.0, &far, &[0.0], &[]));
+        let waiting = pool.waiting().iter().find(|w| w.cell.time == 0.0).expect("still waiting");
+        assert!((waiting.cell.probability - 0.3 * 0.2 / (1.0 - 0.24)).abs() < 1e-15);
+        // Without linking nothing waits.
+        let mut plain = BirthPool::<f64, 4, 2>::new();
+        let off = MeasuredBirths { link_waiting: false, ..settings };
+        let update = plain.update(&off, 1, &model, &linking(), &scan(0.0, &zs, &[1.0, 1.0], &[]));
+        assert_eq!((update.waiting, plain.waiting().len()), (0, 0));
     }
 
     #[test]
@@ -451,12 +658,12 @@ mod tests {
         let mut pool = BirthPool::<f64, 4, 2>::new();
         let settings = MeasuredBirths { max_probability: 0.9, min_unexplained: 0.1, ..settings() };
         // α = 0.5, 0.3, 0.2 (r_U shares of λ_B = 1): the smallest gives way.
-        let update = pool.update(&settings, 2, &model, &scan(0.0, &zs, &[1.0, 0.6, 0.4], &[]));
+        let update = pool.update(&settings, 2, &model, &linking(), &scan(0.0, &zs, &[1.0, 0.6, 0.4], &[]));
         assert_eq!((update.added, update.evicted), (2, 1));
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
         assert_eq!(alphas, [0.5, 0.3]);
         // Past the lifetime both expire.
-        let update = pool.update(&settings, 2, &model, &scan(10.5, &[], &[], &[]));
+        let update = pool.update(&settings, 2, &model, &linking(), &scan(10.5, &[], &[], &[]));
         assert_eq!((update.expired, pool.cells().len()), (2, 0));
     }
 
@@ -468,7 +675,7 @@ mod tests {
         let zs = [SVector::from([0.0, 0.0])];
         let mut pool = BirthPool::<f64, 4, 2>::new();
         let broken = MeasuredBirths { region: AdmissibleRegion { mu: -1.0, ..settings().region }, ..settings() };
-        let update = pool.update(&broken, 2, &model, &scan(0.0, &zs, &[1.0], &[]));
+        let update = pool.update(&broken, 2, &model, &linking(), &scan(0.0, &zs, &[1.0], &[]));
         assert_eq!((update.added, update.without_density), (0, 1));
         assert!(pool.cells().is_empty());
     }

@@ -269,7 +269,23 @@ mod tests {
             let model = OpticalRaDec { observer: *q, sigma: [SIGMA; 2] };
             let r_u = std::vec![1.0; zs.len()];
             let scan = ScanUse { time: *t, sensor: 0, measurements: zs, unexplained: &r_u, born: &[], detection: &[] };
-            update = pool.update(settings, B, &model, &scan);
+            let motion =
+                crate::model::TwoBodyJ2::<f64>::earth(crate::model::ProcessNoise::Isotropic(1e-10), 20.0, 2000);
+            let sensor = crate::Sensor {
+                detection_probability: 0.9,
+                clutter_rate: 1.0,
+                field_of_view: crate::Region::Everywhere { volume: 1.0 },
+            };
+            let weights =
+                crate::weight::WeightModel::new(&sensor, None, 0.0, 0, crate::BirthDetection::AllDetected, 0.0);
+            let field_of_view = crate::Region::Everywhere { volume: 1.0 };
+            let linking = crate::pool::Linking {
+                motion: &motion,
+                field_of_view: &field_of_view,
+                weights: &weights,
+                detection_probability: 0.9,
+            };
+            update = pool.update(settings, B, &model, &linking, &scan);
         }
         update
     }

@@ -57,7 +57,7 @@ use crate::gaussian::Gaussian;
 use crate::hypothesis::HypothesisSet;
 use crate::index::{At, NONE, insertion_sort_by};
 use crate::model::{MeasurementModel, MotionModel};
-use crate::pool::{BirthPool, PoolUpdate, ScanUse};
+use crate::pool::{BirthPool, Linking, PoolUpdate, ScanUse};
 use crate::random::scan_seed;
 use crate::real::{LogSumExp, Real, exp};
 use crate::report::StepReport;
@@ -638,7 +638,13 @@ where
                     born: &born,
                     detection: &pool_detection(birth_cells, placed.detection.detection_probability),
                 };
-                self.pool.update(measured, capacity, &placed.model, &scan)
+                let linking = Linking {
+                    motion: &self.config.motion,
+                    field_of_view: &placed.detection.field_of_view,
+                    weights: &placed.weights,
+                    detection_probability: placed.detection.detection_probability,
+                };
+                self.pool.update(measured, capacity, &placed.model, &linking, &scan)
             }
             None => PoolUpdate::default(),
         };

@@ -35,7 +35,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use std::mem::size_of;
 use tracker_core::Gaussian;
 use tracker_core::ekf::{self, Innovation};
-use tracker_core::pool::{BirthPool, ScanUse};
+use tracker_core::pool::{BirthPool, Linking, ScanUse};
 use tracker_core::real::{LogSumExp, log_add};
 use tracker_core::sensor::ScanGeometry;
 use tracker_core::tracker::{PlacedScan, place_scan};
@@ -424,7 +424,14 @@ where
                 born: &posterior.born,
                 detection: &pool_detection(&tables.scan, self.pool.cells().len()),
             };
-            self.pool.update(measured, capacity, model, &scan);
+            let placed = &tables.scan.placed;
+            let linking = Linking {
+                motion: &self.config.motion,
+                field_of_view: &placed.detection.field_of_view,
+                weights: &placed.weights,
+                detection_probability: placed.detection.detection_probability,
+            };
+            self.pool.update(measured, capacity, model, &linking, &scan);
         }
         self.tracks = posterior.tracks;
         self.hypotheses = posterior.hypotheses;

@@ -123,5 +123,6 @@ pub fn measured<T: Real>(measured: &MeasuredBirths<f64>) -> MeasuredBirths<T> {
             cells: t.cells,
             single_frame: t.single_frame,
         }),
+        link_waiting: measured.link_waiting,
     }
 }

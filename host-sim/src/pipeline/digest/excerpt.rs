@@ -200,13 +200,14 @@ fn config(parts: &Parts) -> String {
         |m| {
             format!(
                 "Some(MeasuredBirths {{ region: {}, expected_births: {}, max_probability: {}, min_unexplained: {}, \
-                 lifetime: {}, tracklets: {} }})",
+                 lifetime: {}, tracklets: {}, link_waiting: {} }})",
                 admissible(&m.region),
                 f(m.expected_births),
                 f(m.max_probability),
                 f(m.min_unexplained),
                 d(m.lifetime),
-                m.tracklets.map_or("None", |_| "compile_error!(\"tracklet births: the excerpt writes none\")")
+                m.tracklets.map_or("None", |_| "compile_error!(\"tracklet births: the excerpt writes none\")"),
+                m.link_waiting
             )
         },
     );
