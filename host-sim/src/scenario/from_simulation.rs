@@ -178,7 +178,8 @@ pub(crate) fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegio
 /// The birth pool a radar preset writes when objects are unknown to the prior (docs/results.md, "Births
 /// from the measurements"): 12 headings keep each component narrow enough for the EKF update of a new
 /// track (4 headings left it overconfident: the third detection fell outside its gate); λ_B and the cap
-/// on α set how fast a birth is confirmed against how often two clutter returns make a track.
+/// on α set how fast a birth is confirmed against how often two clutter returns make a track. The cells the
+/// full pool cannot keep wait for a link (docs/maths.md §5.8, "Births in clutter").
 pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     region: AdmissiblePresetSpec::Leo,
     velocity_sigma: 1.0,
@@ -191,7 +192,7 @@ pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     min_unexplained: 0.5,
     lifetime: 60.0,
     tracklets: None,
-    link_waiting: false,
+    link_waiting: true,
 };
 
 /// The birth pool a telescope preset writes when objects are unknown to the prior: the GEO belt, one
@@ -209,7 +210,7 @@ pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     min_unexplained: 0.5,
     lifetime: 1200.0,
     tracklets: None,
-    link_waiting: false,
+    link_waiting: true,
 };
 
 /// Figures of a generated file.

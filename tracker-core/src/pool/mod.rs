@@ -197,6 +197,11 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         &self.cells
     }
 
+    /// Whether the pool holds nothing: no cell, no waiting cell, no tracklet frame.
+    pub fn is_empty(&self) -> bool {
+        self.cells.is_empty() && self.waiting.cells().is_empty() && self.tracklets.is_empty()
+    }
+
     /// The cells waiting for a link.
     pub fn waiting(&self) -> &[WaitingCell<T, S>] {
         self.waiting.cells()

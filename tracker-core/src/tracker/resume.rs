@@ -4,8 +4,8 @@
 //!
 //! Between scans a tracker's results depend on its configuration, its live track store and hypotheses,
 //! its time, scan count (the scan's random seed) and next label, and its birth pool; everything else is
-//! scratch that each scan rewrites before reading it. A tracker whose birth pool holds cells has no
-//! [`TrackerState`] (the pool is not part of it).
+//! scratch that each scan rewrites before reading it. A tracker whose birth pool holds anything (cells,
+//! waiting cells, tracklet frames) has no [`TrackerState`] (the pool is not part of it).
 
 use super::{Tracker, prior};
 use crate::error::ConfigError;
@@ -49,7 +49,8 @@ where
     G: MeasurementModel<T, S, D>,
 {
     /// The tracker's state between scans; `None` before a prior is loaded or while the birth pool holds
-    /// cells (measurement-driven births, docs/maths.md §5.8), which the state does not carry.
+    /// cells, waiting cells or tracklet frames (measurement-driven births, docs/maths.md §5.8, §5.10), which the
+    /// state does not carry.
     ///
     /// # Examples
     /// A tracker resumed in another (here, one that held something else) steps to the same bits:
@@ -68,7 +69,7 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn state(&self) -> Option<TrackerState<'_, T, S, N>> {
-        if !self.initialised || !self.pool.cells().is_empty() {
+        if !self.initialised || !self.pool.is_empty() {
             return None;
         }
         Some(TrackerState {
