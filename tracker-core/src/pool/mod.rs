@@ -162,6 +162,14 @@ pub struct ScanUse<'a, T, const D: usize> {
     pub detection: &'a [T],
 }
 
+/// Where a scan's new cells go: the scan's time, the pool's capacity, whether unkept cells wait.
+#[derive(Debug, Clone, Copy)]
+struct Place {
+    time: f64,
+    capacity: usize,
+    link_waiting: bool,
+}
+
 /// At most `B` birth cells made from measurements (docs/maths.md §5.8).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BirthPool<T: Real, const S: usize, const B: usize> {
@@ -285,36 +293,21 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             self.record_frame(settings, sensor, model, scan);
             return update;
         }
-        let mut components = [BirthComponent::<T, S>::ZERO; B];
         for (z, &r_u) in measurements.iter().zip(unexplained) {
             if !(r_u >= minimum && r_u > T::zero()) {
                 continue;
             }
             let share = settings.expected_births * r_u / total;
             let alpha = if share < settings.max_probability { share } else { settings.max_probability };
-            let Some((alpha, count)) = self
-                .cells_of(settings, sensor, time, model, linking, z, &mut components, &mut update)
-                .map(|(linked, count)| (if linked { T::one() } else { alpha }, count))
-            else {
+            let place = Place { time, capacity, link_waiting: settings.link_waiting };
+            if settings.link_waiting
+                && let Some(link) = self.waiting.best_link(model, linking, time, z)
+                && self.add_linked(link, model, linking.weights, z, &place, &mut update)
+            {
+                update.linked += 1;
                 continue;
-            };
-            let group = self.next_group;
-            self.next_group = self.next_group.wrapping_add(1);
-            for component in components.iter().take(count) {
-                let cell = PoolCell { state: component.state, time, probability: alpha * component.weight, group };
-                if !(cell.probability > T::zero()) {
-                    continue;
-                }
-                let (kept, gave_way) = self.insert(cell, capacity);
-                update.added += usize::from(kept);
-                update.evicted += usize::from(gave_way.is_some() || !kept);
-                // A new cell not kept (this one, or one of this scan's that gave way) waits for a link.
-                let unkept = if kept { gave_way.filter(|old| old.time == time) } else { Some(cell) };
-                if let Some(unkept) = unkept.filter(|_| settings.link_waiting) {
-                    self.waiting.offer(unkept, time);
-                    update.waiting += 1;
-                }
             }
+            self.add_own(settings, sensor, model, z, alpha, &place, &mut update);
         }
         self.waiting.settle(time, linking.detection_probability);
         self.record_frame(settings, sensor, model, scan);
@@ -346,44 +339,88 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         factors
     }
 
-    /// The birth components of unexplained `z` in `out`: a waiting candidate's posterior when `z` links with
-    /// one (`Some((true, count))`, weights the cells' α), else its tracklet's or its own region's
-    /// (`Some((false, count))`, weights summing to 1); `None` when it gives none (counted) or awaits a link
-    /// of its tracklet.
+    /// Adds the cells of waiting candidate `link` updated by `z` (docs/maths.md §5.8, "Births in clutter"),
+    /// a new group; false when none could be formed. Never inlined, and without a buffer of components:
+    /// the EKF update's frame is on the stack only here.
+    #[inline(never)]
+    fn add_linked<G: MeasurementModel<T, S, D>, const D: usize>(
+        &mut self,
+        link: waiting::Link<T>,
+        model: &G,
+        weights: &crate::weight::WeightModel<T>,
+        z: &SVector<T, D>,
+        place: &Place,
+        update: &mut PoolUpdate,
+    ) -> bool {
+        let total = self.waiting.link_evidence(link, model, weights, z);
+        if !(total > T::zero()) {
+            return false;
+        }
+        self.waiting.mark_linked(link.group);
+        let group = self.next_group;
+        self.next_group = self.next_group.wrapping_add(1);
+        for index in 0..self.waiting.cells().len() {
+            if let Some((state, evidence)) = self.waiting.linked_cell(index, link, model, weights, z) {
+                let cell =
+                    PoolCell { state, time: place.time, probability: link.probability * evidence / total, group };
+                self.put(cell, place, update);
+            }
+        }
+        true
+    }
+
+    /// Adds the cells of unexplained `z` with birth probability `alpha`: its tracklet's or its own region's
+    /// (§5.7, §5.10), a new group; nothing (counted) when it gives none, or when it awaits its tracklet's
+    /// link. Never inlined: its buffer of components is on the stack only here.
+    #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn cells_of<G: MeasurementModel<T, S, D>, M, const D: usize>(
+    fn add_own<G: MeasurementModel<T, S, D>, const D: usize>(
         &mut self,
         settings: &MeasuredBirths<T>,
         sensor: usize,
-        time: f64,
         model: &G,
-        linking: &Linking<'_, T, M>,
         z: &SVector<T, D>,
-        out: &mut [BirthComponent<T, S>],
+        alpha: T,
+        place: &Place,
         update: &mut PoolUpdate,
-    ) -> Option<(bool, usize)> {
-        if settings.link_waiting
-            && let Some(link) = self.waiting.best_link(model, linking, time, z)
-        {
-            let count = self.waiting.linked_cells(link, model, linking.weights, z, out);
-            if count > 0 {
-                update.linked += 1;
-                return Some((true, count));
-            }
-        }
-        let linked = self.tracklet_components(settings, sensor, time, model, z, out);
+    ) {
+        let mut components = [BirthComponent::<T, S>::ZERO; B];
+        let linked = self.tracklet_components(settings, sensor, place.time, model, z, &mut components);
         update.tracklets += usize::from(linked.is_some());
         let awaits_link = settings.tracklets.is_some_and(|t| !t.single_frame) && model.sky_point(z).is_some();
         if linked.is_none() && awaits_link {
-            return None;
+            return;
         }
-        let own = || model.birth_components(z, &settings.region, out);
-        match linked.map_or_else(own, Ok) {
-            Ok(count) if count > 0 => Some((false, count.min(B))),
+        let own = || model.birth_components(z, &settings.region, &mut components);
+        let count = match linked.map_or_else(own, Ok) {
+            Ok(count) if count > 0 => count.min(B),
             _ => {
                 update.without_density += 1;
-                None
+                return;
             }
+        };
+        let group = self.next_group;
+        self.next_group = self.next_group.wrapping_add(1);
+        for component in components.iter().take(count) {
+            let cell =
+                PoolCell { state: component.state, time: place.time, probability: alpha * component.weight, group };
+            self.put(cell, place, update);
+        }
+    }
+
+    /// Puts a new cell in the pool (§5.8: the smallest α gives way); a new cell not kept (this one, or one of
+    /// this scan's that gave way) waits for a link when waiting is on.
+    fn put(&mut self, cell: PoolCell<T, S>, place: &Place, update: &mut PoolUpdate) {
+        if !(cell.probability > T::zero()) {
+            return;
+        }
+        let (kept, gave_way) = self.insert(cell, place.capacity);
+        update.added += usize::from(kept);
+        update.evicted += usize::from(gave_way.is_some() || !kept);
+        let unkept = if kept { gave_way.filter(|old| old.time == place.time) } else { Some(cell) };
+        if let Some(unkept) = unkept.filter(|_| place.link_waiting) {
+            self.waiting.offer(unkept, place.time);
+            update.waiting += 1;
         }
     }
 

@@ -15,7 +15,8 @@
 //! so the birth model of every scan is still fixed before it (§5.6's weights unchanged).
 
 use crate::ekf::{self, Innovation};
-use crate::model::{BirthComponent, MeasurementModel, MotionModel};
+use crate::gaussian::Gaussian;
+use crate::model::{MeasurementModel, MotionModel};
 use crate::pool::PoolCell;
 use crate::real::Real;
 use crate::sensor::Region;
@@ -172,43 +173,52 @@ impl<T: Real, const S: usize, const B: usize> WaitingCells<T, S, B> {
         best
     }
 
-    /// The cells of `link` updated by `z`, written to `out` with their α'_k (at most `out.len()`); marks the
-    /// candidate linked. Returns the count.
-    pub(super) fn linked_cells<G: MeasurementModel<T, S, D>, const D: usize>(
-        &mut self,
+    /// Σ_k α_k ĝ_k(z) p_D / λ_C over `link`'s cells (the unnormalised evidence of its cells).
+    pub(super) fn link_evidence<G: MeasurementModel<T, S, D>, const D: usize>(
+        &self,
         link: Link<T>,
         model: &G,
         weights: &WeightModel<T>,
         z: &SVector<T, D>,
-        out: &mut [BirthComponent<T, S>],
-    ) -> usize {
-        if !self.linked.contains(&link.group) {
-            // At most B groups wait, so there is room.
-            let _ = self.linked.push(link.group);
-        }
-        let mut count = 0;
+    ) -> T {
         let mut total = T::zero();
-        for index in 0..self.cells.len() {
-            let Some(waiting) = self.cells.get(index).copied() else { break };
-            if waiting.cell.group != link.group {
-                continue;
+        for (index, waiting) in self.cells.iter().enumerate() {
+            if waiting.cell.group == link.group
+                && let Some((log_ratio, _)) = self.log_ratio(index, model, weights, z)
+            {
+                total += waiting.cell.probability * crate::real::exp(log_ratio);
             }
-            let Some((log_ratio, innovation)) = self.log_ratio(index, model, weights, z) else { continue };
-            let Ok(state) = ekf::update(model, &waiting.cell.state, &innovation, z) else { continue };
-            let Some(slot) = out.get_mut(count) else { break };
-            let share = waiting.cell.probability * crate::real::exp(log_ratio);
-            *slot = BirthComponent { weight: share, state };
-            total += share;
-            count += 1;
         }
-        for component in out.iter_mut().take(count) {
-            component.weight = link.probability * component.weight / total;
-        }
-        count
+        total
     }
 
-    /// Adds `cell` (state at `state_time`), making room by removing the (oldest) cell of smallest α unless
-    /// that α is larger than the new one's.
+    /// Waiting cell `index` of `link` updated by `z`, with its evidence α_k p_D ĝ_k(z) / λ_C; `None` for a
+    /// cell of another candidate, outside the gate, or whose update fails.
+    pub(super) fn linked_cell<G: MeasurementModel<T, S, D>, const D: usize>(
+        &self,
+        index: usize,
+        link: Link<T>,
+        model: &G,
+        weights: &WeightModel<T>,
+        z: &SVector<T, D>,
+    ) -> Option<(Gaussian<T, S>, T)> {
+        let waiting = self.cells.get(index).filter(|waiting| waiting.cell.group == link.group)?;
+        let (log_ratio, innovation) = self.log_ratio(index, model, weights, z)?;
+        let state = ekf::update(model, &waiting.cell.state, &innovation, z).ok()?;
+        Some((state, waiting.cell.probability * crate::real::exp(log_ratio)))
+    }
+
+    /// Marks candidate `group` linked at this scan: it is removed at the scan's end and no cell of it gives
+    /// way to a new one before.
+    pub(super) fn mark_linked(&mut self, group: u32) {
+        if !self.linked.contains(&group) {
+            // At most B groups wait, so there is room.
+            let _ = self.linked.push(group);
+        }
+    }
+
+    /// Adds `cell` (state at `state_time`); when full, it takes the place of the first cell of smallest α
+    /// (of a candidate not linked at this scan) unless that α is larger than the new one's.
     pub(super) fn offer(&mut self, cell: PoolCell<T, S>, state_time: f64) {
         let waiting = WaitingCell { cell, state_time, in_view: false };
         if self.cells.push(waiting).is_ok() {
@@ -216,18 +226,18 @@ impl<T: Real, const S: usize, const B: usize> WaitingCells<T, S, B> {
         }
         let mut smallest: Option<(usize, T)> = None;
         for (index, other) in self.cells.iter().enumerate() {
+            if self.linked.contains(&other.cell.group) {
+                continue;
+            }
             if smallest.is_none_or(|(_, probability)| other.cell.probability < probability) {
                 smallest = Some((index, other.cell.probability));
             }
         }
         if let Some((index, probability)) = smallest
             && probability <= cell.probability
-            && let Some(tail) = self.cells.get_mut(index..)
+            && let Some(slot) = self.cells.get_mut(index)
         {
-            // Remove the smallest keeping the others' order, then add the new cell.
-            tail.rotate_left(1);
-            self.cells.pop();
-            let _ = self.cells.push(waiting);
+            *slot = waiting;
         }
     }
 
