@@ -15,6 +15,10 @@ pub struct Args {
     /// The soak's geometry: the planar SSA scenario with births and deaths, or a 3-D preset observed without end.
     #[arg(long, value_enum, default_value = "planar")]
     scenario: crate::pipeline::soak::Scenario,
+    /// The tracker's process noise q (km²/s³, isotropic white acceleration) instead of the preset's
+    /// (3-D soaks only): how the filter's consistency (`mean_nees`) depends on it.
+    #[arg(long)]
+    process_noise: Option<f64>,
     /// Output JSON file.
     #[arg(long)]
     out: PathBuf,
@@ -25,7 +29,8 @@ pub struct Args {
 
 /// Runs `soak`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
-    let report = crate::pipeline::soak::run_scenario(args.scenario, args.scans, args.seed, args.quiet)?;
+    let report =
+        crate::pipeline::soak::run_scenario(args.scenario, args.scans, args.seed, args.process_noise, args.quiet)?;
     crate::pipeline::output::write_json(&args.out, &report)?;
     terminal::print(json, &report, || terminal::soak(&report, &args.out));
     Ok(())

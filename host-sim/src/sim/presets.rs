@@ -8,7 +8,9 @@ use super::sensor::{SensorKind, SensorSpec};
 use super::site::{Site, WGS84_A};
 use super::ssa::{Plan, SsaScenario, count_passes, observers, simulate, visibility};
 use super::time::{EARTH_ROTATION_RATE, earth_rotation_angle, parse_iso8601};
-use super::truth::{Group, MU, ObjectTruth, Unknowns, aimed_circular, kepler_state, mark_missing, track};
+use super::truth::{
+    Group, MU, ObjectTruth, Unknowns, aimed_circular, geosynchronous, kepler_state, mark_missing, track,
+};
 use super::vector::{add, deg, norm, pos, rotate, scale, vel};
 use crate::sim::orbit::Propagator;
 use crate::sim::rng::{Random, Stream};
@@ -356,12 +358,12 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
         let argp = random.between(0.0, TAU);
         // Mean longitude Ω + ω + M = θ₀ + λ.
         let m = theta0 + longitude - raan - argp;
-        kepler_state(a, e, i, raan, argp, m)
+        geosynchronous(kepler_state(a, e, i, raan, argp, m), EARTH_ROTATION_RATE)
     };
     let mut random = Random::stream(seed, Stream::Orbit, 0);
     for _ in 0..config.singles {
         let longitude = sensor.site.longitude + deg(random.between(-2.0, 2.0));
-        let s = state_at(&mut random, longitude, 2e-4, deg(0.1));
+        let s = state_at(&mut random, longitude, 2e-4, deg(0.1))?;
         objects.push(ObjectTruth::known(s, None));
     }
     for _ in 0..config.sweepers {
@@ -374,6 +376,7 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
             inclination,
             random.uniform() < 0.5,
         );
+        let at_node = geosynchronous(at_node, EARTH_ROTATION_RATE)?;
         let s = Propagator::EARTH.propagate(at_node, -t_node)?;
         objects.push(ObjectTruth::known(s, None));
     }
@@ -383,7 +386,7 @@ pub fn optical_geo_with(seed: u64, config: &OpticalGeoConfig) -> Result<SsaScena
         for _ in 0..config.cluster_size {
             let longitude = slot + deg(random.between(-0.015, 0.015));
             members.push(objects.len());
-            let s = state_at(&mut random, longitude, 8e-5, deg(0.01));
+            let s = state_at(&mut random, longitude, 8e-5, deg(0.01))?;
             objects.push(ObjectTruth::known(s, Some(groups.len())));
         }
         groups.push(Group { kind: "cluster".into(), objects: members });

@@ -10,7 +10,7 @@ use super::sensor::{SensorKind, SensorSpec};
 use super::site::{Site, WGS84_A, WGS84_F};
 use super::ssa::SsaScenario;
 use super::time::{EARTH_ROTATION_RATE, earth_rotation_angle, gmst, julian_date, parse_iso8601};
-use super::truth::{MU, Unknowns, aimed_circular, kepler_state};
+use super::truth::{MU, Unknowns, aimed_circular, geosynchronous, kepler_state};
 use super::vector::{add, angle_between, cross, deg, dot, norm, pos, scale, sub, vel, wrap_angle};
 use crate::sim::orbit::Propagator;
 use crate::sim::rng::{Random, Stream};
@@ -530,4 +530,25 @@ fn kepler_state_is_consistent() {
     let aim = [1.0, deg(40.0)];
     let s = aimed_circular(aim, 7000.0, deg(60.0), false);
     assert!(angle_between(pos(&s), radec_direction(aim[0], aim[1])) < 1e-12);
+}
+
+#[test]
+fn geosynchronous_objects_keep_their_place_under_j2() {
+    // 60 sidereal days: the drift of the right ascension beyond the Earth's whole turns.
+    let span = 60.0 * TAU / EARTH_ROTATION_RATE;
+    let drift_deg = |s: [f64; 6]| {
+        let end = Propagator::EARTH.propagate(s, span).unwrap();
+        wrap_angle(end[1].atan2(end[0]) - s[1].atan2(s[0])).to_degrees()
+    };
+    let radius = (MU / (EARTH_ROTATION_RATE * EARTH_ROTATION_RATE)).cbrt();
+    for (e, i) in [(0.0, 0.0), (2e-4, deg(0.1)), (0.0, deg(14.0))] {
+        let two_body = kepler_state(radius, e, i, 0.3, 0.2, 1.0);
+        // At the two-body radius J2 moves it by more than 0.3° in 60 days (a 3° field of view in a year).
+        assert!(drift_deg(two_body).abs() > 0.3, "e {e} i {i}: {}", drift_deg(two_body));
+        let kept = geosynchronous(two_body, EARTH_ROTATION_RATE).unwrap();
+        assert!(drift_deg(kept).abs() < 1e-3, "e {e} i {i}: {}", drift_deg(kept));
+        // Only the speed changed, by less than 10⁻⁴.
+        assert_eq!(pos(&kept), pos(&two_body));
+        assert!((norm(vel(&kept)) / norm(vel(&two_body)) - 1.0).abs() < 1e-4);
+    }
 }

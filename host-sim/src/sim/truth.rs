@@ -134,3 +134,32 @@ pub(crate) fn aimed_circular(aim: [f64; 2], radius: f64, inclination: f64, ascen
     let raan = ra - (inclination.cos() * u.sin()).atan2(u.cos());
     kepler_state(radius, 0.0, inclination, raan, 0.0, u)
 }
+
+/// Sidereal days over which [`geosynchronous`] measures the drift.
+const DRIFT_DAYS: f64 = 5.0;
+
+/// `state` with its speed scaled so that, under the truth's two-body + J2 gravity, it keeps its place
+/// above the Earth: its right ascension after whole sidereal days gains exactly the Earth's turns.
+///
+/// A circular orbit at the two-body geosynchronous radius (μ/ω_E²)^(1/3) drifts under J2: J2 adds to
+/// the pull of the Earth, so the mean motion exceeds ω_E (by about 0.007° a day at the equator, more from
+/// the osculating speed). Over months such an object leaves a 3° field of view, which a station-kept
+/// object does not. The drift rate λ̇ is measured over [`DRIFT_DAYS`] sidereal days (comparing the same
+/// phase of the day cancels the daily terms) and removed by scaling the speed: for a near-circular orbit
+/// δa/a = 2 δv/v and λ̇ = −(3/2) n δa/a, so δv/v = −λ̇ / (3 n). Three rounds leave below 10⁻⁸ rad a day.
+///
+/// # Errors
+/// When the propagation fails.
+pub(crate) fn geosynchronous(mut state: [f64; 6], earth_rate: f64) -> Result<[f64; 6], SsaError> {
+    let span = DRIFT_DAYS * 2.0 * PI / earth_rate;
+    for _ in 0..3 {
+        let end = Propagator::EARTH.propagate(state, span)?;
+        let turned = end[1].atan2(end[0]) - state[1].atan2(state[0]);
+        let drift = (turned + PI).rem_euclid(2.0 * PI) - PI;
+        let scale_by = 1.0 + drift / span / (3.0 * earth_rate);
+        for v in &mut state[3..] {
+            *v *= scale_by;
+        }
+    }
+    Ok(state)
+}

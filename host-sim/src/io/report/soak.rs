@@ -41,6 +41,14 @@ pub struct SoakReport {
     pub peak_resident_kib_end: Option<u64>,
     /// Tracks dropped for a numerical failure, summed.
     pub numerical_drops: u64,
+    /// Objects within 10 km of their truth after the last scan (3-D soaks, whose objects live for the
+    /// whole run): the MAP hypothesis holds the object's label with a position error below 10 km.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objects_within_10km: Option<usize>,
+    /// Mean normalised estimation error squared of the MAP tracks over every object-scan with a track
+    /// (position and velocity; 6 for a consistent filter; docs/maths.md §8.6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mean_nees: Option<f64>,
     /// Whether the objects stay tracked (3-D soaks, whose objects live for the whole run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracking: Option<SoakTracking>,
@@ -80,7 +88,7 @@ pub struct SoakReport {
 
 /// Whether a 3-D soak's objects stay tracked: an object is tracked at a scan when the MAP hypothesis holds
 /// its label with a position within `error_bound_km` of the truth.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SoakTracking {
     /// The bound (km): the scenario's `evaluation.error_bound`.
@@ -111,6 +119,21 @@ pub struct SoakTracking {
     pub dropped_outside_field_of_view: u64,
     /// Simulated time (days).
     pub simulated_days: f64,
+    /// Mean NEES over the last tenth of the scans.
+    pub mean_nees_last_tenth: Option<f64>,
+    /// The share of scans whose mean NEES over the objects with a track lies within its two-sided 95 %
+    /// χ² band (docs/maths.md §8.6).
+    pub nees_scans_in_band_fraction: Option<f64>,
+    /// That band for a scan holding every object.
+    pub nees_band_all_objects: [f64; 2],
+    /// Track-scans whose covariance was not positive definite (left out of the NEES).
+    pub nees_undefined: u64,
+    /// Every object's MAP position error (km) after the last scan, by object (none: no track).
+    pub final_position_errors_km: Vec<Option<f64>>,
+    /// Every object's NEES after the last scan (none: no track).
+    pub final_nees: Vec<Option<f64>>,
+    /// Scans since each object was last in a field of view (none: never).
+    pub scans_since_in_view: Vec<Option<u64>>,
 }
 
 /// The first step error of a soak.

@@ -15,6 +15,7 @@
 //! ([`SoakTracking`]), besides the planar soak's health figures ([`crate::pipeline::soak::planar`]).
 
 use super::common::{MAX_SCANS, Scenario, non_finite_values};
+use super::consistency::{self, NeesTally};
 use super::run::{self, SoakWorld, WorldParts};
 use crate::error::Error;
 use crate::io::report::{SoakReport, SoakSetup, SoakTracking, SoakTruth};
@@ -24,7 +25,7 @@ use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::TrackerKind;
 use crate::scenario::from_simulation::to_scenario;
-use crate::scenario::v2::Scenario3d;
+use crate::scenario::v2::{Motion3dSpec, ProcessNoiseSpec, Scenario3d};
 use crate::sim::orbit::Propagator;
 use crate::sim::presets::RadarLeoConfig;
 use crate::sim::rng::{Random, Stream};
@@ -103,23 +104,47 @@ struct Drawn {
     in_view: Vec<usize>,
 }
 
-/// The MAP hypothesis's position error (km) of every object (infinite when it lacks the object's label).
-fn position_errors<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
+/// The MAP hypothesis against the truth after a scan.
+struct Judged {
+    /// Every object's position error (km), infinite when the MAP hypothesis lacks its label.
+    errors: Vec<f64>,
+    /// The NEES of every object with a track ([`consistency::nees`]).
+    nees: Vec<f64>,
+    /// The NEES by object (none: no track, or a covariance not positive definite).
+    nees_by_object: Vec<Option<f64>>,
+    /// Tracks whose covariance was not positive definite.
+    undefined: u64,
+}
+
+/// The MAP hypothesis's position error and NEES of every object.
+fn judge<G, const D: usize, const H: usize, const N: usize, const Z: usize, const K: usize, const B: usize>(
     tracker: &Tracker3d<G, D, H, N, Z, K, B>,
     truth: &[[f64; 6]],
-) -> Vec<f64>
+) -> Judged
 where
     G: ScenarioNetwork<D>,
 {
-    let mut errors = vec![f64::INFINITY; truth.len()];
+    let mut judged = Judged {
+        errors: vec![f64::INFINITY; truth.len()],
+        nees: Vec::new(),
+        nees_by_object: vec![None; truth.len()],
+        undefined: 0,
+    };
     for track in tracker.map_hypothesis().tracks() {
         if let Some(t) = truth.get(track.label.0 as usize) {
             let m = &track.state.mean;
-            errors[track.label.0 as usize] =
+            judged.errors[track.label.0 as usize] =
                 ((m[0] - t[0]).powi(2) + (m[1] - t[1]).powi(2) + (m[2] - t[2]).powi(2)).sqrt();
+            match consistency::nees(m, &track.state.covariance, t) {
+                Some(value) => {
+                    judged.nees.push(value);
+                    judged.nees_by_object[track.label.0 as usize] = Some(value);
+                }
+                None => judged.undefined += 1,
+            }
         }
     }
-    errors
+    judged
 }
 
 /// Tracking figures over a soak's scans.
@@ -134,10 +159,13 @@ struct Tally {
     in_view_last_tenth: (u64, u64),
     scans: u64,
     last_tenth: u64,
+    nees: NeesTally,
+    /// Every object's last scan in a field of view (0-based).
+    last_in_view: Vec<Option<u64>>,
 }
 
 impl Tally {
-    fn new(scans: u64) -> Self {
+    fn new(scans: u64, objects: usize) -> Self {
         Self {
             dropped: 0,
             tracked_sum: 0,
@@ -147,11 +175,20 @@ impl Tally {
             in_view_last_tenth: (0, 0),
             scans,
             last_tenth: scans - scans / 10,
+            nees: NeesTally::default(),
+            last_in_view: vec![None; objects],
         }
     }
 
-    /// Scan `k`: every object's position error, the objects in view.
-    fn record(&mut self, k: u64, errors: &[f64], seen: &[usize], bound: f64) {
+    /// Scan `k`: the MAP hypothesis against the truth, the objects in view.
+    fn record(&mut self, k: u64, judged: &Judged, seen: &[usize], bound: f64) {
+        let errors = &judged.errors;
+        self.nees.record(&judged.nees, judged.undefined, k >= self.last_tenth);
+        for &i in seen {
+            if let Some(last) = self.last_in_view.get_mut(i) {
+                *last = Some(k);
+            }
+        }
         let within = errors.iter().filter(|&&e| e < bound).count();
         let seen_within = seen.iter().filter(|&&i| errors[i] < bound).count() as u64;
         self.tracked_sum += within as u64;
@@ -167,7 +204,12 @@ impl Tally {
     }
 
     /// The tracking figures, with the final position errors `errors`.
-    fn tracking(&self, mut errors: Vec<f64>, bound: f64, objects: usize, stream: &Stream3d) -> SoakTracking {
+    fn tracking(&self, judged: Judged, bound: f64, objects: usize, stream: &Stream3d) -> SoakTracking {
+        let nees = self.nees.figures(objects);
+        let mut errors = judged.errors;
+        let final_position_errors_km = errors.iter().map(|e| e.is_finite().then_some(*e)).collect();
+        let last = self.scans.saturating_sub(1);
+        let scans_since_in_view = self.last_in_view.iter().map(|k| k.map(|k| last - k)).collect();
         let final_tracked = errors.iter().filter(|&&e| e < bound).count();
         let final_missing = errors.iter().filter(|e| e.is_infinite()).count();
         errors.sort_unstable_by(f64::total_cmp);
@@ -188,6 +230,13 @@ impl Tally {
             final_missing_labels: final_missing,
             dropped_outside_field_of_view: self.dropped,
             simulated_days: stream.time / 86_400.0,
+            mean_nees_last_tenth: nees.mean_last_tenth,
+            nees_scans_in_band_fraction: nees.scans_in_band_fraction,
+            nees_band_all_objects: nees.band_all_objects,
+            nees_undefined: nees.undefined,
+            final_position_errors_km,
+            final_nees: judged.nees_by_object,
+            scans_since_in_view,
         }
     }
 }
@@ -203,6 +252,20 @@ fn tracker_text(scenario: Scenario, profile: Profile, seed: u64, [h, n, z, k, b]
             ),
             _ => format!("`host-sim generate {} --seed {seed}`", scenario.name()),
         }
+    )
+}
+
+/// The truth's and the tracker's motion in words.
+fn motion_text(motion: &Motion3dSpec) -> String {
+    let Motion3dSpec::TwoBodyJ2 { process_noise, max_step, .. } = motion;
+    let noise = match process_noise {
+        ProcessNoiseSpec::Isotropic { q } => format!("q = {q:e} km^2/s^3"),
+        ProcessNoiseSpec::Ric { radial, in_track, cross_track } => {
+            format!("q = {radial:e} (radial), {in_track:e} (in-track), {cross_track:e} (cross-track) km^2/s^3")
+        }
+    };
+    format!(
+        "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most {max_step} s, {noise}"
     )
 }
 
@@ -238,6 +301,7 @@ fn soak<G, const D: usize, const H: usize, const N: usize, const Z: usize, const
     profile: Profile,
     sim: SsaScenario,
     scans: u64,
+    process_noise: Option<f64>,
     quiet: bool,
 ) -> Result<SoakReport, Error>
 where
@@ -245,20 +309,18 @@ where
 {
     let started = Instant::now();
     let seed = sim.seed;
-    let (file, _) = to_scenario(&sim)?;
+    let (mut file, _) = to_scenario(&sim)?;
+    if let Some(q) = process_noise {
+        let Motion3dSpec::TwoBodyJ2 { max_step, max_substeps, .. } = file.motion;
+        file.motion =
+            Motion3dSpec::TwoBodyJ2 { process_noise: ProcessNoiseSpec::Isotropic { q }, max_step, max_substeps };
+    }
     let check = FieldOfViewCheck::new(&file)?;
     let tracker = soak_tracker::<G, D, H, N, Z, K, B>(&file)?;
     let stream = Stream3d::new(sim)?;
-    let world = OrbitalSoak {
-        scenario,
-        profile,
-        objects: stream.states.len(),
-        file,
-        check,
-        tracker,
-        stream,
-        tally: Tally::new(scans),
-    };
+    let objects = stream.states.len();
+    let world =
+        OrbitalSoak { scenario, profile, objects, file, check, tracker, stream, tally: Tally::new(scans, objects) };
     run::soak(world, scenario, scans, seed, quiet, started)
 }
 
@@ -324,19 +386,29 @@ where
     }
 
     fn record(&mut self, k: u64, scan: Self::Scan) {
-        let errors = position_errors(&self.tracker, &self.stream.states);
-        self.tally.record(k, &errors, &scan.in_view, self.file.evaluation.error_bound);
+        let judged = judge(&self.tracker, &self.stream.states);
+        self.tally.record(k, &judged, &scan.in_view, self.file.evaluation.error_bound);
     }
 
     fn finish(self) -> Result<WorldParts, Error> {
         let objects = self.objects;
-        let errors = position_errors(&self.tracker, &self.stream.states);
+        let judged = judge(&self.tracker, &self.stream.states);
+        let within_10km = judged.errors.iter().filter(|&&e| e < 10.0).count();
+        let mean_nees = self.tally.nees.figures(objects).mean;
         Ok(WorldParts {
-            tracking: Some(self.tally.tracking(errors, self.file.evaluation.error_bound, objects, &self.stream)),
-            truth: SoakTruth { initial_objects: objects, births: 0, deaths: 0, max_alive: objects, final_alive: objects },
+            objects_within_10km: Some(within_10km),
+            mean_nees,
+            tracking: Some(self.tally.tracking(judged, self.file.evaluation.error_bound, objects, &self.stream)),
+            truth: SoakTruth {
+                initial_objects: objects,
+                births: 0,
+                deaths: 0,
+                max_alive: objects,
+                final_alive: objects,
+            },
             setup: SoakSetup {
                 tracker: tracker_text(self.scenario, self.profile, self.stream.sim.seed, [H, N, Z, K, B]),
-                motion: "truth: RKF7(8) two-body + J2 from scan to scan; tracker: two-body + J2, RK4 sub-steps of at most 20 s, q = 1e-12 km^2/s^3".into(),
+                motion: motion_text(&self.file.motion),
                 sensor: sensors_text(&self.stream.sim),
                 scan_interval_s: self.stream.interval,
                 birth_rate_per_scan: 0.0,
@@ -351,12 +423,24 @@ where
 
 /// Runs `scans` scans of the 3-D soak `scenario` (radar-leo, optical-geo or ssa-network) with `seed`.
 ///
+/// `process_noise` replaces the preset tracker's q (isotropic, km²/s³).
+///
 /// # Errors
-/// [`Error::Input`] when `scans` is 0 or above [`MAX_SCANS`] or `scenario` is planar; [`Error::Internal`]
-/// when the preset cannot be simulated or its tracker built (which would be a bug).
-pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<SoakReport, Error> {
+/// [`Error::Input`] when `scans` is 0 or above [`MAX_SCANS`], `scenario` is planar or `process_noise` is not
+/// finite and > 0; [`Error::Internal`] when the preset cannot be simulated or its tracker built (which would
+/// be a bug).
+pub fn run(
+    scenario: Scenario,
+    scans: u64,
+    seed: u64,
+    process_noise: Option<f64>,
+    quiet: bool,
+) -> Result<SoakReport, Error> {
     if !(1..=MAX_SCANS).contains(&scans) {
         return Err(Error::input(format!("--scans {scans}: must be in [1, {MAX_SCANS}]")));
+    }
+    if let Some(q) = process_noise.filter(|q| !(q.is_finite() && *q > 0.0)) {
+        return Err(Error::input(format!("--process-noise {q}: must be finite and > 0")));
     }
     let sim = match scenario {
         Scenario::RadarLeo => crate::sim::presets::radar_leo_with(seed, &RADAR_LEO),
@@ -379,7 +463,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
             { ORBITAL.embedded.measurements },
             { ORBITAL.embedded.tracks },
             { ORBITAL.embedded.birth_cells },
-        >(scenario, profile, sim, scans, quiet),
+        >(scenario, profile, sim, scans, process_noise, quiet),
         (Scenario::OpticalGeo, Profile::Embedded) => soak::<
             SensorNetwork<f64, OpticalRaDec<f64>, 2, C>,
             2,
@@ -388,7 +472,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
             { ORBITAL.embedded.measurements },
             { ORBITAL.embedded.tracks },
             { ORBITAL.embedded.birth_cells },
-        >(scenario, profile, sim, scans, quiet),
+        >(scenario, profile, sim, scans, process_noise, quiet),
         (Scenario::SsaNetwork, Profile::Host) => soak::<
             MixedNetwork<f64, C>,
             { MIXED_DIMENSION },
@@ -397,7 +481,7 @@ pub fn run(scenario: Scenario, scans: u64, seed: u64, quiet: bool) -> Result<Soa
             { ORBITAL.host.measurements },
             { ORBITAL.host.tracks },
             { ORBITAL.host.birth_cells },
-        >(scenario, profile, sim, scans, quiet),
+        >(scenario, profile, sim, scans, process_noise, quiet),
         _ => Err(Error::internal(format!("soak: {} does not fit the {profile:?} profile", scenario.name()))),
     }
 }

@@ -305,6 +305,8 @@ impl SoakWorld for PlanarSoak {
     fn finish(self) -> Result<WorldParts, Error> {
         let world = &self.world;
         Ok(WorldParts {
+            objects_within_10km: None,
+            mean_nees: None,
             tracking: None,
             truth: SoakTruth {
                 initial_objects: INITIAL_OBJECTS,

@@ -40,6 +40,10 @@ pub(crate) trait SoakWorld {
 
 /// The parts of a [`SoakReport`] only the world knows.
 pub(crate) struct WorldParts {
+    /// Objects within 10 km of the truth after the last scan (3-D soaks).
+    pub(crate) objects_within_10km: Option<usize>,
+    /// Mean NEES of the MAP tracks over the run (3-D soaks).
+    pub(crate) mean_nees: Option<f64>,
     pub(crate) tracking: Option<SoakTracking>,
     pub(crate) truth: SoakTruth,
     pub(crate) setup: SoakSetup,
@@ -118,7 +122,7 @@ fn report<W: SoakWorld>(
     let Counts { health, times, resident_start, measurements, cardinality_error, max_cardinality_error } = counts;
     let (max_ms, mean_ms, p50_ms, p99_ms) = times.timing();
     let final_expected_cardinality = world.expected_cardinality();
-    let WorldParts { tracking, truth, setup } = world.finish()?;
+    let WorldParts { objects_within_10km, mean_nees, tracking, truth, setup } = world.finish()?;
     Ok(SoakReport {
         scenario: scenario.name().into(),
         scans,
@@ -137,6 +141,8 @@ fn report<W: SoakWorld>(
         peak_resident_kib_start: resident_start,
         peak_resident_kib_end: peak_resident_kib(),
         numerical_drops: health.numerical_drops,
+        objects_within_10km,
+        mean_nees,
         tracking,
         errors_by_kind: health.errors,
         first_error: health.first_error.map(|(scan, message)| SoakError { scan, message }),
