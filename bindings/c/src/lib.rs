@@ -28,6 +28,8 @@ pub mod convert;
 pub mod handle;
 pub mod placeholder;
 #[cfg(feature = "std")]
+pub mod replay;
+#[cfg(feature = "std")]
 pub mod scenario;
 pub mod status;
 
