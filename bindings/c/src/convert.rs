@@ -15,9 +15,8 @@ use tracker_core::pool::MeasuredBirths;
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthEvents, ChildGeneration, Config, Gaussian, LookShape, MixedSensor,
-    NumericalFailure, PositionMeasurement, Real, Region, Sensor, SensorKind, StoreOverflow, Track, TwoBody, TwoBodyJ2,
-    ssa_caps,
+    BirthDetection, BirthEvents, ChildGeneration, Config, Gaussian, LookShape, MixedSensor, NumericalFailure,
+    PositionMeasurement, Real, Region, Sensor, SensorKind, StoreOverflow, Track, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 /// Birth cells of every default tracker.
@@ -273,7 +272,10 @@ pub fn config3d_into<T: Real, G>(c: &RfisstConfig, out: &mut Config<T, TwoBodyJ2
 
 /// Fills what every configuration shares: births, deaths, gate, children, policies, seed. The birth cells
 /// are written into `out`'s own list, so that no list of them is built on the stack.
-fn common_into<T: Real, M, G, const S: usize>(c: &RfisstConfig, out: &mut Config<T, M, G, S, B>) -> Result<(), Failure> {
+fn common_into<T: Real, M, G, const S: usize>(
+    c: &RfisstConfig,
+    out: &mut Config<T, M, G, S, B>,
+) -> Result<(), Failure> {
     let count = c.birth_cell_count as usize;
     let used = c.birth_cells.get(..count).ok_or(Failure::invalid("birth_cell_count: above RFISST_MAX_BIRTH_CELLS"))?;
     out.birth.cells.clear();
