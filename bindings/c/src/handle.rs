@@ -1,7 +1,8 @@
 //! The opaque handle: caller-provided storage holding a [`Header`] (a magic number, the kind, the last
-//! error's text) followed by one of the default trackers ([`Slot`]). [`Ops`] is what the C functions do
-//! with any tracker, implemented once for every `Tracker`; [`with_kind`] turns a kind code into the
-//! concrete tracker type. No allocation: a step converts its measurements on the stack.
+//! error's text) followed by one of the default trackers and its scratch ([`Slot`], [`Body`]). [`Ops`] is
+//! what the C functions do with any handle, over [`TrackerOps`], implemented once for every `Tracker`;
+//! [`Build`] builds one in place; [`with_kind`] turns a kind code into the concrete tracker type. No
+//! allocation: a step converts its measurements into the handle's scratch.
 
 use crate::config::{RfisstConfig, RfisstPriorHypothesis, RfisstPriorObject, RfisstStepReport, RfisstTrack, sensor};
 use crate::status::{Failure, RfisstStatus};
@@ -146,7 +147,7 @@ pub struct Slot<Tr: Build> {
 
 /// The tracker and the scratch the C functions use beside it, so that neither the configuration nor a
 /// scan's converted measurements are held on the stack (issue 28: at most 16 KiB of stack for every
-/// kind; the configuration of `NetworkTracker<f64>` alone is about 5.7 KB on a Cortex-M4).
+/// kind; the configuration of `NetworkTracker<f64>` alone is 5,656 bytes on a Cortex-M4, docs/c-api.md).
 #[repr(C)]
 pub struct Body<Tr: Build> {
     /// The tracker.
