@@ -1,13 +1,19 @@
-/* main.c: the C firmware (issue 32). Replays the QEMU excerpts of firmware/qemu-m4 -- the planar
- * fifty-birth-death scans through RFISST_SSA_F32, then the radar-leo scans through RFISST_RADAR_F32 --
- * by calling librfisst.a (built for thumbv7em-none-eabihf) from C, and prints over semihosting the same
- * digest text as `host-sim digest` and the Rust firmware: per scan
+/* main.c: the C firmware (issues 32 and 28). Initialises every kind of the C interface and replays an
+ * excerpt through each, by calling librfisst.a (built for thumbv7em-none-eabihf) from C: the QEMU
+ * excerpts of firmware/qemu-m4 -- fifty-birth-death through RFISST_SSA_F32/F64, radar-leo through
+ * RFISST_RADAR_F32/F64, ssa-network through RFISST_NETWORK_F32/F64 -- and optical-geo through
+ * RFISST_OPTICAL_F32/F64. For each it prints over semihosting the same digest text as `host-sim digest`
+ * (and the Rust firmware) or, for the kinds host-sim does not replay, `rfisst-c-scenario --digest` on the
+ * host: per scan
  *
  *   scan <k> hypotheses <h> tracks <t> digest <16 hex>     or     scan <k> error <message> digest <16 hex>
  *
  * and `final scans <n> digest <16 hex>` (FNV-1a 64 over the per-scan digests, 8 little-endian bytes each).
- * Other lines start with `c-firmware:`. The trackers live in one static arena that the firmware gives to
- * rfisst_tracker_init; nothing is allocated. scripts/c-firmware-check.sh builds and checks it. */
+ * Other lines start with `c-firmware:`; each replay starts with `c-firmware: <name> scenario:` and ends
+ * with its measured stack (painting): rfisst_tracker_init, and the scans. The trackers live in one static
+ * arena that the firmware gives to rfisst_tracker_init; nothing is allocated. The f64 replays take the
+ * first RFISST_F64_SCANS scans of each excerpt (soft floating point is slow on QEMU).
+ * scripts/c-firmware-check.sh builds and checks it. */
 #include "replay.h"
 #include "semihosting.h"
 
@@ -82,10 +88,30 @@ static void fnv1a(uint64_t *hash, uint64_t value) {
     }
 }
 
-static int replay(const char *name, uint32_t kind, const RfisstConfig *config, const RfisstPriorHypothesis *prior,
-                  size_t prior_count, double prior_time, size_t dimension, const RfisstReplayScan *scans,
-                  size_t count) {
+/* One recorded scenario of replay.h. */
+typedef struct Scenario {
+    const RfisstConfig *config;
+    const RfisstPriorHypothesis *prior;
+    size_t prior_count;
+    double prior_time;
+    size_t dimension;
+    const RfisstReplayScan *scans;
+    size_t scan_count;
+} Scenario;
+
+/* A scenario of replay.h (its sizes are `extern const` objects: read at run time). */
+#define SCENARIO(P) {&P##_CONFIG, P##_PRIOR, P##_PRIOR_COUNT, P##_PRIOR_TIME, P##_DIMENSION, P##_SCANS, P##_SCAN_COUNT}
+
+#ifndef RFISST_F64_SCANS
+#define RFISST_F64_SCANS 200u
+#endif
+
+/* The largest figures over every replay. */
+static uint32_t max_init_stack, max_step_stack;
+
+static int replay(const char *name, uint32_t kind, const Scenario *s, size_t count) {
     size_t size = rfisst_tracker_size(kind), align = rfisst_tracker_align(kind);
+    if (count > s->scan_count) count = s->scan_count;
     put("c-firmware: ");
     put(name);
     put(" scenario: replaying ");
@@ -107,7 +133,7 @@ static int replay(const char *name, uint32_t kind, const RfisstConfig *config, c
     paint();
     RfisstTracker *tracker = 0;
     RfisstStatus status =
-        rfisst_tracker_init(arena, sizeof arena, kind, config, prior, prior_count, prior_time, &tracker);
+        rfisst_tracker_init(arena, sizeof arena, kind, s->config, s->prior, s->prior_count, s->prior_time, &tracker);
     uint32_t init_stack = stack_used();
     if (status != RFISST_OK) {
         put("c-firmware: error: ");
@@ -121,11 +147,11 @@ static int replay(const char *name, uint32_t kind, const RfisstConfig *config, c
     paint();
     uint64_t running = 0xCBF29CE484222325ull;
     for (size_t k = 0; k < count; k++) {
-        const RfisstReplayScan *scan = &scans[k];
+        const RfisstReplayScan *scan = &s->scans[k];
         RfisstStepReport report;
         uint64_t digest = 0;
         status = rfisst_tracker_step(tracker, scan->time, scan->sensor, 0, scan->measurements, scan->count,
-                                     dimension, &report);
+                                     s->dimension, &report);
         if (rfisst_tracker_digest(tracker, &digest) != RFISST_OK) return 1;
         fnv1a(&running, digest);
         put("scan ");
@@ -162,6 +188,8 @@ static int replay(const char *name, uint32_t kind, const RfisstConfig *config, c
     put_u64(step_stack);
     put(" bytes");
     end_line();
+    if (init_stack > max_init_stack) max_init_stack = init_stack;
+    if (step_stack > max_step_stack) max_step_stack = step_stack;
     return 0;
 }
 
@@ -174,11 +202,30 @@ int main(void) {
         put_u64(rfisst_tracker_size(kind));
     }
     end_line();
-    if (replay("planar", RFISST_SSA_F32, &PLANAR_CONFIG, PLANAR_PRIOR, PLANAR_PRIOR_COUNT, PLANAR_PRIOR_TIME,
-               PLANAR_DIMENSION, PLANAR_SCANS, PLANAR_SCAN_COUNT))
-        return 1;
-    if (replay("radar", RFISST_RADAR_F32, &RADAR_CONFIG, RADAR_PRIOR, RADAR_PRIOR_COUNT, RADAR_PRIOR_TIME,
-               RADAR_DIMENSION, RADAR_SCANS, RADAR_SCAN_COUNT))
-        return 1;
+    Scenario planar = SCENARIO(PLANAR), radar = SCENARIO(RADAR), optical = SCENARIO(OPTICAL),
+             network = SCENARIO(NETWORK);
+    const struct {
+        const char *name;
+        uint32_t kind;
+        const Scenario *scenario;
+        size_t scans;
+    } replays[] = {
+        {"planar-f32", RFISST_SSA_F32, &planar, (size_t)-1},
+        {"radar-f32", RFISST_RADAR_F32, &radar, (size_t)-1},
+        {"optical-f32", RFISST_OPTICAL_F32, &optical, (size_t)-1},
+        {"network-f32", RFISST_NETWORK_F32, &network, (size_t)-1},
+        {"planar-f64", RFISST_SSA_F64, &planar, RFISST_F64_SCANS},
+        {"radar-f64", RFISST_RADAR_F64, &radar, RFISST_F64_SCANS},
+        {"optical-f64", RFISST_OPTICAL_F64, &optical, RFISST_F64_SCANS},
+        {"network-f64", RFISST_NETWORK_F64, &network, RFISST_F64_SCANS},
+    };
+    for (size_t r = 0; r < sizeof replays / sizeof replays[0]; r++)
+        if (replay(replays[r].name, replays[r].kind, replays[r].scenario, replays[r].scans)) return 1;
+    put("c-firmware: largest stack over every kind: rfisst_tracker_init ");
+    put_u64(max_init_stack);
+    put(" bytes, the scans ");
+    put_u64(max_step_stack);
+    put(" bytes");
+    end_line();
     return 0;
 }

@@ -70,6 +70,15 @@
 // Range and range-rate.
 #define RFISST_SENSOR_RANGE_RANGE_RATE 5
 
+// A sensor's births come from the configuration's `measured_births.region`.
+#define RFISST_BIRTHS_FROM_MODEL 0
+
+// A sensor's births come from its own `birth_region`.
+#define RFISST_BIRTHS_REGION 1
+
+// A sensor's measurements start no track.
+#define RFISST_BIRTHS_OFF 2
+
 // A ground site.
 #define RFISST_PLATFORM_GROUND 0
 
@@ -258,6 +267,31 @@ typedef struct RfisstDetection {
   struct RfisstRegion field_of_view;
 } RfisstDetection;
 
+// The admissible region a measurement's birth density is cut from (tracker-core's `AdmissibleRegion`,
+// docs/maths.md §5.7): bound orbits between two radii, up to an inclination, or a shell of radii.
+typedef struct RfisstAdmissibleRegion {
+  // Gravitational parameter μ (km³/s²).
+  double mu;
+  // Smallest perigee radius (km).
+  double min_perigee_radius;
+  // Largest apogee radius (km).
+  double max_apogee_radius;
+  // Largest inclination (rad).
+  double max_inclination;
+  // `[min, max]` radius of the shell the missing range is drawn from (km).
+  double shell[2];
+  // Headings of the missing velocity direction.
+  uint32_t headings;
+  // Speeds.
+  uint32_t speeds;
+  // Climb angles.
+  uint32_t climbs;
+  // Ranges of an angles-only measurement.
+  uint32_t ranges;
+  // Standard deviation of each component's velocity (km/s).
+  double velocity_sigma;
+} RfisstAdmissibleRegion;
+
 // One sensor of a 3-D tracker.
 typedef struct RfisstSensor {
   // What it measures (`RFISST_SENSOR_*`): the radar tracker takes `RADAR` only, the optical tracker
@@ -276,6 +310,13 @@ typedef struct RfisstSensor {
   double sigma[4];
   // How it detects.
   struct RfisstDetection detection;
+  // Network tracker only: where the births of its measurements come from (`RFISST_BIRTHS_*`):
+  // `FROM_MODEL` (0, the configuration's `measured_births.region`), `REGION` (its own
+  // `birth_region`) or `OFF` (its measurements start no track). The radar and optical trackers take
+  // `FROM_MODEL` only.
+  uint32_t births;
+  // The sensor's own admissible region, read when `births` is `RFISST_BIRTHS_REGION`.
+  struct RfisstAdmissibleRegion birth_region;
 } RfisstSensor;
 
 // A Gaussian. The 3-D trackers use all of it; the planar tracker its first 4 mean entries and the
@@ -286,6 +327,27 @@ typedef struct RfisstGaussian {
   // Covariance, row-major 6×6.
   double covariance[36];
 } RfisstGaussian;
+
+// Births from the measurements (tracker-core's `MeasuredBirths`, docs/maths.md §5.8): the measurements
+// no track explains become birth cells of a pool. Births from tracklets are not in the C configuration.
+typedef struct RfisstMeasuredBirths {
+  // 1: on; 0: off (the other fields are not read).
+  uint32_t enabled;
+  // The admissible region of the sensors whose births come from the model.
+  struct RfisstAdmissibleRegion region;
+  // Expected births per scan λ_B.
+  double expected_births;
+  // The largest α of one measurement's cells together, in (0, 1).
+  double max_probability;
+  // The smallest r_U for a measurement to make cells, in [0, 1].
+  double min_unexplained;
+  // Seconds a cell lives after its measurement.
+  double lifetime;
+  // 1: the cells the full pool does not keep wait for a later measurement to link with; 0: dropped.
+  uint32_t link_waiting;
+} RfisstMeasuredBirths;
+// Off.
+#define RfisstMeasuredBirths_OFF (RfisstMeasuredBirths){ .enabled = 0, .region = RfisstAdmissibleRegion_ZERO, .expected_births = 0.0, .max_probability = 0.0, .min_unexplained = 0.0, .lifetime = 0.0, .link_waiting = 0 }
 
 // R-FISST's Metropolis sampler (tracker-core's `SamplerConfig`).
 typedef struct RfisstSampler {
@@ -344,6 +406,8 @@ typedef struct RfisstConfig {
   uint32_t birth_detection;
   // `RFISST_BIRTH_FIRST_ORDER` or `RFISST_BIRTH_INDEPENDENT`.
   uint32_t birth_events;
+  // Births from the measurements (off by default).
+  struct RfisstMeasuredBirths measured_births;
   // β: probability that an object in the field of view dies before a scan.
   double death_probability;
   // 1: gate at `gate` (Mahalanobis distance); 0: no gate.

@@ -153,8 +153,10 @@ pub(crate) unsafe fn init(
     with_kind!(kind, Tr => {
         /// The empty tracker of a placeholder configuration, built at compile time (in `.rodata`).
         static IMAGE: Tr = <Tr as handle::Build>::PLACEHOLDER;
+        /// Its placeholder configuration, where the run-time one is converted.
+        static UNCONFIGURED: <Tr as handle::Build>::Config = <Tr as handle::Build>::UNCONFIGURED;
         // SAFETY: as this function's.
-        unsafe { init_as::<Tr>(storage, kind, config, prior, prior_time, &IMAGE) }
+        unsafe { init_as::<Tr>(storage, kind, config, prior, prior_time, &IMAGE, &UNCONFIGURED) }
     })
 }
 
@@ -172,25 +174,27 @@ unsafe fn init_as<Tr: handle::Build>(
     prior: &[RfisstPriorHypothesis],
     prior_time: f64,
     image: &Tr,
+    unconfigured: &Tr::Config,
 ) -> Result<(), Failure> {
-    let config = match Tr::config(config) {
-        Ok(config) => config,
-        Err(failure) => {
-            // SAFETY: as this function's.
-            unsafe { fail(storage, kind, &failure) };
-            return Err(failure);
-        }
-    };
     let slot = storage.cast::<Slot<Tr>>();
-    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment), and `image` is a valid
-    // `Tr` outside the storage. Field by field, the tracker copied from its image memory to memory.
+    // SAFETY: `slot` is valid for writes of a `Slot<Tr>` (checked size and alignment), and `image` and
+    // `unconfigured` are valid values outside the storage. Field by field, the tracker and the placeholder
+    // configuration copied from their images memory to memory.
     unsafe {
         core::ptr::addr_of_mut!((*slot).header).write(Header::new(FAILED, kind));
-        core::ptr::copy_nonoverlapping(image, core::ptr::addr_of_mut!((*slot).tracker), 1);
+        core::ptr::copy_nonoverlapping(image, core::ptr::addr_of_mut!((*slot).body.tracker), 1);
+        core::ptr::copy_nonoverlapping(unconfigured, core::ptr::addr_of_mut!((*slot).body.config), 1);
+        core::ptr::addr_of_mut!((*slot).body.measurements).write(Default::default());
     }
     // SAFETY: just initialised.
     let slot = unsafe { &mut *slot };
-    match slot.tracker.configure(config, prior, prior_time) {
+    let body = &mut slot.body;
+    // The configuration is converted in the handle's scratch, then given to the tracker.
+    let outcome = match Tr::config(config, &mut body.config) {
+        Ok(()) => body.tracker.configure(&body.config, prior, prior_time),
+        Err(failure) => Err(failure),
+    };
+    match outcome {
         Ok(()) => {
             slot.header.magic = READY;
             Ok(())
@@ -223,7 +227,7 @@ unsafe fn open<'a>(tracker: *mut RfisstTracker) -> Result<(&'a mut Header, &'a m
     with_kind!(kind, Tr => {
         // SAFETY: a ready header of this kind is followed by its tracker (written by `init`).
         let slot = unsafe { &mut *tracker.cast::<Slot<Tr>>() };
-        Ok((&mut slot.header, &mut slot.tracker as &mut dyn Ops))
+        Ok((&mut slot.header, &mut slot.body as &mut dyn Ops))
     })
 }
 

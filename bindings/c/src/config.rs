@@ -116,6 +116,61 @@ pub struct RfisstSensor {
     pub sigma: [f64; 4],
     /// How it detects.
     pub detection: RfisstDetection,
+    /// Network tracker only: where the births of its measurements come from (`RFISST_BIRTHS_*`):
+    /// `FROM_MODEL` (0, the configuration's `measured_births.region`), `REGION` (its own
+    /// `birth_region`) or `OFF` (its measurements start no track). The radar and optical trackers take
+    /// `FROM_MODEL` only.
+    pub births: u32,
+    /// The sensor's own admissible region, read when `births` is `RFISST_BIRTHS_REGION`.
+    pub birth_region: RfisstAdmissibleRegion,
+}
+
+/// The admissible region a measurement's birth density is cut from (tracker-core's `AdmissibleRegion`,
+/// docs/maths.md §5.7): bound orbits between two radii, up to an inclination, or a shell of radii.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RfisstAdmissibleRegion {
+    /// Gravitational parameter μ (km³/s²).
+    pub mu: f64,
+    /// Smallest perigee radius (km).
+    pub min_perigee_radius: f64,
+    /// Largest apogee radius (km).
+    pub max_apogee_radius: f64,
+    /// Largest inclination (rad).
+    pub max_inclination: f64,
+    /// `[min, max]` radius of the shell the missing range is drawn from (km).
+    pub shell: [f64; 2],
+    /// Headings of the missing velocity direction.
+    pub headings: u32,
+    /// Speeds.
+    pub speeds: u32,
+    /// Climb angles.
+    pub climbs: u32,
+    /// Ranges of an angles-only measurement.
+    pub ranges: u32,
+    /// Standard deviation of each component's velocity (km/s).
+    pub velocity_sigma: f64,
+}
+
+/// Births from the measurements (tracker-core's `MeasuredBirths`, docs/maths.md §5.8): the measurements
+/// no track explains become birth cells of a pool. Births from tracklets are not in the C configuration.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RfisstMeasuredBirths {
+    /// 1: on; 0: off (the other fields are not read).
+    pub enabled: u32,
+    /// The admissible region of the sensors whose births come from the model.
+    pub region: RfisstAdmissibleRegion,
+    /// Expected births per scan λ_B.
+    pub expected_births: f64,
+    /// The largest α of one measurement's cells together, in (0, 1).
+    pub max_probability: f64,
+    /// The smallest r_U for a measurement to make cells, in [0, 1].
+    pub min_unexplained: f64,
+    /// Seconds a cell lives after its measurement.
+    pub lifetime: f64,
+    /// 1: the cells the full pool does not keep wait for a later measurement to link with; 0: dropped.
+    pub link_waiting: u32,
 }
 
 /// A Gaussian. The 3-D trackers use all of it; the planar tracker its first 4 mean entries and the
@@ -190,6 +245,8 @@ pub struct RfisstConfig {
     pub birth_detection: u32,
     /// `RFISST_BIRTH_FIRST_ORDER` or `RFISST_BIRTH_INDEPENDENT`.
     pub birth_events: u32,
+    /// Births from the measurements (off by default).
+    pub measured_births: RfisstMeasuredBirths,
     /// β: probability that an object in the field of view dies before a scan.
     pub death_probability: f64,
     /// 1: gate at `gate` (Mahalanobis distance); 0: no gate.
@@ -305,6 +362,12 @@ pub mod sensor {
     pub const RFISST_SENSOR_RANGE: u32 = 4;
     /// Range and range-rate.
     pub const RFISST_SENSOR_RANGE_RANGE_RATE: u32 = 5;
+    /// A sensor's births come from the configuration's `measured_births.region`.
+    pub const RFISST_BIRTHS_FROM_MODEL: u32 = 0;
+    /// A sensor's births come from its own `birth_region`.
+    pub const RFISST_BIRTHS_REGION: u32 = 1;
+    /// A sensor's measurements start no track.
+    pub const RFISST_BIRTHS_OFF: u32 = 2;
     /// A ground site.
     pub const RFISST_PLATFORM_GROUND: u32 = 0;
     /// A spacecraft: each scan gives the observer's inertial state.
@@ -392,6 +455,37 @@ impl RfisstSensor {
             clutter_rate: 0.0,
             field_of_view: RfisstRegion::EMPTY,
         },
+        births: sensor::RFISST_BIRTHS_FROM_MODEL,
+        birth_region: RfisstAdmissibleRegion::ZERO,
+    };
+}
+
+impl RfisstAdmissibleRegion {
+    /// All zeros (a placeholder to overwrite).
+    pub const ZERO: Self = Self {
+        mu: 0.0,
+        min_perigee_radius: 0.0,
+        max_apogee_radius: 0.0,
+        max_inclination: 0.0,
+        shell: [0.0; 2],
+        headings: 0,
+        speeds: 0,
+        climbs: 0,
+        ranges: 0,
+        velocity_sigma: 0.0,
+    };
+}
+
+impl RfisstMeasuredBirths {
+    /// Off.
+    pub const OFF: Self = Self {
+        enabled: 0,
+        region: RfisstAdmissibleRegion::ZERO,
+        expected_births: 0.0,
+        max_probability: 0.0,
+        min_unexplained: 0.0,
+        lifetime: 0.0,
+        link_waiting: 0,
     };
 }
 
@@ -425,6 +519,7 @@ impl RfisstConfig {
             birth_cell_count: 0,
             birth_detection: choice::RFISST_BIRTH_ALL_DETECTED,
             birth_events: choice::RFISST_BIRTH_FIRST_ORDER,
+            measured_births: RfisstMeasuredBirths::OFF,
             death_probability: 0.0,
             has_gate: 0,
             gate: 0.0,

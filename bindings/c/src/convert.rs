@@ -4,18 +4,19 @@
 //! `uint32_t` code is checked (an unknown one is [`Failure`], never undefined behaviour). No allocation.
 
 use crate::config::{
-    RfisstConfig, RfisstDetection, RfisstGaussian, RfisstRegion, RfisstSensor, RfisstTrack, choice, region, sensor,
+    RfisstAdmissibleRegion, RfisstConfig, RfisstDetection, RfisstGaussian, RfisstMeasuredBirths, RfisstRegion,
+    RfisstSensor, RfisstTrack, choice, region, sensor,
 };
 use crate::status::{Failure, RfisstStatus};
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::Selection;
-use tracker_core::model::ProcessNoise;
+use tracker_core::model::{AdmissibleRegion, ProcessNoise, SensorBirths};
+use tracker_core::pool::MeasuredBirths;
 use tracker_core::sampler::{Proposal, SamplerConfig};
 use tracker_core::sensor::{EarthRotation, GroundSite, Platform, SiteSensor};
 use tracker_core::{
-    BirthDetection, BirthEvents, BirthModel, ChildGeneration, Config, Gaussian, LookShape, MixedSensor,
-    NumericalFailure, PositionMeasurement, Real, Region, Sensor, SensorKind, StoreOverflow, Track, TwoBody, TwoBodyJ2,
-    ssa_caps,
+    BirthDetection, BirthEvents, ChildGeneration, Config, Gaussian, LookShape, MixedSensor, NumericalFailure,
+    PositionMeasurement, Real, Region, Sensor, SensorKind, StoreOverflow, Track, TwoBody, TwoBodyJ2, ssa_caps,
 };
 
 /// Birth cells of every default tracker.
@@ -131,6 +132,49 @@ fn used_sensors(c: &RfisstConfig, capacity: usize) -> Result<&[RfisstSensor], Fa
     c.sensors.get(..count).ok_or(Failure::invalid("sensor_count: above RFISST_MAX_SENSORS"))
 }
 
+/// A C admissible region as the core's (checked when the tracker is configured).
+pub fn admissible<T: Real>(r: &RfisstAdmissibleRegion) -> AdmissibleRegion<T> {
+    let of = T::of_f64;
+    AdmissibleRegion {
+        mu: of(r.mu),
+        min_perigee_radius: of(r.min_perigee_radius),
+        max_apogee_radius: of(r.max_apogee_radius),
+        max_inclination: of(r.max_inclination),
+        shell: r.shell.map(of),
+        headings: r.headings as usize,
+        speeds: r.speeds as usize,
+        climbs: r.climbs as usize,
+        ranges: r.ranges as usize,
+        velocity_sigma: of(r.velocity_sigma),
+    }
+}
+
+/// The measured births of a configuration (`None` when off).
+fn measured<T: Real>(m: &RfisstMeasuredBirths) -> Result<Option<MeasuredBirths<T>>, Failure> {
+    if !flag(m.enabled, "measured_births.enabled: must be 0 or 1")? {
+        return Ok(None);
+    }
+    Ok(Some(MeasuredBirths {
+        region: admissible(&m.region),
+        expected_births: T::of_f64(m.expected_births),
+        max_probability: T::of_f64(m.max_probability),
+        min_unexplained: T::of_f64(m.min_unexplained),
+        lifetime: m.lifetime,
+        tracklets: None,
+        link_waiting: flag(m.link_waiting, "measured_births.link_waiting: must be 0 or 1")?,
+    }))
+}
+
+/// Where a sensor's births come from.
+pub fn sensor_births<T: Real>(s: &RfisstSensor) -> Result<SensorBirths<T>, Failure> {
+    match s.births {
+        sensor::RFISST_BIRTHS_FROM_MODEL => Ok(SensorBirths::FromModel),
+        sensor::RFISST_BIRTHS_REGION => Ok(SensorBirths::Region(admissible(&s.birth_region))),
+        sensor::RFISST_BIRTHS_OFF => Ok(SensorBirths::Off),
+        _ => Err(Failure::invalid("sensors[].births: unknown RFISST_BIRTHS_* code")),
+    }
+}
+
 /// The site sensors of a single-kind network (radar or optical): every sensor must be of `kind`.
 pub fn single_kind_sensors<T: Real, const D: usize, const C: usize>(
     c: &RfisstConfig,
@@ -138,6 +182,12 @@ pub fn single_kind_sensors<T: Real, const D: usize, const C: usize>(
 ) -> Result<heapless::Vec<SiteSensor<T, D>, C>, Failure> {
     let mut sensors = heapless::Vec::new();
     for s in used_sensors(c, C)? {
+        if s.births != sensor::RFISST_BIRTHS_FROM_MODEL {
+            return Err(Failure::invalid(
+                "sensors[].births: the radar and optical trackers take RFISST_BIRTHS_FROM_MODEL only (the network \
+                 tracker takes any)",
+            ));
+        }
         if s.kind != kind {
             return Err(Failure::invalid(
                 "sensors[].kind: the radar tracker takes RFISST_SENSOR_RADAR sensors only, the optical tracker \
@@ -164,10 +214,20 @@ pub fn rotation<T: Real>(c: &RfisstConfig) -> EarthRotation<T> {
     EarthRotation::new(T::of_f64(c.earth_rotation_angle))
 }
 
-/// The planar configuration (`SsaConfig<T>`).
+/// The planar configuration (`SsaConfig<T>`), by value ([`planar_into`] fills one in place).
 pub fn planar<T: Real>(c: &RfisstConfig) -> Result<Config<T, TwoBody<T>, PositionMeasurement<T>, 4, B>, Failure> {
+    let mut config = crate::placeholder::planar();
+    planar_into(c, &mut config)?;
+    Ok(config)
+}
+
+/// Fills the planar configuration `out` from `c` in place (no configuration passes through the stack).
+pub fn planar_into<T: Real>(
+    c: &RfisstConfig,
+    out: &mut Config<T, TwoBody<T>, PositionMeasurement<T>, 4, B>,
+) -> Result<(), Failure> {
     let of = T::of_f64;
-    let motion = TwoBody {
+    out.motion = TwoBody {
         mu: of(c.mu),
         acceleration_noise: of(c.acceleration_noise),
         max_step: of(c.max_step),
@@ -175,7 +235,9 @@ pub fn planar<T: Real>(c: &RfisstConfig) -> Result<Config<T, TwoBody<T>, Positio
         min_radius: of(c.min_radius),
     };
     let noise = SMatrix::<T, 2, 2>::from_fn(|i, j| of(c.position_noise.get(i * 2 + j).copied().unwrap_or(f64::NAN)));
-    common(c, motion, PositionMeasurement { noise }, detection(&c.sensor)?)
+    out.measurement = PositionMeasurement { noise };
+    out.sensor = detection(&c.sensor)?;
+    common_into(c, out)
 }
 
 /// The 3-D motion model.
@@ -198,67 +260,64 @@ pub fn motion3d<T: Real>(c: &RfisstConfig) -> Result<TwoBodyJ2<T>, Failure> {
     })
 }
 
-/// A 3-D configuration around the measurement model `measurement`; the configuration's own sensor is the
-/// first sensor's detection model (each scan uses its own sensor's), as host-sim does.
-pub fn config3d<T: Real, G>(c: &RfisstConfig, measurement: G) -> Result<Config<T, TwoBodyJ2<T>, G, 6, B>, Failure> {
+/// Fills a 3-D configuration `out` from `c` in place, all but its measurement model (the caller's: a
+/// sensor network); the configuration's own sensor is the first sensor's detection model (each scan uses
+/// its own sensor's), as host-sim does.
+pub fn config3d_into<T: Real, G>(c: &RfisstConfig, out: &mut Config<T, TwoBodyJ2<T>, G, 6, B>) -> Result<(), Failure> {
     let first = used_sensors(c, usize::MAX)?.first().ok_or(Failure::invalid("sensor_count: 0"))?;
-    common(c, motion3d(c)?, measurement, detection(&first.detection)?)
+    out.motion = motion3d(c)?;
+    out.sensor = detection(&first.detection)?;
+    common_into(c, out)
 }
 
-/// What every configuration shares: births, deaths, gate, children, policies, seed.
-fn common<T: Real, M, G, const S: usize>(
+/// Fills what every configuration shares: births, deaths, gate, children, policies, seed. The birth cells
+/// are written into `out`'s own list, so that no list of them is built on the stack.
+fn common_into<T: Real, M, G, const S: usize>(
     c: &RfisstConfig,
-    motion: M,
-    measurement: G,
-    sensor: Sensor<T>,
-) -> Result<Config<T, M, G, S, B>, Failure> {
+    out: &mut Config<T, M, G, S, B>,
+) -> Result<(), Failure> {
     let count = c.birth_cell_count as usize;
     let used = c.birth_cells.get(..count).ok_or(Failure::invalid("birth_cell_count: above RFISST_MAX_BIRTH_CELLS"))?;
-    let mut cells = heapless::Vec::new();
+    out.birth.cells.clear();
     for cell in used {
-        cells.push(gaussian(cell)).map_err(|_| Failure::invalid("birth_cell_count: above RFISST_MAX_BIRTH_CELLS"))?;
+        out.birth
+            .cells
+            .push(gaussian(cell))
+            .map_err(|_| Failure::invalid("birth_cell_count: above RFISST_MAX_BIRTH_CELLS"))?;
     }
-    let birth = BirthModel {
-        probability: T::of_f64(c.birth_probability),
-        cells,
-        detection: match c.birth_detection {
-            choice::RFISST_BIRTH_ALL_DETECTED => BirthDetection::AllDetected,
-            choice::RFISST_BIRTH_ALLOW_UNDETECTED => BirthDetection::AllowUndetected,
-            _ => return Err(Failure::invalid("birth_detection: unknown RFISST_BIRTH_* code")),
-        },
-        events: match c.birth_events {
-            choice::RFISST_BIRTH_FIRST_ORDER => BirthEvents::FirstOrder,
-            choice::RFISST_BIRTH_INDEPENDENT => BirthEvents::Independent,
-            _ => return Err(Failure::invalid("birth_events: unknown RFISST_BIRTH_* code")),
-        },
-        measured: None,
+    out.birth.probability = T::of_f64(c.birth_probability);
+    out.birth.detection = match c.birth_detection {
+        choice::RFISST_BIRTH_ALL_DETECTED => BirthDetection::AllDetected,
+        choice::RFISST_BIRTH_ALLOW_UNDETECTED => BirthDetection::AllowUndetected,
+        _ => return Err(Failure::invalid("birth_detection: unknown RFISST_BIRTH_* code")),
     };
-    Ok(Config {
-        motion,
-        measurement,
-        sensor,
-        birth,
-        death_probability: T::of_f64(c.death_probability),
-        gate: flag(c.has_gate, "has_gate: must be 0 or 1")?.then(|| T::of_f64(c.gate)),
-        children: children(c)?,
-        selection: match c.selection {
-            choice::RFISST_SELECTION_TOP_WEIGHT => Selection::TopWeight,
-            choice::RFISST_SELECTION_SAMPLED_BY_WEIGHT => Selection::SampledByWeight,
-            _ => return Err(Failure::invalid("selection: unknown RFISST_SELECTION_* code")),
-        },
-        store_overflow: match c.store_overflow {
-            choice::RFISST_STORE_OVERFLOW_PRUNE_CHILDREN => StoreOverflow::PruneChildren,
-            choice::RFISST_STORE_OVERFLOW_ERROR => StoreOverflow::Error,
-            _ => return Err(Failure::invalid("store_overflow: unknown RFISST_STORE_OVERFLOW_* code")),
-        },
-        numerical_failure: match c.numerical_failure {
-            choice::RFISST_NUMERICAL_FAILURE_DROP_TRACK => NumericalFailure::DropTrack,
-            choice::RFISST_NUMERICAL_FAILURE_ERROR => NumericalFailure::Error,
-            _ => return Err(Failure::invalid("numerical_failure: unknown RFISST_NUMERICAL_FAILURE_* code")),
-        },
-        track_loss: track_loss(c.lost_after_unseen_scans)?,
-        seed: c.seed,
-    })
+    out.birth.events = match c.birth_events {
+        choice::RFISST_BIRTH_FIRST_ORDER => BirthEvents::FirstOrder,
+        choice::RFISST_BIRTH_INDEPENDENT => BirthEvents::Independent,
+        _ => return Err(Failure::invalid("birth_events: unknown RFISST_BIRTH_* code")),
+    };
+    out.birth.measured = measured(&c.measured_births)?;
+    out.death_probability = T::of_f64(c.death_probability);
+    out.gate = flag(c.has_gate, "has_gate: must be 0 or 1")?.then(|| T::of_f64(c.gate));
+    out.children = children(c)?;
+    out.selection = match c.selection {
+        choice::RFISST_SELECTION_TOP_WEIGHT => Selection::TopWeight,
+        choice::RFISST_SELECTION_SAMPLED_BY_WEIGHT => Selection::SampledByWeight,
+        _ => return Err(Failure::invalid("selection: unknown RFISST_SELECTION_* code")),
+    };
+    out.store_overflow = match c.store_overflow {
+        choice::RFISST_STORE_OVERFLOW_PRUNE_CHILDREN => StoreOverflow::PruneChildren,
+        choice::RFISST_STORE_OVERFLOW_ERROR => StoreOverflow::Error,
+        _ => return Err(Failure::invalid("store_overflow: unknown RFISST_STORE_OVERFLOW_* code")),
+    };
+    out.numerical_failure = match c.numerical_failure {
+        choice::RFISST_NUMERICAL_FAILURE_DROP_TRACK => NumericalFailure::DropTrack,
+        choice::RFISST_NUMERICAL_FAILURE_ERROR => NumericalFailure::Error,
+        _ => return Err(Failure::invalid("numerical_failure: unknown RFISST_NUMERICAL_FAILURE_* code")),
+    };
+    out.track_loss = track_loss(c.lost_after_unseen_scans)?;
+    out.seed = c.seed;
+    Ok(())
 }
 
 /// The lost-track rule of `lost_after_unseen_scans` (0: never).

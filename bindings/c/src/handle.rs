@@ -1,7 +1,8 @@
 //! The opaque handle: caller-provided storage holding a [`Header`] (a magic number, the kind, the last
-//! error's text) followed by one of the default trackers ([`Slot`]). [`Ops`] is what the C functions do
-//! with any tracker, implemented once for every `Tracker`; [`with_kind`] turns a kind code into the
-//! concrete tracker type. No allocation: a step converts its measurements on the stack.
+//! error's text) followed by one of the default trackers and its scratch ([`Slot`], [`Body`]). [`Ops`] is
+//! what the C functions do with any handle, over [`TrackerOps`], implemented once for every `Tracker`;
+//! [`Build`] builds one in place; [`with_kind`] turns a kind code into the concrete tracker type. No
+//! allocation: a step converts its measurements into the handle's scratch.
 
 use crate::config::{RfisstConfig, RfisstPriorHypothesis, RfisstPriorObject, RfisstStepReport, RfisstTrack, sensor};
 use crate::status::{Failure, RfisstStatus};
@@ -135,16 +136,29 @@ impl core::fmt::Write for Text<'_> {
     }
 }
 
-/// A handle's storage: the header, then the tracker.
+/// A handle's storage: the header, then the tracker and its scratch ([`Body`]).
 #[repr(C)]
-pub struct Slot<Tr> {
+pub struct Slot<Tr: Build> {
     /// Magic, kind, last error.
     pub header: Header,
-    /// The tracker.
-    pub tracker: Tr,
+    /// The tracker and its scratch.
+    pub body: Body<Tr>,
 }
 
-/// What the C functions do with a tracker, whatever its type.
+/// The tracker and the scratch the C functions use beside it, so that neither the configuration nor a
+/// scan's converted measurements are held on the stack (issue 28: at most 16 KiB of stack for every
+/// kind; the configuration of `NetworkTracker<f64>` alone is 5,656 bytes on a Cortex-M4, docs/c-api.md).
+#[repr(C)]
+pub struct Body<Tr: Build> {
+    /// The tracker.
+    pub tracker: Tr,
+    /// Where `rfisst_tracker_init` converts the configuration before the tracker takes it.
+    pub config: Tr::Config,
+    /// Where `rfisst_tracker_step` converts the scan's measurements.
+    pub measurements: Tr::Measurements,
+}
+
+/// What the C functions do with a handle's tracker, whatever its type.
 pub trait Ops {
     /// Components of one measurement.
     fn dimension(&self) -> usize;
@@ -174,6 +188,78 @@ pub trait Ops {
     fn scans(&self) -> u64;
 }
 
+impl<Tr: Build> Ops for Body<Tr> {
+    fn dimension(&self) -> usize {
+        self.tracker.dimension()
+    }
+    fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        self.tracker.reset(prior, time)
+    }
+    fn step(
+        &mut self,
+        time: f64,
+        sensor: usize,
+        observer: Option<[f64; 6]>,
+        measurements: &[f64],
+    ) -> Result<RfisstStepReport, Failure> {
+        self.tracker.step(&mut self.measurements, time, sensor, observer, measurements)
+    }
+    fn hypothesis_count(&self) -> usize {
+        self.tracker.hypothesis_count()
+    }
+    fn hypothesis(&self, index: usize) -> Option<(f64, usize)> {
+        self.tracker.hypothesis(index)
+    }
+    fn tracks(&self, index: usize, out: &mut [RfisstTrack]) -> Result<usize, Failure> {
+        self.tracker.tracks(index, out)
+    }
+    fn expected_cardinality(&self) -> f64 {
+        self.tracker.expected_cardinality()
+    }
+    fn digest(&self) -> u64 {
+        self.tracker.digest()
+    }
+    fn time(&self) -> f64 {
+        self.tracker.time()
+    }
+    fn scans(&self) -> u64 {
+        self.tracker.scans()
+    }
+}
+
+/// [`Ops`] on a tracker of any type, a step converting its measurements into the handle's buffer.
+pub trait TrackerOps {
+    /// The buffer of one scan's measurements in the tracker's scalar.
+    type Measurements;
+    /// Components of one measurement.
+    fn dimension(&self) -> usize;
+    /// As [`Ops::reset`].
+    fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure>;
+    /// As [`Ops::step`], the measurements converted into `zs`.
+    fn step(
+        &mut self,
+        zs: &mut Self::Measurements,
+        time: f64,
+        sensor: usize,
+        observer: Option<[f64; 6]>,
+        measurements: &[f64],
+    ) -> Result<RfisstStepReport, Failure>;
+    /// As [`Ops::hypothesis_count`].
+    fn hypothesis_count(&self) -> usize;
+    /// As [`Ops::hypothesis`].
+    fn hypothesis(&self, index: usize) -> Option<(f64, usize)>;
+    /// As [`Ops::tracks`].
+    fn tracks(&self, index: usize, out: &mut [RfisstTrack]) -> Result<usize, Failure>;
+    /// As [`Ops::expected_cardinality`].
+    fn expected_cardinality(&self) -> f64;
+    /// As [`Ops::digest`].
+    fn digest(&self) -> u64;
+    /// As [`Ops::time`].
+    fn time(&self) -> f64;
+    /// As [`Ops::scans`].
+    fn scans(&self) -> u64;
+}
+
 impl<
     T,
     M,
@@ -185,35 +271,38 @@ impl<
     const Z: usize,
     const K: usize,
     const B: usize,
-> Ops for Tracker<T, M, G, S, D, H, N, Z, K, B>
+> TrackerOps for Tracker<T, M, G, S, D, H, N, Z, K, B>
 where
     T: Real,
     M: MotionModel<T, S>,
     G: MeasurementModel<T, S, D> + Clone,
 {
+    type Measurements = heapless::Vec<SVector<T, D>, Z>;
+
     fn dimension(&self) -> usize {
         D
     }
 
     fn reset(&mut self, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        load(self, None, prior, time)
+        load(self, prior, time)
     }
 
     fn step(
         &mut self,
+        zs: &mut Self::Measurements,
         time: f64,
         sensor: usize,
         observer: Option<[f64; 6]>,
         measurements: &[f64],
     ) -> Result<RfisstStepReport, Failure> {
         let count = measurements.len() / D;
-        let mut zs: heapless::Vec<SVector<T, D>, Z> = heapless::Vec::new();
+        zs.clear();
         for row in measurements.chunks_exact(D) {
             let z = SVector::<T, D>::from_fn(|i, _| T::of_f64(row.get(i).copied().unwrap_or(f64::NAN)));
             zs.push(z).map_err(|_| Failure::Step(StepError::TooManyMeasurements { received: count, capacity: Z }))?;
         }
         let geometry = ScanGeometry { sensor, time, observer: observer.map(|o| o.map(T::of_f64)) };
-        let report = self.step_scan(&geometry, &zs)?;
+        let report = self.step_scan(&geometry, zs)?;
         Ok(RfisstStepReport {
             scan: report.scan,
             measurements: report.measurements,
@@ -265,10 +354,10 @@ where
     }
 }
 
-/// Loads the C prior at `time` into `tracker`, with `config` installed too when given
-/// ([`Tracker::reset_with_from`]) or the tracker's own ([`Tracker::reset_from`]); on failure the tracker is
-/// unchanged. The objects are converted one at a time as the tracker reads them ([`CPrior`]): no buffer
-/// of converted objects (11 KiB on the stack for 64 objects of a 6-state `f32` tracker).
+/// Loads the C prior at `time` into `tracker` with its own configuration ([`Tracker::reset_from`]); on
+/// failure the tracker is unchanged. The objects are converted one at a time as the tracker reads them
+/// ([`CPrior`]): no buffer of converted objects (11 KiB on the stack for 64 objects of a 6-state `f32`
+/// tracker).
 fn load<
     T,
     M,
@@ -282,7 +371,6 @@ fn load<
     const B: usize,
 >(
     tracker: &mut Tracker<T, M, G, S, D, H, N, Z, K, B>,
-    config: Option<Config<T, M, G, S, B>>,
     prior: &[RfisstPriorHypothesis],
     time: f64,
 ) -> Result<(), Failure>
@@ -292,11 +380,35 @@ where
     G: MeasurementModel<T, S, D> + Clone,
 {
     let source = CPrior::<H>::new(prior)?;
-    match config {
-        Some(config) => tracker.reset_with_from(config, &source, time),
-        None => tracker.reset_from(&source, time),
-    }
-    .map_err(Failure::Config)
+    tracker.reset_from(&source, time).map_err(Failure::Config)
+}
+
+/// As [`load`], with a copy of `config` installed too ([`Tracker::reset_with_from`]): the one copy of the
+/// configuration on the stack, in this frame only.
+fn load_with<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+>(
+    tracker: &mut Tracker<T, M, G, S, D, H, N, Z, K, B>,
+    config: &Config<T, M, G, S, B>,
+    prior: &[RfisstPriorHypothesis],
+    time: f64,
+) -> Result<(), Failure>
+where
+    T: Real,
+    M: MotionModel<T, S> + Clone,
+    G: MeasurementModel<T, S, D> + Clone,
+{
+    let source = CPrior::<H>::new(prior)?;
+    tracker.reset_with_from(config.clone(), &source, time).map_err(Failure::Config)
 }
 
 /// The C prior as tracker-core reads it ([`PriorSource`]): each hypothesis's weight and objects (pointers
@@ -379,73 +491,107 @@ fn c_slice<'a>(
     Ok(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// Builds one default tracker from a C configuration in the caller's storage, in three steps so that the
-/// large tracker never passes through the stack: [`Build::config`] converts and checks the C values
-/// (small), [`Build::PLACEHOLDER`] is the compile-time image copied into the storage
-/// ([`crate::placeholder`]), [`Build::configure`] installs the configuration and the prior in place.
-pub trait Build: Ops + Sized + 'static {
+/// Builds one default tracker from a C configuration in the caller's storage, in three steps so that
+/// neither the large tracker nor its configuration is copied through the stack: [`Build::UNCONFIGURED`]
+/// (a placeholder configuration, `const`) is filled in place from the C values by [`Build::config`],
+/// [`Build::PLACEHOLDER`] is the compile-time image copied into the storage ([`crate::placeholder`]), and
+/// [`Build::configure`] moves the configuration into it and loads the prior in place.
+pub trait Build: TrackerOps<Measurements: Default> + Sized + 'static {
     /// The core configuration.
-    type Config;
+    type Config: Sync;
     /// `Tracker::empty` of a placeholder configuration.
     const PLACEHOLDER: Self;
-    /// Converts the C configuration.
-    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure>;
-    /// `Tracker::reset_with(config, prior, time)`; on failure the tracker is unchanged.
-    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure>;
+    /// The placeholder configuration [`Build::config`] starts from (a network of no sensors).
+    const UNCONFIGURED: Self::Config;
+    /// Converts the C configuration into `out` (the handle's, starting as [`Build::UNCONFIGURED`]).
+    fn config(config: &RfisstConfig, out: &mut Self::Config) -> Result<(), Failure>;
+    /// `Tracker::reset_with(config.clone(), prior, time)`; on failure the tracker is unchanged.
+    fn configure(&mut self, config: &Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure>;
+}
+
+/// A sensor network's error as the core's configuration error.
+fn rejected(why: &'static str) -> Failure {
+    Failure::Config(tracker_core::ConfigError::Sensor(why))
 }
 
 impl<T: Real> Build for SsaTracker<T> {
     type Config = tracker_core::SsaConfig<T>;
     const PLACEHOLDER: Self = SsaTracker::empty(placeholder::planar());
-    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
-        convert::planar(config)
+    const UNCONFIGURED: Self::Config = placeholder::planar();
+    fn config(config: &RfisstConfig, out: &mut Self::Config) -> Result<(), Failure> {
+        convert::planar_into(config, out)
     }
-    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        load(self, Some(config), prior, time)
+    fn configure(&mut self, config: &Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load_with(self, config, prior, time)
     }
 }
 
 impl<T: Real> Build for RadarTracker<T> {
     type Config = tracker_core::RadarConfig<T>;
     const PLACEHOLDER: Self = RadarTracker::empty(placeholder::orbital(RadarNetwork::unconfigured()));
-    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
-        let sensors = convert::single_kind_sensors::<T, 3, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_RADAR)?;
-        let network = RadarNetwork::<T>::new(convert::rotation(config), &sensors)
-            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        convert::config3d(config, network)
+    const UNCONFIGURED: Self::Config = placeholder::orbital(RadarNetwork::unconfigured());
+    fn config(config: &RfisstConfig, out: &mut Self::Config) -> Result<(), Failure> {
+        convert::config3d_into(config, out)?;
+        radar_network(config, &mut out.measurement)
     }
-    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        load(self, Some(config), prior, time)
+    fn configure(&mut self, config: &Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load_with(self, config, prior, time)
     }
+}
+
+/// The radar network of `config` into `out` (its own frame: the sensors' list is not held while the
+/// tracker loads).
+#[inline(never)]
+fn radar_network<T: Real>(config: &RfisstConfig, out: &mut RadarNetwork<T>) -> Result<(), Failure> {
+    let sensors = convert::single_kind_sensors::<T, 3, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_RADAR)?;
+    *out = RadarNetwork::<T>::new(convert::rotation(config), &sensors).map_err(rejected)?;
+    Ok(())
 }
 
 impl<T: Real> Build for OpticalTracker<T> {
     type Config = tracker_core::OpticalConfig<T>;
     const PLACEHOLDER: Self = OpticalTracker::empty(placeholder::orbital(OpticalNetwork::unconfigured()));
-    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
-        let sensors =
-            convert::single_kind_sensors::<T, 2, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_OPTICAL)?;
-        let network = OpticalNetwork::<T>::new(convert::rotation(config), &sensors)
-            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        convert::config3d(config, network)
+    const UNCONFIGURED: Self::Config = placeholder::orbital(OpticalNetwork::unconfigured());
+    fn config(config: &RfisstConfig, out: &mut Self::Config) -> Result<(), Failure> {
+        convert::config3d_into(config, out)?;
+        optical_network(config, &mut out.measurement)
     }
-    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        load(self, Some(config), prior, time)
+    fn configure(&mut self, config: &Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load_with(self, config, prior, time)
     }
+}
+
+/// The optical network of `config` into `out`, as [`radar_network`].
+#[inline(never)]
+fn optical_network<T: Real>(config: &RfisstConfig, out: &mut OpticalNetwork<T>) -> Result<(), Failure> {
+    let sensors = convert::single_kind_sensors::<T, 2, { ssa_caps::SENSORS }>(config, sensor::RFISST_SENSOR_OPTICAL)?;
+    *out = OpticalNetwork::<T>::new(convert::rotation(config), &sensors).map_err(rejected)?;
+    Ok(())
 }
 
 impl<T: Real> Build for NetworkTracker<T> {
     type Config = tracker_core::NetworkConfig<T>;
     const PLACEHOLDER: Self = NetworkTracker::empty(placeholder::orbital(Network::unconfigured()));
-    fn config(config: &RfisstConfig) -> Result<Self::Config, Failure> {
-        let sensors = convert::mixed_sensors::<T, { ssa_caps::NETWORK_SENSORS }>(config)?;
-        let network = Network::<T>::new(convert::rotation(config), &sensors)
-            .map_err(|why| Failure::Config(tracker_core::ConfigError::Sensor(why)))?;
-        convert::config3d(config, network)
+    const UNCONFIGURED: Self::Config = placeholder::orbital(Network::unconfigured());
+    fn config(config: &RfisstConfig, out: &mut Self::Config) -> Result<(), Failure> {
+        convert::config3d_into(config, out)?;
+        mixed_network(config, &mut out.measurement)
     }
-    fn configure(&mut self, config: Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
-        load(self, Some(config), prior, time)
+    fn configure(&mut self, config: &Self::Config, prior: &[RfisstPriorHypothesis], time: f64) -> Result<(), Failure> {
+        load_with(self, config, prior, time)
     }
+}
+
+/// The network of mixed kinds of `config` into `out`, each sensor's births set in place, as
+/// [`radar_network`].
+#[inline(never)]
+fn mixed_network<T: Real>(config: &RfisstConfig, out: &mut Network<T>) -> Result<(), Failure> {
+    let sensors = convert::mixed_sensors::<T, { ssa_caps::NETWORK_SENSORS }>(config)?;
+    *out = Network::<T>::new(convert::rotation(config), &sensors).map_err(rejected)?;
+    for (index, sensor) in config.sensors.iter().take(sensors.len()).enumerate() {
+        out.set_births(index, convert::sensor_births(sensor)?).map_err(rejected)?;
+    }
+    Ok(())
 }
 
 /// Calls `$body` with `$Tr` the concrete tracker type of `$kind` (an [`RfisstKind`]).

@@ -6,8 +6,8 @@
 //! that the checked-in header is current). docs/c-api.md is the user's guide.
 //!
 //! - **Memory**: the caller provides the storage (`rfisst_tracker_size(kind)` bytes aligned to
-//!   `rfisst_tracker_align(kind)`, static or allocated); nothing is allocated, and a step converts its
-//!   measurements on the stack. The JSON path (`rfisst_tracker_init_json`, feature `std`) allocates while
+//!   `rfisst_tracker_align(kind)`, static or allocated); nothing is allocated, and the configuration and a
+//!   step's measurements are converted in the handle's scratch. The JSON path (`rfisst_tracker_init_json`, feature `std`) allocates while
 //!   it parses only.
 //! - **Errors**: every function returns an `RfisstStatus`; `rfisst_status_message` gives its static text,
 //!   `rfisst_tracker_last_error` the handle's detailed one. Null pointers, misaligned or short storage, bad
@@ -27,6 +27,8 @@ pub mod config;
 pub mod convert;
 pub mod handle;
 pub mod placeholder;
+#[cfg(feature = "std")]
+pub mod replay;
 #[cfg(feature = "std")]
 pub mod scenario;
 pub mod status;

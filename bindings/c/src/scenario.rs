@@ -5,12 +5,13 @@
 
 use crate::api::{RfisstTracker, init};
 use crate::config::{
-    RFISST_MAX_SENSORS, RfisstConfig, RfisstDetection, RfisstGaussian, RfisstPriorHypothesis, RfisstPriorObject,
-    RfisstRegion, RfisstSensor, choice, region, sensor,
+    RFISST_MAX_SENSORS, RfisstAdmissibleRegion, RfisstConfig, RfisstDetection, RfisstGaussian, RfisstMeasuredBirths,
+    RfisstPriorHypothesis, RfisstPriorObject, RfisstRegion, RfisstSensor, choice, region, sensor,
 };
 use crate::handle::{FAILED, Header, RfisstKind};
 use crate::status::RfisstStatus;
 use core::ffi::{CStr, c_char, c_void};
+use host_sim::pipeline::orbital::corrections::corrected_measurements;
 use host_sim::pipeline::orbital::tracker::{config3d, measurements_in_radians};
 use host_sim::pipeline::planar::setup;
 use host_sim::pipeline::tracker::TrackerKind;
@@ -18,9 +19,12 @@ use host_sim::scenario::v2::{Measurement3dSpec, Scenario3d};
 use host_sim::scenario::{Scenario, ScenarioError};
 use std::fmt::Write as _;
 use tracker_core::config::Selection;
-use tracker_core::model::{Placeable, ProcessNoise, RadarRangeRate, SensorNetwork};
+use tracker_core::model::{
+    AdmissibleRegion, LightTime, MIXED_DIMENSION, MixedNetwork, Placeable, ProcessNoise, RadarRangeRate, SensorBirths,
+    SensorKind, SensorNetwork,
+};
 use tracker_core::sampler::Proposal;
-use tracker_core::sensor::Platform;
+use tracker_core::sensor::{Platform, SiteSensor};
 use tracker_core::{
     BirthDetection, BirthEvents, ChildGeneration, Config, Gaussian, LookShape, NumericalFailure, OpticalRaDec,
     PriorObject, RadarRangeAzEl, Region, Sensor, StoreOverflow, TrackLoss, ssa_caps,
@@ -130,7 +134,9 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
         Measurement3dSpec::Optical => {
             matches!(kind, K::RfisstOpticalF32 | K::RfisstOpticalF64 | K::RfisstNetworkF32 | K::RfisstNetworkF64)
         }
-        Measurement3dSpec::RadarRangeRate => matches!(kind, K::RfisstNetworkF32 | K::RfisstNetworkF64),
+        Measurement3dSpec::RadarRangeRate | Measurement3dSpec::Network => {
+            matches!(kind, K::RfisstNetworkF32 | K::RfisstNetworkF64)
+        }
         other => {
             return Err(format!(
                 "measurement: a {} scenario is not read from JSON by the C interface yet; give the network tracker \
@@ -142,18 +148,18 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
     if !fits {
         return Err(format!("kind: a {} scenario does not fit a {} tracker", measurement.name(), kind.name()));
     }
-    if scenario.birth.measured.is_some() {
-        return Err("birth.measured: measured births are not in the C configuration".into());
-    }
     let (mut config, prior) = match measurement {
         Measurement3dSpec::Radar => orbital_config::<RadarRangeAzEl<f64>, 3>(scenario, sensor::RFISST_SENSOR_RADAR)?,
         Measurement3dSpec::Optical => orbital_config::<OpticalRaDec<f64>, 2>(scenario, sensor::RFISST_SENSOR_OPTICAL)?,
         Measurement3dSpec::RadarRangeRate => {
             orbital_config::<RadarRangeRate<f64>, 4>(scenario, sensor::RFISST_SENSOR_RADAR_RANGE_RATE)?
         }
+        Measurement3dSpec::Network => network_config(scenario)?,
         other => return Err(format!("measurement: a {} scenario is not read from JSON yet", other.name())),
     };
     config.earth_rotation_angle = scenario.earth_rotation_at_epoch();
+    // A network scenario's prior is the file's whole prior, as `host-sim digest` replays it.
+    let detected_in = detected_in.filter(|_| measurement != Measurement3dSpec::Network);
     let detected = match detected_in {
         Some(count) => Some(host_sim::pipeline::digest::orbital::detected(scenario, count).map_err(|e| e.0)?),
         None => None,
@@ -171,7 +177,11 @@ fn orbital(scenario: &Scenario3d, kind: RfisstKind, detected_in: Option<usize>) 
         .scans
         .iter()
         .map(|s| {
-            let rows = measurements_in_radians(measurement, &s.measurements);
+            let rows = if measurement == Measurement3dSpec::Network {
+                corrected_measurements(scenario, s)
+            } else {
+                measurements_in_radians(measurement, &s.measurements)
+            };
             let measurements =
                 rows.iter().flat_map(|z| (0..dimension).map(move |i| z.get(i).copied().unwrap_or(0.0))).collect();
             CScan { time: s.time, sensor: s.sensor, measurements }
@@ -194,7 +204,86 @@ fn orbital_config<X: Placeable<f64, D> + Send + Sync + 'static, const D: usize>(
     >(scenario, TrackerKind::Rfisst)
     .map_err(|e| e.to_string())?;
     let mut config = common(&core)?;
-    let motion = &core.motion;
+    motion(&mut config, &core.motion);
+    let sensors = core.measurement.sensors();
+    if sensors.len() > RFISST_MAX_SENSORS {
+        return Err(format!("sensors: {} sensors, the C configuration holds {RFISST_MAX_SENSORS}", sensors.len()));
+    }
+    config.sensor_count = sensors.len() as u32;
+    for (slot, s) in config.sensors.iter_mut().zip(sensors) {
+        *slot = site_sensor(kind, s);
+    }
+    Ok((config, prior))
+}
+
+/// The configuration of a network scenario (sensors of mixed kinds, each with its births), through
+/// host-sim's `config3d` as `host-sim digest` builds it. Light time is not in the C configuration.
+fn network_config(scenario: &Scenario3d) -> Result<(RfisstConfig, Prior6), String> {
+    let (core, prior) = config3d::<
+        MixedNetwork<f64, { host_sim::pipeline::orbital::C }>,
+        MIXED_DIMENSION,
+        { ssa_caps::BIRTH_CELLS },
+    >(scenario, TrackerKind::Rfisst)
+    .map_err(|e| e.to_string())?;
+    let mut config = common(&core)?;
+    motion(&mut config, &core.motion);
+    let network = &core.measurement;
+    let sensors = network.sensors();
+    if sensors.len() > RFISST_MAX_SENSORS {
+        return Err(format!("sensors: {} sensors, the C configuration holds {RFISST_MAX_SENSORS}", sensors.len()));
+    }
+    config.sensor_count = sensors.len() as u32;
+    for (index, (slot, s)) in config.sensors.iter_mut().zip(sensors).enumerate() {
+        if network.light_time(index) != LightTime::Off {
+            return Err(format!("sensors[{index}].light_time: light time is not in the C configuration"));
+        }
+        *slot = site_sensor(kind_code(s.kind), &s.sensor);
+        (slot.births, slot.birth_region) = match network.births(index) {
+            SensorBirths::FromModel => (sensor::RFISST_BIRTHS_FROM_MODEL, RfisstAdmissibleRegion::ZERO),
+            SensorBirths::Region(region) => (sensor::RFISST_BIRTHS_REGION, admissible(&region)),
+            SensorBirths::Off => (sensor::RFISST_BIRTHS_OFF, RfisstAdmissibleRegion::ZERO),
+        };
+    }
+    Ok((config, prior))
+}
+
+/// The C code of a sensor kind.
+fn kind_code(kind: SensorKind) -> u32 {
+    match kind {
+        SensorKind::Radar => sensor::RFISST_SENSOR_RADAR,
+        SensorKind::RadarRangeRate => sensor::RFISST_SENSOR_RADAR_RANGE_RATE,
+        SensorKind::OpticalRaDec => sensor::RFISST_SENSOR_OPTICAL,
+        SensorKind::AzEl => sensor::RFISST_SENSOR_AZ_EL,
+        SensorKind::Range => sensor::RFISST_SENSOR_RANGE,
+        SensorKind::RangeRangeRate => sensor::RFISST_SENSOR_RANGE_RANGE_RATE,
+    }
+}
+
+/// A core site sensor of kind `kind` as a C sensor (births from the model).
+fn site_sensor<const D: usize>(kind: u32, s: &SiteSensor<f64, D>) -> RfisstSensor {
+    let (platform, [latitude, longitude, height]) = match s.platform {
+        Platform::Ground(site) => (sensor::RFISST_PLATFORM_GROUND, [site.latitude, site.longitude, site.height]),
+        Platform::Spacecraft => (sensor::RFISST_PLATFORM_SPACECRAFT, [0.0; 3]),
+    };
+    let mut sigma = [0.0; 4];
+    for (to, from) in sigma.iter_mut().zip(s.sigma) {
+        *to = from;
+    }
+    RfisstSensor {
+        kind,
+        platform,
+        latitude,
+        longitude,
+        height,
+        sigma,
+        detection: detection(&s.detection),
+        births: sensor::RFISST_BIRTHS_FROM_MODEL,
+        birth_region: RfisstAdmissibleRegion::ZERO,
+    }
+}
+
+/// The 3-D motion model's values into `config`.
+fn motion(config: &mut RfisstConfig, motion: &tracker_core::TwoBodyJ2<f64>) {
     config.mu = motion.mu;
     config.j2 = motion.j2;
     config.radius = motion.radius;
@@ -207,23 +296,6 @@ fn orbital_config<X: Placeable<f64, D> + Send + Sync + 'static, const D: usize>(
     };
     config.max_step = motion.max_step;
     config.max_substeps = motion.max_substeps;
-    let sensors = core.measurement.sensors();
-    if sensors.len() > RFISST_MAX_SENSORS {
-        return Err(format!("sensors: {} sensors, the C configuration holds {RFISST_MAX_SENSORS}", sensors.len()));
-    }
-    config.sensor_count = sensors.len() as u32;
-    for (slot, s) in config.sensors.iter_mut().zip(sensors) {
-        let (platform, [latitude, longitude, height]) = match s.platform {
-            Platform::Ground(site) => (sensor::RFISST_PLATFORM_GROUND, [site.latitude, site.longitude, site.height]),
-            Platform::Spacecraft => (sensor::RFISST_PLATFORM_SPACECRAFT, [0.0; 3]),
-        };
-        let mut sigma = [0.0; 4];
-        for (to, from) in sigma.iter_mut().zip(s.sigma) {
-            *to = from;
-        }
-        *slot = RfisstSensor { kind, platform, latitude, longitude, height, sigma, detection: detection(&s.detection) };
-    }
-    Ok((config, prior))
 }
 
 /// What every configuration shares.
@@ -244,6 +316,20 @@ fn common<M, G, const S: usize>(
         BirthEvents::FirstOrder => choice::RFISST_BIRTH_FIRST_ORDER,
         BirthEvents::Independent => choice::RFISST_BIRTH_INDEPENDENT,
     };
+    if let Some(m) = &core.birth.measured {
+        if m.tracklets.is_some() {
+            return Err("birth.measured.tracklets: births from tracklets are not in the C configuration".into());
+        }
+        c.measured_births = RfisstMeasuredBirths {
+            enabled: 1,
+            region: admissible(&m.region),
+            expected_births: m.expected_births,
+            max_probability: m.max_probability,
+            min_unexplained: m.min_unexplained,
+            lifetime: m.lifetime,
+            link_waiting: u32::from(m.link_waiting),
+        };
+    }
     c.death_probability = core.death_probability;
     (c.has_gate, c.gate) = core.gate.map_or((0, 0.0), |g| (1, g));
     match core.children {
@@ -283,6 +369,22 @@ fn common<M, G, const S: usize>(
     };
     c.seed = core.seed;
     Ok(c)
+}
+
+fn admissible(r: &AdmissibleRegion<f64>) -> RfisstAdmissibleRegion {
+    let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+    RfisstAdmissibleRegion {
+        mu: r.mu,
+        min_perigee_radius: r.min_perigee_radius,
+        max_apogee_radius: r.max_apogee_radius,
+        max_inclination: r.max_inclination,
+        shell: r.shell,
+        headings: count(r.headings),
+        speeds: count(r.speeds),
+        climbs: count(r.climbs),
+        ranges: count(r.ranges),
+        velocity_sigma: r.velocity_sigma,
+    }
 }
 
 fn gaussian<const S: usize>(g: &Gaussian<f64, S>) -> RfisstGaussian {
@@ -450,25 +552,44 @@ fn c_detection(d: &RfisstDetection) -> String {
     format!("{{{}, {}, {}}}", c_double(d.detection_probability), c_double(d.clutter_rate), c_region(&d.field_of_view))
 }
 
+fn c_admissible(r: &RfisstAdmissibleRegion) -> String {
+    format!(
+        "{{{}, {}, {}, {}, {}, {}u, {}u, {}u, {}u, {}}}",
+        c_double(r.mu),
+        c_double(r.min_perigee_radius),
+        c_double(r.max_apogee_radius),
+        c_double(r.max_inclination),
+        c_doubles(&r.shell),
+        r.headings,
+        r.speeds,
+        r.climbs,
+        r.ranges,
+        c_double(r.velocity_sigma)
+    )
+}
+
 fn c_config(c: &RfisstConfig) -> String {
     let sensors: Vec<String> = c
         .sensors
         .iter()
         .map(|s| {
             format!(
-                "{{{}, {}, {}, {}, {}, {}, {}}}",
+                "{{{}, {}, {}, {}, {}, {}, {}, {}u, {}}}",
                 s.kind,
                 s.platform,
                 c_double(s.latitude),
                 c_double(s.longitude),
                 c_double(s.height),
                 c_doubles(&s.sigma),
-                c_detection(&s.detection)
+                c_detection(&s.detection),
+                s.births,
+                c_admissible(&s.birth_region)
             )
         })
         .collect();
     let cells: Vec<String> = c.birth_cells.iter().map(c_gaussian).collect();
     let s = &c.sampler;
+    let m = &c.measured_births;
     [
         format!("    .mu = {}, .acceleration_noise = {},", c_double(c.mu), c_double(c.acceleration_noise)),
         format!(
@@ -493,6 +614,16 @@ fn c_config(c: &RfisstConfig) -> String {
         format!(
             "    .birth_cell_count = {}u, .birth_detection = {}u, .birth_events = {}u,",
             c.birth_cell_count, c.birth_detection, c.birth_events
+        ),
+        format!(
+            "    .measured_births = {{{}u, {}, {}, {}, {}, {}, {}u}},",
+            m.enabled,
+            c_admissible(&m.region),
+            c_double(m.expected_births),
+            c_double(m.max_probability),
+            c_double(m.min_unexplained),
+            c_double(m.lifetime),
+            m.link_waiting
         ),
         format!(
             "    .death_probability = {}, .has_gate = {}u, .gate = {},",

@@ -517,6 +517,16 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
     /// # Errors
     /// An unknown sensor, or a region that is not valid ([`AdmissibleRegion::validate`]).
     pub fn with_births(mut self, sensor: usize, births: SensorBirths<T>) -> Result<Self, &'static str> {
+        self.set_births(sensor, births)?;
+        Ok(self)
+    }
+
+    /// [`MixedNetwork::with_births`] in place: a caller holding the network in a larger value (a
+    /// configuration) sets its sensors' births without moving the network through the stack.
+    ///
+    /// # Errors
+    /// As [`MixedNetwork::with_births`]; the network is then unchanged.
+    pub fn set_births(&mut self, sensor: usize, births: SensorBirths<T>) -> Result<(), &'static str> {
         if let SensorBirths::Region(region) = &births {
             region.validate()?;
         }
@@ -527,7 +537,7 @@ impl<T: Real, const C: usize> MixedNetwork<T, C> {
         if self.current == sensor {
             self.placed.births = births;
         }
-        Ok(self)
+        Ok(())
     }
 
     /// Where sensor `sensor`'s births come from ([`MixedNetwork::with_births`]).
