@@ -42,15 +42,16 @@ impl<G, const S: usize> Clone for Skip<'_, G, S> {
 impl<G, const S: usize> Copy for Skip<'_, G, S> {}
 
 /// The measurements of `measurements` in the gates of `tracks` predicted by `dt` with `motion`, as the core
-/// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`]). A track whose prediction or
-/// innovation fails gates nothing (the core drops it from the scan or fails the scan). With `skip`, also
-/// [`Gated::clear_for`] and [`Gated::predicted`].
+/// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`] with the configuration's `gate`). A
+/// track whose prediction fails, or in view whose innovation fails, gates nothing (the core drops it from
+/// the scan or fails the scan). With `skip`, also [`Gated::clear_for`] and [`Gated::predicted`].
 pub fn gate<M, G, const S: usize, const D: usize>(
     motion: &M,
     placed: &PlacedScan<f64, G>,
     tracks: &[Track<f64, S>],
     dt: f64,
     measurements: &[SVector<f64, D>],
+    gate: Option<f64>,
     skip: Option<Skip<'_, G, S>>,
 ) -> Gated<S>
 where
@@ -67,9 +68,7 @@ where
     }
     let mut predicted = skip.map(|_| Vec::with_capacity(tracks.len()));
     for track in tracks {
-        let innovation = ekf::predict(motion, &track.state, dt)
-            .and_then(|state| ekf::innovation(&placed.model, &state).map(|innovation| (state, innovation)));
-        let Ok((state, innovation)) = innovation else {
+        let Ok(state) = ekf::predict(motion, &track.state, dt) else {
             clear_for.fill(0.0);
             predicted = None;
             continue;
@@ -82,17 +81,32 @@ where
                 }
             }
         }
-        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted) {
+        // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
+        // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
+        // core instead of now, docs/maths.md §13.2).
+        let z_hat = placed.model.measure(&state.mean);
+        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &z_hat) {
             if let Some(predicted) = &mut predicted {
                 predicted.push(state);
             }
             continue;
         }
-        in_view = true;
         predicted = None;
+        let Ok(innovation) = ekf::innovation(&placed.model, &state) else {
+            clear_for.fill(0.0);
+            continue;
+        };
+        in_view = true;
+        let first = innovation.cholesky[(0, 0)];
         for (hit, z) in hit.iter_mut().zip(measurements) {
             if !*hit {
                 let residual = placed.model.residual(z, &innovation.predicted);
+                // d² = Σ wᵢ² ≥ w₀² with w₀ = ν₀ / L₀₀ (the first whitened component, the same bits as the
+                // core's): a cheaper test that refuses only what the full one refuses.
+                let w = residual[0] / first;
+                if gate.is_some_and(|gate| w * w > gate) {
+                    continue;
+                }
                 *hit = placed.weights.entry_of_residual(&innovation, &residual) > f64::NEG_INFINITY;
             }
         }

@@ -318,7 +318,8 @@ where
                     }
                     let caught = if time - c.rest.time() > limit { self.caught_up(core, c)? } else { None };
                     let rest = caught.as_ref().unwrap_or(&c.rest);
-                    let gated = route::gate(motion, placed, rest.tracks(), time - rest.time(), measurements, skip);
+                    let dt = time - rest.time();
+                    let gated = route::gate(motion, placed, rest.tracks(), dt, measurements, self.config.gate, skip);
                     Ok((gated, caught))
                 },
             )
