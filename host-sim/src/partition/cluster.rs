@@ -87,6 +87,25 @@ impl<const S: usize, const N: usize> Rest<S, N> {
             .collect()
     }
 
+    /// The state an empty scan at `time` leaves a cluster with no track in view in (docs/maths.md §13.2):
+    /// every track's Gaussian replaced by its prediction `predicted` (one per track, in store order); the
+    /// hypotheses, existences and unseen-scan counts are unchanged (out of view a track takes no
+    /// measurement, no missed-detection factor and no death). The scan count is not advanced: the next
+    /// scan's random streams are those of the scan after the cluster's last step.
+    pub(super) fn advance(&mut self, time: f64, predicted: Vec<tracker_core::Gaussian<f64, S>>) {
+        debug_assert_eq!(predicted.len(), self.tracks.len());
+        for (track, state) in self.tracks.iter_mut().zip(predicted) {
+            track.state = state;
+        }
+        self.time = time;
+    }
+
+    /// How many distinct labels it holds (as `labels().len()`, without allocating).
+    pub fn label_count(&self) -> usize {
+        let tracks = &self.tracks;
+        (0..tracks.len()).filter(|&i| tracks[..i].iter().all(|t| t.label != tracks[i].label)).count()
+    }
+
     /// Its distinct labels, in order.
     pub fn labels(&self) -> Vec<u32> {
         let mut labels: Vec<u32> = self.tracks.iter().map(|t| t.label.0).collect();
@@ -106,7 +125,7 @@ impl<const S: usize, const N: usize> Rest<S, N> {
 pub struct Cluster<const S: usize, const N: usize> {
     pub id: ClusterId,
     pub rest: Rest<S, N>,
-    /// Per sensor, the time until which the cluster is certainly beyond that sensor's range window and is
+    /// Per sensor, the time until which the cluster is certainly out of that sensor's field of view and is
     /// left unstepped by its scans (docs/maths.md §13.2); empty without a view skip.
     pub clear_until: Vec<f64>,
 }
@@ -126,35 +145,35 @@ impl<const S: usize, const N: usize> Cluster<S, N> {
 /// What a scan does with one cluster.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Fate {
-    /// Certainly out of the sensor's range window: not touched (§13.2).
+    /// Certainly out of the sensor's field of view: not touched (§13.2).
     Skipped,
-    /// No measurement and no track in view: stepped with an empty scan.
+    /// No measurement and no track in view: stepped with an empty scan (with a view skip: its tracks'
+    /// predictions stored, §13.2).
     Quiet,
     /// Stepped (alone or merged) with its measurements.
     Stepped,
 }
 
-/// How long a quiet cluster is left out of its sensor's scans (§13.2).
+/// How long a quiet cluster is left out of each sensor's scans (§13.2).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Clearance {
-    pub sensor: usize,
     pub time: f64,
     /// The motion model's longest prediction: a skipped cluster is caught up over at most this.
     pub cap: Option<f64>,
 }
 
 impl Clearance {
-    /// Sets the sensor's entry of `until` to the scan's time plus `clear_for` (at most the cap), or clears it.
-    pub fn record(&self, until: &mut Vec<f64>, clear_for: Option<f64>) {
-        let Some(clear_for) = clear_for else {
-            if let Some(entry) = until.get_mut(self.sensor) {
-                *entry = f64::NEG_INFINITY;
-            }
-            return;
-        };
-        if until.len() <= self.sensor {
-            until.resize(self.sensor + 1, f64::NEG_INFINITY);
+    /// Raises each sensor's entry of `until` to the scan's time plus its `clear_for` (seconds, at most the
+    /// cap; 0: nothing known), keeping a later entry: both bound the same track means, which a quiet
+    /// cluster keeps (a cluster whose tracks are updated starts with no clearance).
+    pub fn record(&self, until: &mut Vec<f64>, clear_for: &[f64]) {
+        if until.len() < clear_for.len() {
+            until.resize(clear_for.len(), f64::NEG_INFINITY);
         }
-        until[self.sensor] = self.time + clear_for.min(self.cap.unwrap_or(f64::INFINITY));
+        for (until, &clear) in until.iter_mut().zip(clear_for) {
+            if clear > 0.0 {
+                *until = until.max(self.time + clear.min(self.cap.unwrap_or(f64::INFINITY)));
+            }
+        }
     }
 }

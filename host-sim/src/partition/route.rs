@@ -1,104 +1,150 @@
 //! Routing a scan's measurements to clusters (docs/maths.md §13.2): each cluster's tracks predicted to the
 //! scan and gated with the core's own test (an entry δ > −∞: in the field of view and d² within the
 //! configuration's gate), clusters sharing a measurement grouped for a merge (union–find, in cluster
-//! order), and the measurements in no gate left to the birth cluster. With a speed bound, also how long the
-//! cluster stays beyond the sensor's range window, so that it can be left unstepped (§13.2).
+//! order), and the measurements in no gate left to the birth cluster. With a view skip, also how long the
+//! cluster stays out of each ground sensor's field of view ([`super::view`]) and, when no track is in view,
+//! its tracks predicted to the scan: all an empty scan would do to it (§13.2).
 
+use super::view::{self, Sight, SpeedBound};
 use nalgebra::SVector;
 use tracker_core::model::{MeasurementModel, MotionModel};
-use tracker_core::sensor::Region;
 use tracker_core::tracker::{PlacedScan, in_field_of_view};
-use tracker_core::{Track, ekf};
+use tracker_core::{Gaussian, Track, ekf};
 
 /// What one cluster's tracks see of a scan.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Gated {
+pub struct Gated<const S: usize> {
     /// The measurements in the gate of some track of the cluster, in scan order.
     pub measurements: Vec<usize>,
     /// Whether some track is predicted in the field of view.
     pub in_view: bool,
-    /// Seconds from the scan during which no track can come within the sensor's range window: every
-    /// track beyond it and closing in no faster than the speed bound (docs/maths.md §13.2). `None` when
-    /// not asked for, when some track is within the window's range or its range is not known.
-    pub clear_for: Option<f64>,
+    /// With a view skip, per sensor of the network (by index), seconds from the scan during which no track
+    /// can enter that sensor's field of view (docs/maths.md §13.2); 0 where none is known (a sensor that is
+    /// not a ground sensor, a track whose prediction failed). Empty without a view skip.
+    pub clear_for: Vec<f64>,
+    /// With a view skip, when no track is in view and every track's prediction succeeded: each track of the
+    /// store (in order) predicted to the scan, the state an empty scan leaves it in (§13.2).
+    pub predicted: Option<Vec<Gaussian<f64, S>>>,
 }
 
-/// A bound (km/s) on how fast an object of state `x` can close in on any sensor of the network.
-pub type SpeedBound<const S: usize> = fn(&SVector<f64, S>) -> f64;
+/// What a view skip needs at one scan: the ground sensors placed at its time and the speed bound.
+pub struct Skip<'a, G, const S: usize> {
+    pub sights: &'a [Sight<G>],
+    pub speed: SpeedBound<S>,
+}
+
+impl<G, const S: usize> Clone for Skip<'_, G, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<G, const S: usize> Copy for Skip<'_, G, S> {}
 
 /// The measurements of `measurements` in the gates of `tracks` predicted by `dt` with `motion`, as the core
-/// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`]). A track whose prediction or
-/// innovation fails gates nothing (the core drops it from the scan or fails the scan). With `speed`, also
-/// [`Gated::clear_for`].
+/// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`] with the configuration's `gate`). A
+/// track whose prediction fails, or in view whose innovation fails, gates nothing (the core drops it from
+/// the scan or fails the scan). With `skip`, also [`Gated::clear_for`] and [`Gated::predicted`].
 pub fn gate<M, G, const S: usize, const D: usize>(
     motion: &M,
     placed: &PlacedScan<f64, G>,
     tracks: &[Track<f64, S>],
     dt: f64,
     measurements: &[SVector<f64, D>],
-    speed: Option<SpeedBound<S>>,
-) -> Gated
+    gate: Option<f64>,
+    skip: Option<Skip<'_, G, S>>,
+) -> Gated<S>
 where
     M: MotionModel<f64, S>,
     G: MeasurementModel<f64, S, D>,
 {
     let mut hit = vec![false; measurements.len()];
     let mut in_view = false;
-    let max_range = match placed.detection.field_of_view {
-        Region::Look { range: Some([_, max]), .. } => Some(max),
-        _ => None,
-    };
-    // min over tracks of (range − max range) / speed bound; None once some track cannot be bounded.
-    let mut clear_for = speed.and(max_range).map(|_| f64::INFINITY);
+    // Per sensor: min over tracks of its clearance; 0 for sensors without a sight.
+    let mut clear_for = vec![];
+    if let Some(skip) = skip {
+        clear_for = vec![0.0; skip.sights.iter().map(|s| s.sensor + 1).max().unwrap_or(0)];
+        skip.sights.iter().for_each(|s| clear_for[s.sensor] = f64::INFINITY);
+    }
+    let mut predicted = skip.map(|_| Vec::with_capacity(tracks.len()));
     for track in tracks {
         let Ok(state) = ekf::predict(motion, &track.state, dt) else {
-            clear_for = None;
+            clear_for.fill(0.0);
+            predicted = None;
             continue;
         };
-        let Ok(innovation) = ekf::innovation(&placed.model, &state) else {
-            clear_for = None;
-            continue;
-        };
-        if let (Some(bound), Some(speed), Some(max)) = (clear_for, speed, max_range) {
-            let look = placed.model.look_of_state(&state.mean).or_else(|| placed.model.look(&innovation.predicted));
-            let closing = speed(&state.mean);
-            clear_for = match look.and_then(|l| l.range) {
-                Some(range) if range > max && closing.is_finite() && closing > 0.0 => {
-                    Some(bound.min((range - max) / closing))
+        if let Some(skip) = skip {
+            for sight in skip.sights {
+                let clear = &mut clear_for[sight.sensor];
+                if *clear > 0.0 {
+                    *clear = clear.min(view::clear_for(sight, &state.mean, skip.speed));
                 }
-                _ => None,
-            };
+            }
         }
-        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted) {
+        // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
+        // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
+        // core instead of now, docs/maths.md §13.2).
+        let z_hat = placed.model.measure(&state.mean);
+        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &z_hat) {
+            if let Some(predicted) = &mut predicted {
+                predicted.push(state);
+            }
             continue;
         }
+        predicted = None;
+        let Ok(innovation) = ekf::innovation(&placed.model, &state) else {
+            clear_for.fill(0.0);
+            continue;
+        };
         in_view = true;
+        let first = innovation.cholesky[(0, 0)];
         for (hit, z) in hit.iter_mut().zip(measurements) {
             if !*hit {
                 let residual = placed.model.residual(z, &innovation.predicted);
+                // d² = Σ wᵢ² ≥ w₀² with w₀ = ν₀ / L₀₀ (the first whitened component, the same bits as the
+                // core's): a cheaper test that refuses only what the full one refuses.
+                let w = residual[0] / first;
+                if gate.is_some_and(|gate| w * w > gate) {
+                    continue;
+                }
                 *hit = placed.weights.entry_of_residual(&innovation, &residual) > f64::NEG_INFINITY;
             }
         }
     }
+    clear_for.iter_mut().filter(|c| !c.is_finite()).for_each(|c| *c = 0.0);
     let measurements = hit.iter().enumerate().filter(|(_, h)| **h).map(|(i, _)| i).collect();
-    Gated { measurements, in_view, clear_for: clear_for.filter(|c| c.is_finite() && *c > 0.0) }
+    Gated { measurements, in_view, clear_for, predicted }
 }
 
 /// The scan's routing: the groups of clusters to merge and each group's measurements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Routing {
-    /// Groups of cluster indices (each in increasing order; groups in the order of their first index),
-    /// every cluster in exactly one group; a group of two or more is a merge.
-    pub groups: Vec<Vec<usize>>,
+    /// The cluster indices of every group, group after group (each group in increasing order; groups in
+    /// the order of their first index): every cluster in exactly one group; a group of two or more is a
+    /// merge. Flat, so that a scan of many clusters allocates no vector per cluster.
+    members: Vec<usize>,
+    /// Where each group ends in `members`.
+    ends: Vec<usize>,
     /// Per group, its measurements in scan order.
     pub measurements: Vec<Vec<usize>>,
     /// The measurements in no cluster's gate, in scan order: the birth cluster's.
     pub unclaimed: Vec<usize>,
 }
 
+impl Routing {
+    /// The groups, in order.
+    pub fn groups(&self) -> impl Iterator<Item = &[usize]> {
+        self.ends.iter().scan(0, |start, &end| {
+            let group = &self.members[*start..end];
+            *start = end;
+            Some(group)
+        })
+    }
+}
+
 /// Groups the clusters of `gated` (one entry per cluster, in cluster order) that share a measurement of a
 /// scan of `count` measurements.
-pub fn route(gated: &[Gated], count: usize) -> Routing {
+pub fn route<const S: usize>(gated: &[Gated<S>], count: usize) -> Routing {
     let mut parent: Vec<usize> = (0..gated.len()).collect();
     let mut first_owner: Vec<Option<usize>> = vec![None; count];
     for (cluster, g) in gated.iter().enumerate() {
@@ -109,28 +155,40 @@ pub fn route(gated: &[Gated], count: usize) -> Routing {
             }
         }
     }
+    // Each cluster's group (numbered in the order of their first cluster) and the groups' sizes.
     let mut group_of_root: Vec<Option<usize>> = vec![None; gated.len()];
-    let mut groups: Vec<Vec<usize>> = vec![];
+    let (mut group_of, mut sizes) = (Vec::with_capacity(gated.len()), vec![]);
     for cluster in 0..gated.len() {
         let root = find(&mut parent, cluster);
         let group = *group_of_root[root].get_or_insert_with(|| {
-            groups.push(vec![]);
-            groups.len() - 1
+            sizes.push(0);
+            sizes.len() - 1
         });
-        groups[group].push(cluster);
+        sizes[group] += 1;
+        group_of.push(group);
     }
-    let mut measurements = vec![vec![]; groups.len()];
+    let ends: Vec<usize> = sizes
+        .iter()
+        .scan(0, |end, size| {
+            *end += size;
+            Some(*end)
+        })
+        .collect();
+    let mut next: Vec<usize> = ends.iter().zip(&sizes).map(|(end, size)| end - size).collect();
+    let mut members = vec![0; gated.len()];
+    for (cluster, &group) in group_of.iter().enumerate() {
+        members[next[group]] = cluster;
+        next[group] += 1;
+    }
+    let mut measurements = vec![vec![]; ends.len()];
     let mut unclaimed = vec![];
     for (m, owner) in first_owner.iter().enumerate() {
         match owner {
-            Some(cluster) => {
-                let root = find(&mut parent, *cluster);
-                measurements[group_of_root[root].expect("every root has a group")].push(m);
-            }
+            Some(cluster) => measurements[group_of[*cluster]].push(m),
             None => unclaimed.push(m),
         }
     }
-    Routing { groups, measurements, unclaimed }
+    Routing { members, ends, measurements, unclaimed }
 }
 
 fn find(parent: &mut [usize], mut i: usize) -> usize {
@@ -152,15 +210,15 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
 mod tests {
     use super::*;
 
-    fn gated(measurements: &[usize]) -> Gated {
-        Gated { measurements: measurements.to_vec(), in_view: true, clear_for: None }
+    fn gated(measurements: &[usize]) -> Gated<4> {
+        Gated { measurements: measurements.to_vec(), in_view: true, clear_for: vec![], predicted: None }
     }
 
     #[test]
     fn clusters_sharing_a_measurement_are_one_group_and_the_rest_go_to_births() {
         // Clusters 0 and 2 share measurement 1; 2 and 3 share 4 (a chain); cluster 1 is alone.
         let routing = route(&[gated(&[0, 1]), gated(&[2]), gated(&[1, 4]), gated(&[4, 5])], 7);
-        assert_eq!(routing.groups, vec![vec![0, 2, 3], vec![1]]);
+        assert_eq!(routing.groups().collect::<Vec<_>>(), vec![&[0, 2, 3][..], &[1]]);
         assert_eq!(routing.measurements, vec![vec![0, 1, 4, 5], vec![2]]);
         assert_eq!(routing.unclaimed, vec![3, 6]);
     }

@@ -31,16 +31,21 @@ const MIN_RADIUS_KM: f64 = tracker_core::model::EARTH_MIN_RADIUS;
 /// axis (0.465 km/s at the equator at sea level).
 const SITE_SPEED_KM_S: f64 = 0.52;
 
-/// A bound (km/s) on how fast the object of the two-body + J2 state `x` (km, km/s) closes in on a ground
-/// site (docs/maths.md §13.2): its speed anywhere outside [`MIN_RADIUS_KM`] by conservation of energy,
-/// v_max² = v² + 2μ (1/r_min − 1/r), times 1.02 for J2 (its potential changes by less than 0.2 km²/s²
-/// outside r_min, under 2 % of v_max² for any orbit) and integration error, plus the site's own speed.
-pub fn ground_closing_speed(x: &SVector<f64, 6>) -> f64 {
+/// A bound (rad/s) on the Earth's rotation rate (7.2921·10⁻⁵).
+const EARTH_RATE_RAD_S: f64 = 7.3e-5;
+
+/// A bound (km/s) on how fast the object of the two-body + J2 state `x` (km, km/s) closes in on any point
+/// fixed to the rotating Earth within `reach` km of a ground site (docs/maths.md §13.2): its speed anywhere
+/// outside [`MIN_RADIUS_KM`] by conservation of energy, v_max² = v² + 2μ (1/r_min − 1/r), times 1.02 for J2
+/// (its potential changes by less than 0.2 km²/s² outside r_min, under 2 % of v_max² for any orbit) and
+/// integration error, plus the point's own speed: at most 7,000 + `reach` km from the Earth's axis, it
+/// moves at most at the site's speed plus ω⊕ · `reach`.
+pub fn ground_closing_speed(x: &SVector<f64, 6>, reach: f64) -> f64 {
     let r = x.fixed_rows::<3>(0).norm();
     let v2 = x.fixed_rows::<3>(3).norm_squared();
     let mu = tracker_core::model::EARTH_MU;
     let v2_max = v2 + 2.0 * mu * (1.0 / MIN_RADIUS_KM - 1.0 / r).max(0.0);
-    1.02 * v2_max.sqrt() + SITE_SPEED_KM_S
+    1.02 * v2_max.sqrt() + SITE_SPEED_KM_S + EARTH_RATE_RAD_S * reach.max(0.0)
 }
 
 /// The partitioned tracker of a network `G` with clusters of [`CLUSTER`]'s capacities.

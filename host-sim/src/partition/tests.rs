@@ -109,7 +109,7 @@ fn apart_scans() -> Vec<(f64, Vec<SVector<f64, 2>>)> {
 
 #[test]
 fn objects_that_never_interact_have_the_single_trackers_posteriors() {
-    on_large_stack(|| assert_eq!(apart(config(), apart_scans()), 0, "everything is in view"));
+    on_large_stack(|| assert_eq!(apart(config(), apart_scans(), false), (0, 0), "everything is in view"));
 }
 
 /// As above with the object at 200 out of the field of view (x < 150): its cluster has no measurement and
@@ -122,19 +122,39 @@ fn a_cluster_out_of_view_is_stepped_in_place_and_stays_exact() {
         .into_iter()
         .map(|(t, zs)| (t, zs.into_iter().filter(|z| z[0] < 150.0 && z[1].abs() < 50.0).collect()))
         .collect();
-    on_large_stack(move || assert_eq!(apart(narrow, scans), 3, "one quiet cluster at each of 3 scans"));
+    on_large_stack(move || assert_eq!(apart(narrow, scans, false), (3, 0), "one quiet cluster at each of 3 scans"));
 }
 
-/// Runs `scans` in both trackers, checking each object's posterior after every scan; returns how many
-/// clusters were stepped in place (quiet) over the run.
-fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) -> usize {
+/// As above with a view skip: the quiet cluster is not stepped in a core but given its tracks' predictions
+/// (docs/maths.md §13.2), and stays exact (the planar field of view gives no clearance, so nothing is
+/// skipped).
+#[test]
+fn a_quiet_cluster_given_its_predictions_stays_exact() {
+    let mut narrow = config();
+    narrow.sensor.field_of_view = Region::Rectangle { min: [-50.0, -50.0], max: [150.0, 50.0] };
+    let scans = apart_scans()
+        .into_iter()
+        .map(|(t, zs)| (t, zs.into_iter().filter(|z| z[0] < 150.0 && z[1].abs() < 50.0).collect()))
+        .collect();
+    on_large_stack(move || {
+        assert_eq!(apart(narrow, scans, true), (3, 3), "one quiet cluster at each of 3 scans, predicted")
+    });
+}
+
+/// Runs `scans` in both trackers (the partitioned one with a view skip when `skip`), checking each object's
+/// posterior after every scan; returns how many clusters were quiet over the run, and how many of them were
+/// given their tracks' predictions instead of a step in a core.
+fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>, skip: bool) -> (usize, usize) {
     {
-        let mut quiet = 0;
+        let (mut quiet, mut predicted) = (0, 0);
         let xs = [0.0, 100.0, 200.0];
         let objects = objects(&xs);
         let mut single = Box::new(Single::empty(config.clone()));
         single.reset(&[PriorHypothesis { weight: 1.0, objects: &objects }], 0.0).expect("prior");
         let mut partitioned = Partitioned::new(config, &objects, 0.0, 0.0).expect("tracker");
+        if skip {
+            partitioned = partitioned.with_view_skip(|_, _| 1.0);
+        }
         for (time, zs) in scans {
             let step = single.step(time, &zs).expect("single");
             assert!(
@@ -144,6 +164,7 @@ fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) 
             let report = partitioned.step(&scan(time), &zs).expect("partitioned");
             assert_eq!((report.clusters, report.merged, report.split), (3, 0, 0));
             quiet += report.quiet;
+            predicted += report.predicted;
             let mut expected = BTreeMap::new();
             marginal::add(&single, &mut expected);
             assert_equal(&posteriors(&partitioned), &expected);
@@ -151,7 +172,7 @@ fn apart(config: LinearConfig<f64, 1>, scans: Vec<(f64, Vec<SVector<f64, 2>>)>) 
         // The check can fail: the hypotheses did branch, and every object moved.
         assert!(partitioned.clusters()[0].rest.hypothesis_count() > 1);
         assert!(partitioned.clusters().iter().all(|c| c.rest.time() == 3.0));
-        quiet
+        (quiet, predicted)
     }
 }
 

@@ -14,8 +14,9 @@ use super::cluster::{Clearance, Cluster, Fate, Rest};
 use super::cores::{self, Cores};
 use super::error::{ClusterId, PartitionError};
 use super::hypotheses::{self, Hypothesis};
-use super::route::{self, Gated, SpeedBound};
+use super::route::{self, Gated, Skip};
 use super::split;
+use super::view::{self, SpeedBound};
 use nalgebra::SVector;
 use rayon::prelude::*;
 use tracker_core::model::{MeasurementModel, MotionModel};
@@ -56,9 +57,12 @@ pub struct PartitionReport {
     pub born_clusters: usize,
     /// Measurements routed to the birth cluster.
     pub unclaimed: usize,
-    /// Clusters stepped last with an empty scan: no measurement and no track in view (§13.2).
+    /// Clusters with no measurement and no track in view, stepped last with an empty scan, or with a view
+    /// skip given their tracks' predictions (§13.2).
     pub quiet: usize,
-    /// Clusters not stepped at all: certainly beyond the sensor's range window (§13.2, view skip).
+    /// Quiet clusters given their tracks' predictions instead of a step in a core (view skip, §13.2).
+    pub predicted: usize,
+    /// Clusters not stepped at all: certainly out of the sensor's field of view (§13.2, view skip).
     pub skipped: usize,
     /// Clusters stepped with at least one measurement.
     pub clusters_with_measurements: usize,
@@ -162,9 +166,10 @@ where
         Ok(tracker)
     }
 
-    /// The tracker that leaves a cluster unstepped while all its tracks are certainly beyond the scanning
-    /// sensor's range window, `speed` bounding how fast each track's object closes in on a ground sensor
-    /// (docs/maths.md §13.2): the cost of a scan then follows the objects near the sensor, not the
+    /// The tracker that leaves a cluster unstepped while all its tracks are certainly out of the scanning
+    /// sensor's field of view, `speed` bounding how fast each track's object closes in on a ground sensor
+    /// (docs/maths.md §13.2), and that gives a cluster with no track in view its tracks' predictions instead
+    /// of an empty scan in a core: the cost of a scan then follows the objects near the sensor, not the
     /// catalogue. Not bit-identical to stepping every cluster at every scan: a skipped cluster is predicted
     /// over the longer interval when it is next due. Scans from a spacecraft observer skip nothing.
     pub fn with_view_skip(mut self, speed: SpeedBound<S>) -> Self {
@@ -238,10 +243,12 @@ where
         let placed =
             place_scan(&self.config, geometry, self.time, measurements, usize::MAX).map_err(PartitionError::Scan)?;
         let quiet_allowed = self.quiet_steps_cannot_fail();
-        let skip = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
+        let speed = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
+        let sights = speed.map(|_| view::sights(&self.config, geometry.time)).unwrap_or_default();
+        let skip = speed.map(|speed| Skip { sights: &sights, speed });
         let due: Vec<bool> =
             self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
-        let (gated, mut caught) = self.gate_all(&placed, geometry.time, &due, measurements, skip)?;
+        let (mut gated, mut caught) = self.gate_all(&placed, geometry.time, &due, measurements, skip)?;
         let routing = route::route(&gated, measurements.len());
         let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
         // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped at the
@@ -249,7 +256,7 @@ where
         // and its measurements.
         let mut fate = vec![Fate::Stepped; self.clusters.len()];
         let mut work: Vec<Work<S, N, D>> = vec![];
-        for (group, rows) in routing.groups.iter().zip(&routing.measurements) {
+        for (group, rows) in routing.groups().zip(&routing.measurements) {
             let id = self.clusters[group[0]].id;
             check_capacity(id, rows.len(), Z)?;
             if quiet_allowed && group.len() == 1 && rows.is_empty() && !gated[group[0]].in_view {
@@ -265,8 +272,8 @@ where
         let (stepped, counters) = self.rebuild(geometry.time, stepped, &birth, &mut report)?;
         let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
         // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
-        let clear = Clearance { sensor: geometry.sensor, time: geometry.time, cap: self.config.motion.max_time_step() };
-        self.step_quiet(geometry, &fate, &mut caught, &gated, clear)?;
+        let clear = Clearance { time: geometry.time, cap: self.config.motion.max_time_step() };
+        report.predicted = self.step_quiet(geometry, &fate, &mut caught, &mut gated, clear)?;
         report.quiet = fate.iter().filter(|f| **f == Fate::Quiet).count();
         report.skipped = fate.iter().filter(|f| **f == Fate::Skipped).count();
         let mut clusters: Vec<_> = std::mem::take(&mut self.clusters)
@@ -279,7 +286,7 @@ where
         clusters.retain(|c| !c.rest.tracks().is_empty());
         clusters.sort_by_key(|c| c.id);
         report.clusters = clusters.len();
-        report.largest_cluster = clusters.iter().map(|c| c.rest.labels().len()).max().unwrap_or(0);
+        report.largest_cluster = clusters.iter().map(|c| c.rest.label_count()).max().unwrap_or(0);
         report.hypotheses = clusters.iter().map(|c| c.rest.hypothesis_count()).sum();
         self.clusters = clusters;
         self.birth = birth;
@@ -298,11 +305,11 @@ where
         time: f64,
         due: &[bool],
         measurements: &[SVector<f64, D>],
-        skip: Option<SpeedBound<S>>,
-    ) -> Result<(Vec<Gated>, Vec<Option<Rest<S, N>>>), PartitionError> {
+        skip: Option<Skip<'_, G, S>>,
+    ) -> Result<(Vec<Gated<S>>, Vec<Option<Rest<S, N>>>), PartitionError> {
         let limit = self.config.motion.max_time_step().unwrap_or(f64::INFINITY);
         let motion = &self.config.motion;
-        let each: Vec<Result<(Gated, Option<Rest<S, N>>), PartitionError>> = (self.clusters.par_iter().zip(due))
+        let each: Vec<Result<(Gated<S>, Option<Rest<S, N>>), PartitionError>> = (self.clusters.par_iter().zip(due))
             .map_init(
                 || self.cores.lease(),
                 |core, (c, &due)| {
@@ -311,12 +318,13 @@ where
                     }
                     let caught = if time - c.rest.time() > limit { self.caught_up(core, c)? } else { None };
                     let rest = caught.as_ref().unwrap_or(&c.rest);
-                    let gated = route::gate(motion, placed, rest.tracks(), time - rest.time(), measurements, skip);
+                    let dt = time - rest.time();
+                    let gated = route::gate(motion, placed, rest.tracks(), dt, measurements, self.config.gate, skip);
                     Ok((gated, caught))
                 },
             )
             .collect();
-        let each: Vec<(Gated, Option<Rest<S, N>>)> = each.into_iter().collect::<Result<_, _>>()?;
+        let each: Vec<(Gated<S>, Option<Rest<S, N>>)> = each.into_iter().collect::<Result<_, _>>()?;
         Ok(each.into_iter().unzip())
     }
 
@@ -400,40 +408,48 @@ where
         Ok((stepped, birth))
     }
 
-    /// Steps the quiet clusters (from their caught-up states where there are) in leased cores, and gives
-    /// each the time until which this scan's sensor cannot see it.
+    /// Steps the quiet clusters (from their caught-up states where there are): with a view skip, gives each
+    /// its tracks' predictions where they all succeeded ([`Rest::advance`]), else steps it in a leased core
+    /// with an empty scan; and records the times until which each sensor cannot see it. Returns how many were
+    /// given their predictions.
     fn step_quiet(
         &mut self,
         geometry: &ScanGeometry<f64>,
         fate: &[Fate],
         caught: &mut [Option<Rest<S, N>>],
-        gated: &[Gated],
+        gated: &mut [Gated<S>],
         clear: Clearance,
-    ) -> Result<(), PartitionError> {
+    ) -> Result<usize, PartitionError> {
         let cores = &self.cores;
-        let results: Vec<Result<(), PartitionError>> = self
+        let results: Vec<Result<bool, PartitionError>> = self
             .clusters
             .par_iter_mut()
             .zip(caught)
             .zip(fate.par_iter().zip(gated))
             .filter(|(_, (f, _))| **f == Fate::Quiet)
             .map_init(
-                || cores.lease(),
+                || None,
                 |core, ((c, caught), (_, gated))| {
                     if let Some(rest) = caught.take() {
                         c.rest = rest;
                     }
-                    clear.record(&mut c.clear_until, gated.clear_for);
+                    clear.record(&mut c.clear_until, &gated.clear_for);
+                    if let Some(predicted) = gated.predicted.take() {
+                        c.rest.advance(clear.time, predicted);
+                        return Ok(true);
+                    }
+                    // A core is leased only by a task that steps one.
+                    let core = core.get_or_insert_with(|| cores.lease());
                     cores::load(core, c.id, &c.rest)?;
                     core.step_scan(geometry, &[]).map_err(|error| PartitionError::Cluster { cluster: c.id, error })?;
                     c.rest = Rest::of(c.id, &**core)?;
-                    Ok(())
+                    Ok(false)
                 },
             )
             .collect();
         // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
         // stepped before it would have moved on (docs/maths.md §13.6).
-        results.into_iter().find(Result::is_err).unwrap_or(Ok(()))
+        results.into_iter().try_fold(0, |n, r| Ok(n + usize::from(r?)))
     }
 
     /// Whether an empty scan of a cluster with no track in view cannot fail: a prediction failure drops the

@@ -130,3 +130,60 @@ fn the_view_skip_leaves_most_clusters_out_of_a_scan_and_tracks_as_stepping_every
     assert!((a - b).abs() < 1e-3, "observed median error {a} km with the skip, {b} km without");
     assert_ne!(skip.digest, every.digest, "not bit-identical: the skipped clusters are predicted in longer steps");
 }
+
+#[test]
+fn a_track_the_view_skip_clears_stays_out_of_that_sensors_view_until_its_clearance_ends() {
+    use crate::partition::view::{clear_for, sights};
+    use tracker_core::model::{Measure, MotionModel};
+    // 60 objects over 1.5 h on a 5 s grid; a clearance is asked every minute for each sensor that does not
+    // see the object, and the object must stay out of that sensor's view on every grid time it covers.
+    let (step, points, every) = (5.0, 1080, 12);
+    let mut world = world::World::new(catalogue(60, 7), 1.5, 7).expect("world");
+    let scenario = world.scenario().expect("scenario");
+    let (config, prior) =
+        config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst).expect("config");
+    let t0 = scenario.prior.time;
+    let placed: Vec<_> = (0..points).map(|k| sights(&config, t0 + step * k as f64)).collect();
+    assert_eq!(placed[0].len(), 3, "three ground sensors");
+    let (mut asked, mut cleared, mut entered, mut covered) = (0, 0, 0, 0.0);
+    for object in &prior[0].1 {
+        let mut x = object.state.mean;
+        let mut seen = vec![[false; 3]; points];
+        let mut means = Vec::with_capacity(points);
+        for (k, sights) in placed.iter().enumerate() {
+            for s in sights {
+                seen[k][s.sensor] = s.field_of_view.sees(&s.model, &s.model.measure(&x));
+            }
+            means.push(x);
+            x = config.motion.propagate(&x, step).expect("propagates").state;
+        }
+        entered += usize::from(seen.iter().any(|s| s.contains(&true)));
+        for k in (0..points).step_by(every) {
+            for s in &placed[k] {
+                if seen[k][s.sensor] {
+                    continue;
+                }
+                asked += 1;
+                let clear = clear_for(s, &means[k], ground_closing_speed);
+                let last = k + (clear / step).floor() as usize;
+                cleared += usize::from(clear > 0.0);
+                covered += clear;
+                if let Some(j) = (k..=last.min(points - 1)).find(|&j| seen[j][s.sensor]) {
+                    panic!(
+                        "cleared for {clear} s at {} s, in view of sensor {} at {} s",
+                        k as f64 * step,
+                        s.sensor,
+                        j as f64 * step
+                    );
+                }
+            }
+        }
+    }
+    // Not vacuous: some objects come into view, and most questions out of view get a clearance.
+    assert!(entered >= 5, "{entered} objects enter a field of view");
+    assert!(cleared * 10 >= asked * 8, "{cleared} clearances of {asked} questions");
+    eprintln!(
+        "{cleared} of {asked} cleared, {:.0} s on average; {entered} objects in view at some time",
+        covered / asked as f64
+    );
+}
