@@ -15,6 +15,9 @@ pub enum AdmissiblePresetSpec {
     Leo,
     /// The GEO belt (near-circular, inclination ≤ 15°).
     Geo,
+    /// Geosynchronous orbits: perigee and apogee within 25 km of the geosynchronous radius, inclination
+    /// ≤ 15° (station-kept satellites and inclined ones that keep their longitude; not drifting objects).
+    Geosynchronous,
     /// Every bound orbit: perigee ≥ R_E + 150 km, apogee ≤ 50,000 km (LEO to beyond GEO, GTO, Molniya).
     Bound,
 }
@@ -27,6 +30,7 @@ impl AdmissiblePresetSpec {
             AdmissiblePresetSpec::Planar => AdmissibleRegion::planar(velocity_sigma),
             AdmissiblePresetSpec::Leo => AdmissibleRegion::leo(),
             AdmissiblePresetSpec::Geo => AdmissibleRegion::geo(),
+            AdmissiblePresetSpec::Geosynchronous => AdmissibleRegion::geosynchronous(),
             AdmissiblePresetSpec::Bound => AdmissibleRegion::bound(),
         }
     }
@@ -180,6 +184,8 @@ pub enum SensorRegionSpec {
     Leo,
     /// The GEO belt.
     Geo,
+    /// Geosynchronous orbits (`AdmissibleRegion::geosynchronous`).
+    Geosynchronous,
     /// None: the sensor's measurements start no track.
     None,
 }
@@ -213,6 +219,9 @@ impl BirthRegionSpec {
         match self.region {
             SensorRegionSpec::Leo => SensorBirths::Region(with_cells(AdmissibleRegion::leo(), cells)),
             SensorRegionSpec::Geo => SensorBirths::Region(with_cells(AdmissibleRegion::geo(), cells)),
+            SensorRegionSpec::Geosynchronous => {
+                SensorBirths::Region(with_cells(AdmissibleRegion::geosynchronous(), cells))
+            }
             SensorRegionSpec::None => SensorBirths::Off,
         }
     }

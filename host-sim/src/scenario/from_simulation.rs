@@ -165,11 +165,11 @@ fn file_kind(kind: SensorKind) -> Measurement3dSpec {
 pub(crate) fn network_birth_region(kind: Measurement3dSpec) -> Option<BirthRegionSpec> {
     let region = |region| BirthRegionSpec { region, headings: None, speeds: None, climbs: None, ranges: None };
     match kind {
-        Measurement3dSpec::Optical => Some(BirthRegionSpec {
-            headings: TELESCOPE_GEO_BIRTHS.headings,
-            ranges: TELESCOPE_GEO_BIRTHS.ranges,
-            ..region(SensorRegionSpec::Geo)
-        }),
+        // The GEO belt's wider region, 2 headings (measured before `optical-geo` moved to geosynchronous
+        // orbits and 3 headings; the network's firmware replay and its digests are made with these).
+        Measurement3dSpec::Optical => {
+            Some(BirthRegionSpec { headings: Some(2), ranges: Some(1), ..region(SensorRegionSpec::Geo) })
+        }
         Measurement3dSpec::AzEl => Some(region(SensorRegionSpec::None)),
         _ => None,
     }
@@ -195,13 +195,15 @@ pub const RADAR_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     link_waiting: true,
 };
 
-/// The birth pool a telescope preset writes when objects are unknown to the prior: the GEO belt, one
-/// radius cell (range is not observed), cells that live 20 minutes (the revisit of a staring sensor's
-/// slow objects).
+/// The birth pool a telescope preset writes when objects are unknown to the prior: geosynchronous orbits
+/// (the preset's objects keep their longitudes; from one site over minutes, range is known only as well
+/// as the region bounds it: docs/results.md, "Births from the measurements"), one radius cell, 3 headings
+/// (an odd count puts a cell on the equatorial heading most GEO objects have), cells that live 20 minutes
+/// (the revisit of a staring sensor's slow objects).
 pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
-    region: AdmissiblePresetSpec::Geo,
+    region: AdmissiblePresetSpec::Geosynchronous,
     velocity_sigma: 1.0,
-    headings: Some(2),
+    headings: Some(3),
     speeds: None,
     climbs: None,
     ranges: Some(1),

@@ -191,6 +191,16 @@ impl<T: Real> AdmissibleRegion<T> {
         }
     }
 
+    /// Geosynchronous orbits, near-circular: perigee ≥ 42164 − 25 km, apogee ≤ 42164 + 25 km (so
+    /// |a − 42164| ≤ 25 km and e ≤ 5.9·10⁻⁴), inclination ≤ 15°, shell the same ±25 km; the cells of
+    /// [`AdmissibleRegion::geo`]. A station-kept satellite (longitude drift ≲ 0.05°/day: |Δa| ≲ 4 km;
+    /// e ≲ 5·10⁻⁴) and one whose inclination is no longer controlled are inside; a drifting object
+    /// (|Δa| of tens of km and more) is not: its births need [`AdmissibleRegion::geo`] (docs/maths.md §5.7).
+    pub fn geosynchronous() -> Self {
+        let (low, high) = (c(GEO_RADIUS - 25.0), c(GEO_RADIUS + 25.0));
+        Self { min_perigee_radius: low, max_apogee_radius: high, shell: [low, high], ..Self::geo() }
+    }
+
     /// Every bound orbit from LEO to beyond GEO, GTO and Molniya included: perigee ≥ R_E + 150 km, apogee
     /// ≤ 50,000 km, any inclination; single-frame cells as [`AdmissibleRegion::leo`], shell the whole band.
     /// The region of tracklet births (docs/maths.md §5.10).
