@@ -28,10 +28,12 @@ pub struct Gated<const S: usize> {
     pub predicted: Option<Vec<Gaussian<f64, S>>>,
 }
 
-/// What a view skip needs at one scan: the ground sensors placed at its time and the speed bound.
+/// What a view skip needs at one scan: the ground sensors placed at its time, the speed bound and the
+/// scanning sensor's index.
 pub struct Skip<'a, G, const S: usize> {
     pub sights: &'a [Sight<G>],
     pub speed: SpeedBound<S>,
+    pub scanning: usize,
 }
 
 impl<G, const S: usize> Clone for Skip<'_, G, S> {
@@ -78,19 +80,30 @@ where
             predicted = None;
             continue;
         };
+        // A track with a clearance from the scanning sensor is more than MARGIN_KM outside the region its
+        // field of view lies in, so out of view (§13.2).
+        let mut cleared = false;
         if let Some(skip) = skip {
             for (sight, near) in skip.sights.iter().zip(&mut near) {
                 let clear = &mut clear_for[sight.sensor];
-                if *clear > 0.0 {
-                    *clear = clear.min(view::clear_near(sight, &state.mean, skip.speed, near));
+                if *clear > 0.0 || sight.sensor == skip.scanning {
+                    let own = view::clear_near(sight, &state.mean, skip.speed, near);
+                    *clear = clear.min(own);
+                    cleared |= sight.sensor == skip.scanning && own > 0.0;
                 }
             }
         }
         // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
         // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
         // core instead of now, docs/maths.md §13.2).
-        let z_hat = placed.model.measure(&state.mean);
-        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &z_hat) {
+        if cleared
+            || !in_field_of_view(
+                &placed.detection.field_of_view,
+                &placed.model,
+                &state,
+                &placed.model.measure(&state.mean),
+            )
+        {
             if let Some(predicted) = &mut predicted {
                 predicted.push(state);
             }

@@ -246,7 +246,7 @@ where
         let quiet_allowed = self.quiet_steps_cannot_fail();
         let speed = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
         let sights = speed.map(|_| view::sights(&self.config, geometry.time)).unwrap_or_default();
-        let skip = speed.map(|speed| Skip { sights: &sights, speed });
+        let skip = speed.map(|speed| Skip { sights: &sights, speed, scanning: geometry.sensor });
         let due: Vec<bool> =
             self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
         let scan = Indexed::new(measurements, route::distance::<G, S, D>(&placed.model));
