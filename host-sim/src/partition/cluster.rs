@@ -103,6 +103,9 @@ impl<const S: usize, const N: usize> Rest<S, N> {
     /// How many distinct labels it holds (as `labels().len()`, without allocating).
     pub fn label_count(&self) -> usize {
         let tracks = &self.tracks;
+        if tracks.iter().all(|t| t.label == tracks[0].label) {
+            return usize::from(!tracks.is_empty());
+        }
         (0..tracks.len()).filter(|&i| tracks[..i].iter().all(|t| t.label != tracks[i].label)).count()
     }
 

@@ -7,6 +7,7 @@
 //! - [`cores`]: the pool of reused cores a scan steps the clusters in.
 //! - [`route`]: gating a scan's measurements against each cluster and grouping clusters to merge.
 //! - [`view`]: the view skip's geometry: how long a track certainly stays out of each sensor's field of view.
+//! - [`window`]: a scan's measurements indexed so that the gate compares a track only with those near it.
 //! - [`hypotheses`]: a cluster's hypothesis set as owned data and the product of two of them.
 //! - [`split`]: the factorisation of a cluster into independent groups of labels (exact or within ε).
 //! - [`marginal`]: per-object posteriors (existence, mean, covariance) of a cluster or a single tracker.
@@ -24,6 +25,7 @@ pub mod split;
 mod tests;
 pub mod tracker;
 pub mod view;
+pub mod window;
 
 pub use cluster::{Cluster, Rest};
 pub use error::{ClusterId, PartitionError};

@@ -6,6 +6,7 @@
 //! its tracks predicted to the scan: all an empty scan would do to it (§13.2).
 
 use super::view::{self, Sight, SpeedBound};
+use super::window::Indexed;
 use nalgebra::SVector;
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::tracker::{PlacedScan, in_field_of_view};
@@ -27,10 +28,12 @@ pub struct Gated<const S: usize> {
     pub predicted: Option<Vec<Gaussian<f64, S>>>,
 }
 
-/// What a view skip needs at one scan: the ground sensors placed at its time and the speed bound.
+/// What a view skip needs at one scan: the ground sensors placed at its time, the speed bound and the
+/// scanning sensor's index.
 pub struct Skip<'a, G, const S: usize> {
     pub sights: &'a [Sight<G>],
     pub speed: SpeedBound<S>,
+    pub scanning: usize,
 }
 
 impl<G, const S: usize> Clone for Skip<'_, G, S> {
@@ -41,16 +44,17 @@ impl<G, const S: usize> Clone for Skip<'_, G, S> {
 
 impl<G, const S: usize> Copy for Skip<'_, G, S> {}
 
-/// The measurements of `measurements` in the gates of `tracks` predicted by `dt` with `motion`, as the core
+/// The measurements of `scan` in the gates of `tracks` predicted by `dt` with `motion`, as the core
 /// decides it ([`tracker_core::weight::WeightModel::entry_of_residual`] with the configuration's `gate`). A
 /// track whose prediction fails, or in view whose innovation fails, gates nothing (the core drops it from
-/// the scan or fails the scan). With `skip`, also [`Gated::clear_for`] and [`Gated::predicted`].
+/// the scan or fails the scan). With `skip`, also [`Gated::clear_for`] and [`Gated::predicted`]. `scan` is
+/// indexed with [`distance`] of `placed`'s model.
 pub fn gate<M, G, const S: usize, const D: usize>(
     motion: &M,
     placed: &PlacedScan<f64, G>,
     tracks: &[Track<f64, S>],
     dt: f64,
-    measurements: &[SVector<f64, D>],
+    scan: &Indexed<'_, D>,
     gate: Option<f64>,
     skip: Option<Skip<'_, G, S>>,
 ) -> Gated<S>
@@ -58,6 +62,7 @@ where
     M: MotionModel<f64, S>,
     G: MeasurementModel<f64, S, D>,
 {
+    let measurements = scan.measurements;
     let mut hit = vec![false; measurements.len()];
     let mut in_view = false;
     // Per sensor: min over tracks of its clearance; 0 for sensors without a sight.
@@ -67,25 +72,38 @@ where
         skip.sights.iter().for_each(|s| clear_for[s.sensor] = f64::INFINITY);
     }
     let mut predicted = skip.map(|_| Vec::with_capacity(tracks.len()));
+    // Per sight, the gaps of a nearby track already measured (§13.2).
+    let mut near = vec![None; skip.map_or(0, |s| s.sights.len())];
     for track in tracks {
         let Ok(state) = ekf::predict(motion, &track.state, dt) else {
             clear_for.fill(0.0);
             predicted = None;
             continue;
         };
+        // A track with a clearance from the scanning sensor is more than MARGIN_KM outside the region its
+        // field of view lies in, so out of view (§13.2).
+        let mut cleared = false;
         if let Some(skip) = skip {
-            for sight in skip.sights {
+            for (sight, near) in skip.sights.iter().zip(&mut near) {
                 let clear = &mut clear_for[sight.sensor];
-                if *clear > 0.0 {
-                    *clear = clear.min(view::clear_for(sight, &state.mean, skip.speed));
+                if *clear > 0.0 || sight.sensor == skip.scanning {
+                    let own = view::clear_near(sight, &state.mean, skip.speed, near);
+                    *clear = clear.min(own);
+                    cleared |= sight.sensor == skip.scanning && own > 0.0;
                 }
             }
         }
         // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
         // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
         // core instead of now, docs/maths.md §13.2).
-        let z_hat = placed.model.measure(&state.mean);
-        if !in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &z_hat) {
+        if cleared
+            || !in_field_of_view(
+                &placed.detection.field_of_view,
+                &placed.model,
+                &state,
+                &placed.model.measure(&state.mean),
+            )
+        {
             if let Some(predicted) = &mut predicted {
                 predicted.push(state);
             }
@@ -98,22 +116,34 @@ where
         };
         in_view = true;
         let first = innovation.cholesky[(0, 0)];
-        for (hit, z) in hit.iter_mut().zip(measurements) {
-            if !*hit {
-                let residual = placed.model.residual(z, &innovation.predicted);
+        // Only the measurements whose |ν₀| can be within √gate · L₀₀ (§13.2: the window refuses only what
+        // the test on w₀ below refuses).
+        let radius = gate.map(|gate| gate.sqrt() * first.abs());
+        for &m in scan.candidates(&innovation.predicted, radius, distance::<G, S, D>(&placed.model)) {
+            if !hit[m] {
+                let residual = placed.model.residual(&measurements[m], &innovation.predicted);
                 // d² = Σ wᵢ² ≥ w₀² with w₀ = ν₀ / L₀₀ (the first whitened component, the same bits as the
                 // core's): a cheaper test that refuses only what the full one refuses.
                 let w = residual[0] / first;
                 if gate.is_some_and(|gate| w * w > gate) {
                     continue;
                 }
-                *hit = placed.weights.entry_of_residual(&innovation, &residual) > f64::NEG_INFINITY;
+                hit[m] = placed.weights.entry_of_residual(&innovation, &residual) > f64::NEG_INFINITY;
             }
         }
     }
     clear_for.iter_mut().filter(|c| !c.is_finite()).for_each(|c| *c = 0.0);
     let measurements = hit.iter().enumerate().filter(|(_, h)| **h).map(|(i, _)| i).collect();
     Gated { measurements, in_view, clear_for, predicted }
+}
+
+/// The distance a scan is indexed by for `model` ([`Indexed`]): the absolute first component of the
+/// residual, |ν₀(a, b)| (a plain or a wrapped difference, docs/maths.md §13.2).
+pub fn distance<G, const S: usize, const D: usize>(model: &G) -> impl Fn(&SVector<f64, D>, &SVector<f64, D>) -> f64 + '_
+where
+    G: MeasurementModel<f64, S, D>,
+{
+    move |a, b| model.residual(a, b)[0].abs()
 }
 
 /// The scan's routing: the groups of clusters to merge and each group's measurements.

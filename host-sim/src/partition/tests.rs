@@ -371,3 +371,28 @@ fn independent_hypotheses_split_exactly_and_dependent_ones_only_within_epsilon()
     let loose = split::factor(&dependent, 0.2).expect("within ε");
     assert!((loose.moved - 0.18).abs() < 1e-12, "{}", loose.moved);
 }
+
+/// The gate with the scan's window (docs/maths.md §13.2) gates exactly the measurements it gates when it
+/// compares each track with every measurement, track by track.
+#[test]
+fn the_gates_window_refuses_only_what_the_full_test_refuses() {
+    use tracker_core::Track;
+    let config = config();
+    let zs: Vec<SVector<f64, 2>> =
+        (0..60).map(|i| z(f64::from(i * 37 % 200) - 20.0, f64::from(i * 11 % 30) - 15.0)).collect();
+    let placed = tracker_core::tracker::place_scan(&config, &scan(1.0), 0.0, &zs, usize::MAX).expect("placed");
+    let windowed = window::Indexed::new(&zs, route::distance::<_, 4, 2>(&placed.model));
+    let every = window::Indexed::new(&zs, |_, _| f64::NAN);
+    let (mut hits, mut tracks) = (0, 0);
+    for i in 0..45u32 {
+        let (x, y, spread) = (f64::from(i) * 4.7 - 20.0, f64::from(i % 7) * 3.0 - 9.0, 1.0 + f64::from(i % 5) * 3.0);
+        let state = Gaussian { mean: SVector::from([x, y, 1.0, 0.0]), covariance: SMatrix::identity() * spread };
+        let track = [Track { label: TrackLabel(i), state, ..Default::default() }];
+        let gated = route::gate(&config.motion, &placed, &track, 1.0, &windowed, config.gate, None);
+        assert_eq!(gated, route::gate(&config.motion, &placed, &track, 1.0, &every, config.gate, None), "track {i}");
+        hits += gated.measurements.len();
+        tracks += usize::from(!gated.measurements.is_empty());
+    }
+    // Not vacuous: most tracks gate some measurements, none gates most of them.
+    assert!(tracks > 30 && hits < 45 * 20, "{tracks} tracks gate {hits} measurements");
+}

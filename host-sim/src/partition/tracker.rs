@@ -17,6 +17,7 @@ use super::hypotheses::{self, Hypothesis};
 use super::route::{self, Gated, Skip};
 use super::split;
 use super::view::{self, SpeedBound};
+use super::window::Indexed;
 use nalgebra::SVector;
 use rayon::prelude::*;
 use tracker_core::model::{MeasurementModel, MotionModel};
@@ -245,10 +246,11 @@ where
         let quiet_allowed = self.quiet_steps_cannot_fail();
         let speed = if quiet_allowed && geometry.observer.is_none() { self.skip } else { None };
         let sights = speed.map(|_| view::sights(&self.config, geometry.time)).unwrap_or_default();
-        let skip = speed.map(|speed| Skip { sights: &sights, speed });
+        let skip = speed.map(|speed| Skip { sights: &sights, speed, scanning: geometry.sensor });
         let due: Vec<bool> =
             self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
-        let (mut gated, mut caught) = self.gate_all(&placed, geometry.time, &due, measurements, skip)?;
+        let scan = Indexed::new(measurements, route::distance::<G, S, D>(&placed.model));
+        let (mut gated, mut caught) = self.gate_all(&placed, geometry.time, &due, &scan, skip)?;
         let routing = route::route(&gated, measurements.len());
         let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
         // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped at the
@@ -304,7 +306,7 @@ where
         placed: &PlacedScan<f64, G>,
         time: f64,
         due: &[bool],
-        measurements: &[SVector<f64, D>],
+        scan: &Indexed<'_, D>,
         skip: Option<Skip<'_, G, S>>,
     ) -> Result<(Vec<Gated<S>>, Vec<Option<Rest<S, N>>>), PartitionError> {
         let limit = self.config.motion.max_time_step().unwrap_or(f64::INFINITY);
@@ -319,7 +321,7 @@ where
                     let caught = if time - c.rest.time() > limit { self.caught_up(core, c)? } else { None };
                     let rest = caught.as_ref().unwrap_or(&c.rest);
                     let dt = time - rest.time();
-                    let gated = route::gate(motion, placed, rest.tracks(), dt, measurements, self.config.gate, skip);
+                    let gated = route::gate(motion, placed, rest.tracks(), dt, scan, self.config.gate, skip);
                     Ok((gated, caught))
                 },
             )

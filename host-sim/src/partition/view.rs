@@ -62,20 +62,75 @@ pub fn clear_for<G, const S: usize, const D: usize>(
 where
     G: MeasurementModel<f64, S, D>,
 {
+    gaps(sight, mean).map_or(0.0, |gaps| gaps.clear_for(mean, speed, 0.0))
+}
+
+/// Tracks whose means are within this distance (km, over all the state's components) of a track whose
+/// [`Gaps`] were measured take that track's gaps less the distance ([`clear_near`]).
+pub const NEAR_KM: f64 = 10.0;
+
+/// [`clear_for`], from `near`'s gaps when its mean is within [`NEAR_KM`] of `mean`, or measured (and kept
+/// in `near`) otherwise. Never longer than [`clear_for`] up to rounding (docs/maths.md §13.2): each gap is a
+/// distance from a region, so it changes by at most the distance between the positions, and that is at
+/// most the distance between the states (the position is three of the state's components, in km).
+pub fn clear_near<G, const S: usize, const D: usize>(
+    sight: &Sight<G>,
+    mean: &SVector<f64, S>,
+    speed: SpeedBound<S>,
+    near: &mut Option<(Gaps, SVector<f64, S>)>,
+) -> f64
+where
+    G: MeasurementModel<f64, S, D>,
+{
+    if let Some((gaps, at)) = near {
+        let shift = (mean - *at).norm();
+        if shift <= NEAR_KM {
+            return gaps.clear_for(mean, speed, shift);
+        }
+    }
+    let Some(gaps) = gaps(sight, mean) else { return 0.0 };
+    *near = Some((gaps, *mean));
+    gaps.clear_for(mean, speed, 0.0)
+}
+
+/// A point's distances (km) from a sight's field of view: beyond the range window's ball and from the
+/// sector it lies in (docs/maths.md §13.2).
+#[derive(Debug, Clone, Copy)]
+pub struct Gaps {
+    /// ρ − ρ_max.
+    pub ball: f64,
+    /// The distance from the sector ([`sector_gap`]).
+    pub sector: f64,
+    /// ρ_max, the sector's reach.
+    pub reach: f64,
+}
+
+impl Gaps {
+    /// The clearance (s) of an object of state `x` whose position is within `shift` km of the point these
+    /// gaps were measured at: each gap less `shift` and [`MARGIN_KM`], over `speed`'s bound.
+    pub fn clear_for<const S: usize>(&self, x: &SVector<f64, S>, speed: SpeedBound<S>, shift: f64) -> f64 {
+        let over = |gap: f64, closing: f64| {
+            let t = (gap - shift - MARGIN_KM) / closing;
+            if t.is_finite() && closing > 0.0 { t.max(0.0) } else { 0.0 }
+        };
+        let ball = over(self.ball, speed(x, 0.0));
+        let sector = over(self.sector, speed(x, self.reach));
+        ball.max(sector)
+    }
+}
+
+/// The [`Gaps`] of the object whose predicted mean is `mean` from `sight`'s field of view; `None` for a
+/// field of view without a range window or a look without a range.
+pub fn gaps<G, const S: usize, const D: usize>(sight: &Sight<G>, mean: &SVector<f64, S>) -> Option<Gaps>
+where
+    G: MeasurementModel<f64, S, D>,
+{
     let Region::Look { shape, min_elevation, range: Some([_, max]), .. } = sight.field_of_view else {
-        return 0.0;
+        return None;
     };
     let look = sight.model.look_of_state(mean).or_else(|| sight.model.look(&sight.model.measure(mean)));
-    let Some((look, range)) = look.and_then(|l| l.range.map(|r| (l, r))) else {
-        return 0.0;
-    };
-    let over = |gap: f64, closing: f64| {
-        let t = (gap - MARGIN_KM) / closing;
-        if t.is_finite() && closing > 0.0 { t.max(0.0) } else { 0.0 }
-    };
-    let ball = over(range - max, speed(mean, 0.0));
-    let sector = over(sector_gap(&look, range, &shape, min_elevation, max), speed(mean, max));
-    ball.max(sector)
+    let (look, range) = look.and_then(|l| l.range.map(|r| (l, r)))?;
+    Some(Gaps { ball: range - max, sector: sector_gap(&look, range, &shape, min_elevation, max), reach: max })
 }
 
 /// The distance (km) from the point at `range` in the direction of `look` to the region the field of view

@@ -187,3 +187,45 @@ fn a_track_the_view_skip_clears_stays_out_of_that_sensors_view_until_its_clearan
         covered / asked as f64
     );
 }
+
+#[test]
+fn a_clearance_from_a_nearby_tracks_gaps_is_never_longer_than_its_own_and_means_out_of_view() {
+    use crate::partition::view::{NEAR_KM, clear_for, clear_near, sights};
+    use tracker_core::model::{Measure, MotionModel};
+    use tracker_core::tracker::in_field_of_view;
+    // Versions of each object of a catalogue, up to 13 km apart in position and velocity, take their
+    // clearances from the first version's gaps while within NEAR_KM of it (docs/maths.md §13.2), at six
+    // times a minute apart; a version with a clearance from a sensor is out of its view as the gate decides.
+    let mut world = world::World::new(catalogue(60, 7), 0.2, 7).expect("world");
+    let scenario = world.scenario().expect("scenario");
+    let (config, prior) =
+        config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst).expect("config");
+    let (mut reused, mut seen, mut shorter) = (0, 0, 0.0f64);
+    for minute in 0..6 {
+        let dt = 60.0 * f64::from(minute);
+        for s in &sights(&config, scenario.prior.time + dt) {
+            for object in &prior[0].1 {
+                let start = config.motion.propagate(&object.state.mean, dt).expect("propagates").state;
+                let mut near = None;
+                for k in 0..10 {
+                    let f = f64::from(k) / 6.0;
+                    let offset = nalgebra::SVector::<f64, 6>::from([6.0, -5.0, 4.0, 1e-3, -2e-3, 0.0]) * f;
+                    let x = start + offset;
+                    let own = clear_for(s, &x, ground_closing_speed);
+                    let from_near = clear_near(s, &x, ground_closing_speed, &mut near);
+                    assert!(from_near <= own * (1.0 + 1e-12), "sensor {}: {from_near} s > {own} s", s.sensor);
+                    // Each gap moves by at most twice the shift, closed at 0.52 km/s at least.
+                    assert!(from_near >= own - 2.0 * NEAR_KM / 0.52 - 1e-9, "{from_near} s ≪ {own} s");
+                    let state = tracker_core::Gaussian { mean: x, covariance: object.state.covariance };
+                    let in_view = in_field_of_view(&s.field_of_view, &s.model, &state, &s.model.measure(&x));
+                    assert!(!(in_view && (own > 0.0 || from_near > 0.0)), "sensor {}: cleared in view", s.sensor);
+                    seen += usize::from(in_view);
+                    reused += usize::from(k > 0 && offset.norm() <= NEAR_KM && from_near > 0.0);
+                    shorter = shorter.max(own - from_near);
+                }
+            }
+        }
+    }
+    assert!(reused > 2000 && seen > 10, "{reused} clearances from a nearby track's gaps, {seen} in view");
+    eprintln!("{reused} clearances reused, at most {shorter:.2} s shorter; {seen} in view");
+}
