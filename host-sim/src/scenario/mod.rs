@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 pub use any::{AnyScenario, load_any, parse_any};
-pub use births::{AdmissiblePresetSpec, BirthRegionSpec, MeasuredBirthsSpec, SensorRegionSpec};
+pub use births::{AdmissiblePresetSpec, BirthRegionSpec, MeasuredBirthsSpec, SensorRegionSpec, TrackletSpec};
 pub use checks::{MAX_COVARIANCE_ENTRY, MAX_FILE_BYTES, ScenarioError, one_line, read_limited};
 pub(crate) use checks::{check_covariance, error, finite, finite_all, positive};
 pub use quote::{Readable, cut_quotes, excerpt};
