@@ -81,7 +81,7 @@ where
         };
         // A track with a clearance from the scanning sensor is more than MARGIN_KM outside the region its
         // field of view lies in, so out of view (§13.2).
-        let cleared = skip.is_some_and(|skip| clear(&skip, &state.mean, &mut clear_for, &mut near));
+        let cleared = skip.is_some_and(|skip| clear(&skip, &state.mean, &mut clear_for, &mut near, false));
         // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
         // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
         // core instead of now, docs/maths.md §13.2).
@@ -152,7 +152,7 @@ where
     for (k, track) in tracks.iter().enumerate() {
         let (start, step) = from.map_or((&track.state.mean, dt), |(means, since)| (&means[k], since));
         let mean = motion.propagate_mean(start, step).ok()?;
-        if !clear(skip, &mean, &mut clear_for, &mut near) {
+        if !clear(skip, &mean, &mut clear_for, &mut near, true) {
             return None;
         }
         means.push(mean);
@@ -171,23 +171,33 @@ fn unbounded<G, const S: usize>(skip: &Skip<'_, G, S>) -> Vec<f64> {
 
 /// Lowers each sensor's entry of `clear_for` to the clearance of a track whose predicted mean is `mean`
 /// (nearby tracks' gaps in `near`, one per sight); a sensor already at 0 is left alone, except the scanning
-/// one. Whether the track is cleared from the scanning sensor (§13.2).
+/// one, which is taken first. Whether the track is cleared from the scanning sensor (§13.2); when it is not
+/// and `only_cleared`, the other sensors are left alone. Each entry is a minimum over tracks and each sight's
+/// `near` its own, so the order of the sights changes nothing.
 fn clear<G, const S: usize, const D: usize>(
     skip: &Skip<'_, G, S>,
     mean: &SVector<f64, S>,
     clear_for: &mut [f64],
     near: &mut [Option<(view::Gaps, SVector<f64, S>)>],
+    only_cleared: bool,
 ) -> bool
 where
     G: MeasurementModel<f64, S, D>,
 {
-    let mut cleared = false;
-    for (sight, near) in skip.sights.iter().zip(near) {
-        let clear = &mut clear_for[sight.sensor];
-        if *clear > 0.0 || sight.sensor == skip.scanning {
-            let own = view::clear_near(sight, mean, skip.speed, near);
-            *clear = clear.min(own);
-            cleared |= sight.sensor == skip.scanning && own > 0.0;
+    let lower = |k: usize, near: &mut Option<(view::Gaps, SVector<f64, S>)>, clear_for: &mut [f64]| {
+        let sight = &skip.sights[k];
+        let own = view::clear_near(sight, mean, skip.speed, near);
+        clear_for[sight.sensor] = clear_for[sight.sensor].min(own);
+        own > 0.0
+    };
+    let scanning = skip.sights.iter().position(|s| s.sensor == skip.scanning);
+    let cleared = scanning.is_some_and(|k| lower(k, &mut near[k], clear_for));
+    if !cleared && only_cleared {
+        return false;
+    }
+    for (k, near) in near.iter_mut().enumerate() {
+        if Some(k) != scanning && clear_for[skip.sights[k].sensor] > 0.0 {
+            lower(k, near, clear_for);
         }
     }
     cleared

@@ -334,8 +334,14 @@ where
                 },
             )
             .collect();
-        let each: Vec<(Gated<S>, Option<Rest<S, N>>)> = each.into_iter().collect::<Result<_, _>>()?;
-        Ok(each.into_iter().unzip())
+        // The first error in cluster order, whatever the thread count; one pass over the clusters.
+        let (mut gated, mut caught) = (Vec::with_capacity(each.len()), Vec::with_capacity(each.len()));
+        for result in each {
+            let (g, c) = result?;
+            gated.push(g);
+            caught.push(c);
+        }
+        Ok((gated, caught))
     }
 
     /// The state of cluster `c`, when the view skip left it out of the last scan, stepped (in `core`) to that
