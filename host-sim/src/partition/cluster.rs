@@ -5,6 +5,7 @@
 
 use super::error::{ClusterId, PartitionError};
 use super::hypotheses::Hypothesis;
+use nalgebra::SVector;
 use tracker_core::hypothesis::Hypothesis as CoreHypothesis;
 use tracker_core::model::{MeasurementModel, MotionModel};
 use tracker_core::real::exp;
@@ -123,7 +124,7 @@ impl<const S: usize, const N: usize> Rest<S, N> {
     }
 }
 
-/// One cluster: its identity, its state at rest and its clearances.
+/// One cluster: its identity, its state at rest, its clearances and its coast.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cluster<const S: usize, const N: usize> {
     pub id: ClusterId,
@@ -131,12 +132,23 @@ pub struct Cluster<const S: usize, const N: usize> {
     /// Per sensor, the time until which the cluster is certainly out of that sensor's field of view and is
     /// left unstepped by its scans (docs/maths.md §13.2); empty without a view skip.
     pub clear_until: Vec<f64>,
+    /// While the cluster coasts (gated from its means alone and cleared from the scanning sensor, its rest
+    /// left at its own time, §13.2): its tracks' means predicted to the last scan that gated it.
+    pub coast: Option<Coast<S>>,
+}
+
+/// A coasting cluster's tracks' means (one per track, in store order) predicted to `time`, a chain of
+/// mean-only predictions from its rest (docs/maths.md §13.2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coast<const S: usize> {
+    pub time: f64,
+    pub means: Box<[SVector<f64, S>]>,
 }
 
 impl<const S: usize, const N: usize> Cluster<S, N> {
     /// The cluster `id` at `rest`, due at every sensor's next scan.
     pub fn new(id: ClusterId, rest: Rest<S, N>) -> Self {
-        Self { id, rest, clear_until: vec![] }
+        Self { id, rest, clear_until: vec![], coast: None }
     }
 
     /// Whether a scan of `sensor` at `time` may leave the cluster unstepped.
@@ -151,7 +163,7 @@ pub(super) enum Fate {
     /// Certainly out of the sensor's field of view: not touched (§13.2).
     Skipped,
     /// No measurement and no track in view: stepped with an empty scan (with a view skip: its tracks'
-    /// predictions stored, §13.2).
+    /// predictions stored, or its coast, §13.2).
     Quiet,
     /// Stepped (alone or merged) with its measurements.
     Stepped,

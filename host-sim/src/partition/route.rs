@@ -26,6 +26,9 @@ pub struct Gated<const S: usize> {
     /// With a view skip, when no track is in view and every track's prediction succeeded: each track of the
     /// store (in order) predicted to the scan, the state an empty scan leaves it in (§13.2).
     pub predicted: Option<Vec<Gaussian<f64, S>>>,
+    /// From [`coast`]: each track's mean (in store order) predicted to the scan, every one cleared from the
+    /// scanning sensor; the cluster keeps its state and coasts (§13.2).
+    pub coasted: Option<Vec<SVector<f64, S>>>,
 }
 
 /// What a view skip needs at one scan: the ground sensors placed at its time, the speed bound and the
@@ -66,11 +69,7 @@ where
     let mut hit = vec![false; measurements.len()];
     let mut in_view = false;
     // Per sensor: min over tracks of its clearance; 0 for sensors without a sight.
-    let mut clear_for = vec![];
-    if let Some(skip) = skip {
-        clear_for = vec![0.0; skip.sights.iter().map(|s| s.sensor + 1).max().unwrap_or(0)];
-        skip.sights.iter().for_each(|s| clear_for[s.sensor] = f64::INFINITY);
-    }
+    let mut clear_for = skip.map(|skip| unbounded(&skip)).unwrap_or_default();
     let mut predicted = skip.map(|_| Vec::with_capacity(tracks.len()));
     // Per sight, the gaps of a nearby track already measured (§13.2).
     let mut near = vec![None; skip.map_or(0, |s| s.sights.len())];
@@ -82,17 +81,7 @@ where
         };
         // A track with a clearance from the scanning sensor is more than MARGIN_KM outside the region its
         // field of view lies in, so out of view (§13.2).
-        let mut cleared = false;
-        if let Some(skip) = skip {
-            for (sight, near) in skip.sights.iter().zip(&mut near) {
-                let clear = &mut clear_for[sight.sensor];
-                if *clear > 0.0 || sight.sensor == skip.scanning {
-                    let own = view::clear_near(sight, &state.mean, skip.speed, near);
-                    *clear = clear.min(own);
-                    cleared |= sight.sensor == skip.scanning && own > 0.0;
-                }
-            }
-        }
+        let cleared = skip.is_some_and(|skip| clear(&skip, &state.mean, &mut clear_for, &mut near, false));
         // In view or not from ẑ = h(x̂⁻) alone, as the core decides it; the innovation only for a track in
         // view (out of view, a track whose innovation would fail is dropped at its cluster's next step in a
         // core instead of now, docs/maths.md §13.2).
@@ -134,7 +123,84 @@ where
     }
     clear_for.iter_mut().filter(|c| !c.is_finite()).for_each(|c| *c = 0.0);
     let measurements = hit.iter().enumerate().filter(|(_, h)| **h).map(|(i, _)| i).collect();
-    Gated { measurements, in_view, clear_for, predicted }
+    Gated { measurements, in_view, clear_for, predicted, coasted: None }
+}
+
+/// The gates of a cluster whose tracks' means alone, predicted to the scan, are all cleared from the
+/// scanning sensor (docs/maths.md §13.2, coasting): no track in view, no measurement, the clearances from
+/// those means, and the means as [`Gated::coasted`]; `None` when a mean's prediction fails or a track has no
+/// clearance from the scanning sensor ([`gate`] then decides). The means are predicted without Φ or P
+/// ([`MotionModel::propagate_mean`]): from `from` (a coast's means and the seconds since them) when given,
+/// else from the tracks' own means by `dt`. A chain of coasts differs from the one prediction from the
+/// tracks' rest by the integrator's error, which [`view::MARGIN_KM`] covers: a track cleared here is out of
+/// view as [`gate`] would decide it from its rest.
+pub fn coast<M, G, const S: usize, const D: usize>(
+    motion: &M,
+    tracks: &[Track<f64, S>],
+    dt: f64,
+    from: Option<(&[SVector<f64, S>], f64)>,
+    skip: &Skip<'_, G, S>,
+) -> Option<Gated<S>>
+where
+    M: MotionModel<f64, S>,
+    G: MeasurementModel<f64, S, D>,
+{
+    let from = from.filter(|(means, _)| means.len() == tracks.len());
+    let mut clear_for = unbounded(skip);
+    let mut near = vec![None; skip.sights.len()];
+    let mut means = Vec::with_capacity(tracks.len());
+    for (k, track) in tracks.iter().enumerate() {
+        let (start, step) = from.map_or((&track.state.mean, dt), |(means, since)| (&means[k], since));
+        let mean = motion.propagate_mean(start, step).ok()?;
+        if !clear(skip, &mean, &mut clear_for, &mut near, true) {
+            return None;
+        }
+        means.push(mean);
+    }
+    clear_for.iter_mut().filter(|c| !c.is_finite()).for_each(|c| *c = 0.0);
+    Some(Gated { measurements: vec![], in_view: false, clear_for, predicted: None, coasted: Some(means) })
+}
+
+/// Per sensor of the network, the clearance before any track: unbounded for a ground sensor (a sight),
+/// 0 for the others.
+fn unbounded<G, const S: usize>(skip: &Skip<'_, G, S>) -> Vec<f64> {
+    let mut clear_for = vec![0.0; skip.sights.iter().map(|s| s.sensor + 1).max().unwrap_or(0)];
+    skip.sights.iter().for_each(|s| clear_for[s.sensor] = f64::INFINITY);
+    clear_for
+}
+
+/// Lowers each sensor's entry of `clear_for` to the clearance of a track whose predicted mean is `mean`
+/// (nearby tracks' gaps in `near`, one per sight); a sensor already at 0 is left alone, except the scanning
+/// one, which is taken first. Whether the track is cleared from the scanning sensor (§13.2); when it is not
+/// and `only_cleared`, the other sensors are left alone. Each entry is a minimum over tracks and each sight's
+/// `near` its own, so the order of the sights changes nothing.
+fn clear<G, const S: usize, const D: usize>(
+    skip: &Skip<'_, G, S>,
+    mean: &SVector<f64, S>,
+    clear_for: &mut [f64],
+    near: &mut [Option<(view::Gaps, SVector<f64, S>)>],
+    only_cleared: bool,
+) -> bool
+where
+    G: MeasurementModel<f64, S, D>,
+{
+    let lower = |k: usize, near: &mut Option<(view::Gaps, SVector<f64, S>)>, clear_for: &mut [f64]| {
+        let sight = &skip.sights[k];
+        let own = view::clear_near(sight, mean, skip.speed, near);
+        clear_for[sight.sensor] = clear_for[sight.sensor].min(own);
+        own > 0.0
+    };
+    let scanning = skip.sights.iter().position(|s| s.sensor == skip.scanning);
+    let cleared = scanning.is_some_and(|k| lower(k, &mut near[k], clear_for));
+    if !cleared && only_cleared {
+        return false;
+    }
+    for (k, near) in near.iter_mut().enumerate() {
+        if Some(k) != scanning && clear_for[skip.sights[k].sensor] > 0.0 {
+            lower(k, near, clear_for);
+        }
+    }
+    cleared
 }
 
 /// The distance a scan is indexed by for `model` ([`Indexed`]): the absolute first component of the
@@ -241,7 +307,7 @@ mod tests {
     use super::*;
 
     fn gated(measurements: &[usize]) -> Gated<4> {
-        Gated { measurements: measurements.to_vec(), in_view: true, clear_for: vec![], predicted: None }
+        Gated { measurements: measurements.to_vec(), in_view: true, clear_for: vec![], predicted: None, coasted: None }
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //! so memory is the objects' rests plus one core per concurrent task (docs/maths.md §13.2), and the bits
 //! are those of a core held per cluster.
 
-use super::cluster::{Clearance, Cluster, Fate, Rest};
+use super::cluster::{Clearance, Cluster, Coast, Fate, Rest};
 use super::cores::{self, Cores};
 use super::error::{ClusterId, PartitionError};
 use super::hypotheses::{self, Hypothesis};
@@ -63,6 +63,9 @@ pub struct PartitionReport {
     pub quiet: usize,
     /// Quiet clusters given their tracks' predictions instead of a step in a core (view skip, §13.2).
     pub predicted: usize,
+    /// Quiet clusters coasting: gated from their tracks' means alone, every track cleared from the scanning
+    /// sensor, their state left at its own time (view skip, §13.2).
+    pub coasted: usize,
     /// Clusters not stepped at all: certainly out of the sensor's field of view (§13.2, view skip).
     pub skipped: usize,
     /// Clusters stepped with at least one measurement.
@@ -275,7 +278,7 @@ where
         let birth = if birth.tracks().is_empty() { birth } else { self.empty_birth(geometry.time)? };
         // Nothing below can fail (quiet_steps_cannot_fail), so the tracker changes only from here on.
         let clear = Clearance { time: geometry.time, cap: self.config.motion.max_time_step() };
-        report.predicted = self.step_quiet(geometry, &fate, &mut caught, &mut gated, clear)?;
+        (report.predicted, report.coasted) = self.step_quiet(geometry, &fate, &mut caught, &mut gated, clear)?;
         report.quiet = fate.iter().filter(|f| **f == Fate::Quiet).count();
         report.skipped = fate.iter().filter(|f| **f == Fate::Skipped).count();
         let mut clusters: Vec<_> = std::mem::take(&mut self.clusters)
@@ -321,13 +324,24 @@ where
                     let caught = if time - c.rest.time() > limit { self.caught_up(core, c)? } else { None };
                     let rest = caught.as_ref().unwrap_or(&c.rest);
                     let dt = time - rest.time();
-                    let gated = route::gate(motion, placed, rest.tracks(), dt, scan, self.config.gate, skip);
+                    // A coast continues from its means; a caught-up rest starts afresh (§13.2).
+                    let from = c.coast.as_ref().filter(|_| caught.is_none()).map(|k| (&k.means[..], time - k.time));
+                    let coasted = skip.and_then(|skip| route::coast(motion, rest.tracks(), dt, from, &skip));
+                    let gated = coasted.unwrap_or_else(|| {
+                        route::gate(motion, placed, rest.tracks(), dt, scan, self.config.gate, skip)
+                    });
                     Ok((gated, caught))
                 },
             )
             .collect();
-        let each: Vec<(Gated<S>, Option<Rest<S, N>>)> = each.into_iter().collect::<Result<_, _>>()?;
-        Ok(each.into_iter().unzip())
+        // The first error in cluster order, whatever the thread count; one pass over the clusters.
+        let (mut gated, mut caught) = (Vec::with_capacity(each.len()), Vec::with_capacity(each.len()));
+        for result in each {
+            let (g, c) = result?;
+            gated.push(g);
+            caught.push(c);
+        }
+        Ok((gated, caught))
     }
 
     /// The state of cluster `c`, when the view skip left it out of the last scan, stepped (in `core`) to that
@@ -410,10 +424,11 @@ where
         Ok((stepped, birth))
     }
 
-    /// Steps the quiet clusters (from their caught-up states where there are): with a view skip, gives each
+    /// Steps the quiet clusters (from their caught-up states where there are): with a view skip, lets a
+    /// cluster gated from its means coast (its state kept, its means stored, §13.2), gives each other one
     /// its tracks' predictions where they all succeeded ([`Rest::advance`]), else steps it in a leased core
     /// with an empty scan; and records the times until which each sensor cannot see it. Returns how many were
-    /// given their predictions.
+    /// given their predictions and how many coast.
     fn step_quiet(
         &mut self,
         geometry: &ScanGeometry<f64>,
@@ -421,9 +436,9 @@ where
         caught: &mut [Option<Rest<S, N>>],
         gated: &mut [Gated<S>],
         clear: Clearance,
-    ) -> Result<usize, PartitionError> {
+    ) -> Result<(usize, usize), PartitionError> {
         let cores = &self.cores;
-        let results: Vec<Result<bool, PartitionError>> = self
+        let results: Vec<Result<Quiet, PartitionError>> = self
             .clusters
             .par_iter_mut()
             .zip(caught)
@@ -436,22 +451,30 @@ where
                         c.rest = rest;
                     }
                     clear.record(&mut c.clear_until, &gated.clear_for);
+                    if let Some(means) = gated.coasted.take() {
+                        c.coast = Some(Coast { time: clear.time, means: means.into() });
+                        return Ok(Quiet::Coasted);
+                    }
+                    c.coast = None;
                     if let Some(predicted) = gated.predicted.take() {
                         c.rest.advance(clear.time, predicted);
-                        return Ok(true);
+                        return Ok(Quiet::Predicted);
                     }
                     // A core is leased only by a task that steps one.
                     let core = core.get_or_insert_with(|| cores.lease());
                     cores::load(core, c.id, &c.rest)?;
                     core.step_scan(geometry, &[]).map_err(|error| PartitionError::Cluster { cluster: c.id, error })?;
                     c.rest = Rest::of(c.id, &**core)?;
-                    Ok(false)
+                    Ok(Quiet::Stepped)
                 },
             )
             .collect();
         // Not reachable (see quiet_steps_cannot_fail); were it, the error is returned, and the quiet clusters
         // stepped before it would have moved on (docs/maths.md §13.6).
-        results.into_iter().try_fold(0, |n, r| Ok(n + usize::from(r?)))
+        results.into_iter().try_fold((0, 0), |(p, k), r| {
+            let r = r?;
+            Ok((p + usize::from(r == Quiet::Predicted), k + usize::from(r == Quiet::Coasted)))
+        })
     }
 
     /// Whether an empty scan of a cluster with no track in view cannot fail: a prediction failure drops the
@@ -574,6 +597,14 @@ fn check_capacity(cluster: ClusterId, received: usize, capacity: usize) -> Resul
         return Err(PartitionError::TooManyMeasurements { cluster, received, capacity });
     }
     Ok(())
+}
+
+/// What [`PartitionedTracker::step_quiet`] did with one quiet cluster.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Quiet {
+    Coasted,
+    Predicted,
+    Stepped,
 }
 
 /// The counters a scan advances, committed with it.

@@ -148,6 +148,17 @@ pub trait MotionModel<T: Real, const S: usize> {
     /// A [`ModelError`] when the propagation cannot be done within the model's bounds.
     fn propagate(&self, state: &SVector<T, S>, dt: T) -> Result<Propagation<T, S>, ModelError>;
 
+    /// The state [`Self::propagate`] gives, bit for bit, without the transition matrix: for a caller that
+    /// needs only where the mean goes (the partitioned tracker's coasting clusters, docs/maths.md §13.2).
+    /// The default calls [`Self::propagate`]; a model whose Φ costs more than its state overrides it.
+    ///
+    /// # Errors
+    /// A [`ModelError`] when the propagation of the state alone cannot be done within the model's bounds
+    /// (where [`Self::propagate`] fails on Φ alone, this may succeed).
+    fn propagate_mean(&self, state: &SVector<T, S>, dt: T) -> Result<SVector<T, S>, ModelError> {
+        self.propagate(state, dt).map(|p| p.state)
+    }
+
     /// The process noise covariance Q accumulated over `dt` seconds from `state`.
     fn process_noise(&self, state: &SVector<T, S>, dt: T) -> SMatrix<T, S, S>;
 

@@ -182,6 +182,26 @@ impl<T: Real> TwoBodyJ2<T> {
         (acceleration, gradient * -k)
     }
 
+    /// The J2 acceleration of [`Self::j2_terms`] alone, with the same operations (so the same bits).
+    fn j2_acceleration(&self, p: &SVector<T, 3>, r: T, g: T) -> SVector<T, 3> {
+        let rho = self.radius / r;
+        let k = g * c::<T>(1.5) * self.j2 * rho * rho;
+        let s = (p / r)[2];
+        let five_s2 = c::<T>(5.0) * s * s;
+        let equatorial = T::one() - five_s2;
+        let polar = c::<T>(3.0) - five_s2;
+        SVector::<T, 3>::new(p[0] * equatorial, p[1] * equatorial, p[2] * polar) * -k
+    }
+
+    /// The state's time derivative f(x) of [`Self::derivative`] alone, with the same operations.
+    fn velocity_and_acceleration(&self, state: &SVector<T, 6>) -> Result<SVector<T, 6>, ModelError> {
+        let p = SVector::<T, 3>::new(state[0], state[1], state[2]);
+        let r = self.radius_of(&p)?;
+        let g = self.mu / (r * r * r);
+        let a = p * -g + self.j2_acceleration(&p, r, g);
+        Ok(SVector::from([state[3], state[4], state[5], a[0], a[1], a[2]]))
+    }
+
     /// Total acceleration a(r) and gravity gradient G = ∂a/∂r.
     fn gravity(&self, p: &SVector<T, 3>) -> Result<(SVector<T, 3>, SMatrix<T, 3, 3>), ModelError> {
         let r = self.radius_of(p)?;
@@ -266,6 +286,26 @@ impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
         } else {
             Err(ModelError::NonFinite)
         }
+    }
+
+    /// The state of [`Self::propagate`]'s RK4, the same sub-steps and operations, without Φ.
+    fn propagate_mean(&self, state: &SVector<T, 6>, dt: T) -> Result<SVector<T, 6>, ModelError> {
+        if !state.iter().all(|v| v.is_finite_value()) {
+            return Err(ModelError::NonFinite);
+        }
+        let (steps, h) = super::rk4_substeps(dt, self.max_step, self.max_substeps)?;
+        let half = c::<T>(0.5);
+        let sixth = T::one() / c(6.0);
+        let two = c::<T>(2.0);
+        let mut x = *state;
+        for _ in 0..steps {
+            let k1x = self.velocity_and_acceleration(&x)?;
+            let k2x = self.velocity_and_acceleration(&(x + k1x * (h * half)))?;
+            let k3x = self.velocity_and_acceleration(&(x + k2x * (h * half)))?;
+            let k4x = self.velocity_and_acceleration(&(x + k3x * h))?;
+            x += (k1x + k2x * two + k3x * two + k4x) * (h * sixth);
+        }
+        if x.iter().all(|v| v.is_finite_value()) { Ok(x) } else { Err(ModelError::NonFinite) }
     }
 
     /// Q = [[dt³/3 Q_a, dt²/2 Q_a], [dt²/2 Q_a, dt Q_a]], with Q_a the acceleration density at `state`
@@ -392,6 +432,26 @@ mod tests {
                 assert!(error < 1e-6, "dt = {dt}: scaled Φ differs from finite differences by {error:e}");
             }
         }
+    }
+
+    /// The mean-only propagation is the full one's state, bit for bit (the partitioned tracker's coasting
+    /// relies on it, docs/maths.md §13.2).
+    #[test]
+    fn two_body_j2_mean_propagation_is_the_full_propagations_state_bit_for_bit() {
+        let molniya = {
+            let (rp, ra) = (6_900.0_f64, 46_000.0_f64);
+            let v = (EARTH_MU * (2.0 / rp - 2.0 / (rp + ra))).sqrt();
+            let (ci, si) = (63.4_f64.to_radians().cos(), 63.4_f64.to_radians().sin());
+            SVector::from([rp, 0.0, 0.0, 0.0, v * ci, v * si])
+        };
+        for x0 in [leo(), geo(), molniya] {
+            for dt in [0.5, 6.67, 20.0, 33.3, 600.0, 5_432.1] {
+                let full = MODEL.propagate(&x0, dt).unwrap().state;
+                let mean = MODEL.propagate_mean(&x0, dt).unwrap();
+                assert!(full.iter().zip(&mean).all(|(a, b)| a.to_bits() == b.to_bits()), "dt {dt}: {full} ≠ {mean}");
+            }
+        }
+        assert_eq!(MODEL.propagate_mean(&leo(), 1e9), Err(MODEL.propagate(&leo(), 1e9).unwrap_err()));
     }
 
     // Measured: relative errors 3e-12 to 1.7e-10 (finite-difference truncation and rounding).

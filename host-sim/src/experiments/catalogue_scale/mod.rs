@@ -65,6 +65,8 @@ struct ScanFigures {
     ms: f64,
     /// Clusters the scan stepped (in place or on a copy; the skipped ones not counted).
     stepped: usize,
+    /// Of those, the clusters coasting.
+    coasted: usize,
     /// CPU ms of the step, summed over the process's threads (`None`: not known).
     cpu_ms: Option<f64>,
 }
@@ -137,12 +139,13 @@ pub(crate) fn run_on(
         let stepped = tracker.step(&geometry, &scan.measurements);
         let ms = step_started.elapsed().as_secs_f64() * 1e3;
         let cpu_ms = cpu_started.zip(cpu_time_ns()).map(|(a, b)| b.saturating_sub(a) as f64 / 1e6);
-        let mut stepped_clusters = 0;
+        let (mut stepped_clusters, mut coasted) = (0, 0);
         match stepped {
             Ok(report) => {
                 clusters_max = clusters_max.max(report.clusters);
                 largest = largest.max(report.largest_cluster);
                 stepped_clusters = report.clusters.saturating_sub(report.skipped);
+                coasted = report.coasted;
             }
             Err(e) => {
                 rejected += 1;
@@ -153,7 +156,7 @@ pub(crate) fn run_on(
         }
         let m = scan.measurements.len();
         let (sensor, in_view) = (scan.sensor, scan.in_view);
-        figures.push(ScanFigures { sensor, in_view, measurements: m, ms, stepped: stepped_clusters, cpu_ms });
+        figures.push(ScanFigures { sensor, in_view, measurements: m, ms, stepped: stepped_clusters, coasted, cpu_ms });
         if score.due(scan.time) || k == last {
             score.score(k, scan.time, &scan.truth, &posterior_at(&tracker, scan.time));
         }
@@ -256,6 +259,9 @@ fn report(
         view_skip: !settings.step_every_cluster,
         clusters_stepped_mean: crate::experiments::common::mean(
             &f.iter().map(|s| s.stepped as f64).collect::<Vec<_>>(),
+        ),
+        clusters_coasted_mean: crate::experiments::common::mean(
+            &f.iter().map(|s| s.coasted as f64).collect::<Vec<_>>(),
         ),
         rss_mib_by_hour: outcome.rss_by_hour.clone(),
     }

@@ -229,3 +229,65 @@ fn a_clearance_from_a_nearby_tracks_gaps_is_never_longer_than_its_own_and_means_
     assert!(reused > 2000 && seen > 10, "{reused} clearances from a nearby track's gaps, {seen} in view");
     eprintln!("{reused} clearances reused, at most {shorter:.2} s shorter; {seen} in view");
 }
+
+#[test]
+fn a_coasting_cluster_is_out_of_view_and_gates_nothing_as_the_full_gate_from_its_rest_decides_it() {
+    use crate::partition::route::{Skip, coast, distance, gate};
+    use crate::partition::view::sights;
+    use crate::partition::window::Indexed;
+    use nalgebra::SVector;
+    use tracker_core::Track;
+    // A cluster of two versions (3 km apart) of each object of a catalogue, at rest at the prior's time, is
+    // gated at every scan by the full gate from its rest and from its means alone (docs/maths.md §13.2),
+    // chained from its last coast while it coasts. Whenever the coast clears it, the full gate finds no
+    // track in view and no measurement; a coast from the rest gives the full gate's means and clearances.
+    let mut world = world::World::new(catalogue(40, 7), 0.1, 7).expect("world");
+    let scenario = world.scenario().expect("scenario");
+    let (config, prior) =
+        config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst).expect("config");
+    let t0 = scenario.prior.time;
+    let clusters: Vec<Vec<Track<f64, 6>>> = (prior[0].1.iter())
+        .map(|o| {
+            let mut other = o.state;
+            other.mean[0] += 3.0;
+            vec![
+                Track { label: o.label, state: o.state, ..Default::default() },
+                Track { state: other, ..Default::default() },
+            ]
+        })
+        .collect();
+    let mut coasts: Vec<Option<(f64, Vec<SVector<f64, 6>>)>> = vec![None; clusters.len()];
+    let (mut fresh, mut chained, mut in_view, mut hits, mut last) = (0, 0, 0, 0, t0);
+    for k in 0..world.scans() {
+        let scan = world.scan(k).expect("scan");
+        let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
+        let placed = tracker_core::tracker::place_scan(&config, &geometry, last, &scan.measurements, usize::MAX)
+            .expect("placed");
+        last = scan.time;
+        let index = Indexed::new(&scan.measurements, distance::<Radars, 6, 3>(&placed.model));
+        let sights = sights(&config, scan.time);
+        let skip = Skip { sights: &sights, speed: ground_closing_speed, scanning: scan.sensor };
+        for (tracks, kept) in clusters.iter().zip(&mut coasts) {
+            let full = gate(&config.motion, &placed, tracks, scan.time - t0, &index, config.gate, Some(skip));
+            (in_view, hits) = (in_view + usize::from(full.in_view), hits + full.measurements.len());
+            let from = kept.as_ref().map(|(time, means)| (&means[..], scan.time - time));
+            let Some(coasted) = coast(&config.motion, tracks, scan.time - t0, from, &skip) else {
+                *kept = None;
+                continue;
+            };
+            assert!(!full.in_view && full.measurements.is_empty(), "scan {k}: coasting, but {full:?}");
+            let means = coasted.coasted.expect("means");
+            if kept.is_none() {
+                let predicted: Vec<_> = full.predicted.expect("predicted").iter().map(|g| g.mean).collect();
+                assert_eq!((&means, &coasted.clear_for), (&predicted, &full.clear_for), "scan {k}");
+                fresh += 1;
+            } else {
+                chained += 1;
+            }
+            *kept = Some((scan.time, means));
+        }
+    }
+    // Not vacuous: tracks in view gating measurements, coasts from the rest and chained ones.
+    assert!(in_view >= 20 && hits >= 20 && fresh >= 50 && chained >= 1000, "{in_view} {hits} {fresh} {chained}");
+    eprintln!("{in_view} in view, {hits} measurements gated; {fresh} coasts from the rest, {chained} chained");
+}

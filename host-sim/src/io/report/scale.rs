@@ -84,6 +84,9 @@ pub struct ScaleReport {
     /// Clusters stepped per scan (in place or on a copy), mean over the scans: with the view skip, those
     /// near the scanning sensor; without it, every cluster.
     pub clusters_stepped_mean: f64,
+    /// Of those, clusters coasting per scan (gated from their tracks' means alone, every track cleared from
+    /// the scanning sensor, docs/maths.md §13.2), mean over the scans.
+    pub clusters_coasted_mean: f64,
     /// Resident memory (MiB, VmRSS) at the first scan of each simulated hour, from hour 0: flat after
     /// warm-up when memory follows the objects. Varies from run to run.
     pub rss_mib_by_hour: Vec<f64>,
