@@ -70,6 +70,12 @@ impl<const S: usize, const N: usize> Rest<S, N> {
         self.hypotheses.len()
     }
 
+    /// The most objects any of its hypotheses holds: a merge's product holds at most the sum of its
+    /// members' (docs/maths.md §13.3).
+    pub fn max_objects(&self) -> usize {
+        self.hypotheses.iter().map(|h| h.slots().len()).max().unwrap_or(0)
+    }
+
     /// Its hypotheses, best first: each one's weight (as the core gives it) and tracks.
     pub fn weighted(&self) -> impl Iterator<Item = (f64, impl Iterator<Item = &Track<f64, S>>)> {
         self.hypotheses.iter().map(|h| {

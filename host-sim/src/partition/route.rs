@@ -225,6 +225,9 @@ pub struct Routing {
     pub measurements: Vec<Vec<usize>>,
     /// The measurements in no cluster's gate, in scan order: the birth cluster's.
     pub unclaimed: Vec<usize>,
+    /// Shares of a measurement between two groups not merged because the merge could hold more than the
+    /// capacity's objects: the measurement stays with the group that gated it first (§13.3).
+    pub declined: usize,
 }
 
 impl Routing {
@@ -239,15 +242,31 @@ impl Routing {
 }
 
 /// Groups the clusters of `gated` (one entry per cluster, in cluster order) that share a measurement of a
-/// scan of `count` measurements.
-pub fn route<const S: usize>(gated: &[Gated<S>], count: usize) -> Routing {
+/// scan of `count` measurements, where `objects[c]` is the most objects a hypothesis of cluster `c` holds
+/// and no group may hold more than `capacity` (a cluster's N): a share that would join two groups beyond it
+/// is declined, and the measurement stays with the group that gated it first (docs/maths.md §13.3).
+pub fn route<const S: usize>(gated: &[Gated<S>], count: usize, objects: &[usize], capacity: usize) -> Routing {
     let mut parent: Vec<usize> = (0..gated.len()).collect();
+    // The most objects a product over each root's group holds: the sum of its members'.
+    let mut group_objects = objects.to_vec();
     let mut first_owner: Vec<Option<usize>> = vec![None; count];
+    let mut declined = 0;
     for (cluster, g) in gated.iter().enumerate() {
         for &m in &g.measurements {
             match first_owner[m] {
                 None => first_owner[m] = Some(cluster),
-                Some(other) => union(&mut parent, other, cluster),
+                Some(other) => {
+                    let (a, b) = (find(&mut parent, other), find(&mut parent, cluster));
+                    if a == b {
+                        continue;
+                    }
+                    if group_objects[a] + group_objects[b] > capacity {
+                        declined += 1;
+                        continue;
+                    }
+                    let joined = group_objects[a] + group_objects[b];
+                    group_objects[union(&mut parent, a, b)] = joined;
+                }
             }
         }
     }
@@ -284,7 +303,7 @@ pub fn route<const S: usize>(gated: &[Gated<S>], count: usize) -> Routing {
             None => unclaimed.push(m),
         }
     }
-    Routing { members, ends, measurements, unclaimed }
+    Routing { members, ends, measurements, unclaimed, declined }
 }
 
 fn find(parent: &mut [usize], mut i: usize) -> usize {
@@ -295,11 +314,13 @@ fn find(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-/// Joins the sets of `a` and `b` under the smaller root, so that roots (and so groups) follow cluster order.
-fn union(parent: &mut [usize], a: usize, b: usize) {
+/// Joins the sets of `a` and `b` under the smaller root, so that roots (and so groups) follow cluster order;
+/// returns the root.
+fn union(parent: &mut [usize], a: usize, b: usize) -> usize {
     let (ra, rb) = (find(parent, a), find(parent, b));
     let (low, high) = (ra.min(rb), ra.max(rb));
     parent[high] = low;
+    low
 }
 
 #[cfg(test)]
@@ -313,9 +334,27 @@ mod tests {
     #[test]
     fn clusters_sharing_a_measurement_are_one_group_and_the_rest_go_to_births() {
         // Clusters 0 and 2 share measurement 1; 2 and 3 share 4 (a chain); cluster 1 is alone.
-        let routing = route(&[gated(&[0, 1]), gated(&[2]), gated(&[1, 4]), gated(&[4, 5])], 7);
+        let routing = route(&[gated(&[0, 1]), gated(&[2]), gated(&[1, 4]), gated(&[4, 5])], 7, &[1; 4], 16);
         assert_eq!(routing.groups().collect::<Vec<_>>(), vec![&[0, 2, 3][..], &[1]]);
         assert_eq!(routing.measurements, vec![vec![0, 1, 4, 5], vec![2]]);
         assert_eq!(routing.unclaimed, vec![3, 6]);
+        assert_eq!(routing.declined, 0);
+    }
+
+    #[test]
+    fn a_merge_that_could_exceed_the_capacity_is_declined_and_the_measurement_kept_by_its_first_group() {
+        // The same clusters holding 3, 1, 2 and 2 objects, capacity 5: 0 and 2 join (5 objects); joining 3
+        // would make 7, so measurement 4 stays with cluster 0's group and cluster 3 keeps measurement 5.
+        let routing = route(&[gated(&[0, 1]), gated(&[2]), gated(&[1, 4]), gated(&[4, 5])], 7, &[3, 1, 2, 2], 5);
+        assert_eq!(routing.groups().collect::<Vec<_>>(), vec![&[0, 2][..], &[1], &[3]]);
+        assert_eq!(routing.measurements, vec![vec![0, 1, 4], vec![2], vec![5]]);
+        assert_eq!(routing.unclaimed, vec![3, 6]);
+        assert_eq!(routing.declined, 1);
+        // Every measurement is routed once: none lost.
+        let routed: usize = routing.measurements.iter().map(Vec::len).sum::<usize>() + routing.unclaimed.len();
+        assert_eq!(routed, 7);
+        // With room for all, the chain is one group again.
+        let roomy = route(&[gated(&[0, 1]), gated(&[2]), gated(&[1, 4]), gated(&[4, 5])], 7, &[3, 1, 2, 2], 7);
+        assert_eq!((roomy.groups().count(), roomy.declined), (2, 0));
     }
 }

@@ -243,6 +243,24 @@ fn a_merge_is_the_single_tracker_before_pruning() {
     });
 }
 
+/// Five objects 6 apart and, at scan 1, a measurement between each pair of neighbours: the chain would
+/// merge all five, more than a cluster's N = 4. The scan is taken, not refused: the first four merge and
+/// the fourth measurement stays with them (the merge with the fifth declined, §13.3); nothing is lost.
+#[test]
+fn a_merge_beyond_the_capacity_is_declined_and_the_scan_taken() {
+    on_large_stack(|| {
+        let xs = [0.0, 6.0, 12.0, 18.0, 24.0];
+        let mut partitioned = Partitioned::new(config(), &objects(&xs), 0.0, 0.0).expect("tracker");
+        let zs = [z(4.0, 0.0), z(10.0, 0.0), z(16.0, 0.0), z(22.0, 0.0)];
+        let report = partitioned.step(&scan(1.0), &zs).expect("the scan is taken");
+        assert_eq!((report.merged, report.merges_declined, report.unclaimed), (3, 1, 0), "{report:?}");
+        let mut sizes: Vec<usize> = partitioned.clusters().iter().map(|c| c.rest.label_count()).collect();
+        sizes.sort_unstable();
+        assert_eq!(sizes, [1, 4]);
+        assert!(partitioned.clusters().iter().all(|c| c.rest.max_objects() <= 4));
+    });
+}
+
 /// A scenario with a merge, a birth (promoted from the birth cluster) and ε-splits; and the cores the
 /// tracker's pool made.
 fn busy_run(epsilon: f64) -> (Vec<u64>, Vec<PartitionReport>, usize) {

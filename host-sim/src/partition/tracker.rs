@@ -46,6 +46,9 @@ pub struct PartitionReport {
     pub largest_cluster: usize,
     /// Clusters merged away (a merge of k clusters counts k − 1).
     pub merged: usize,
+    /// Measurements shared by two groups that were not merged because the product could hold more than N
+    /// objects: each stays with the group that gated it first (§13.3).
+    pub merges_declined: usize,
     /// Mass pruned by merges (1 − the kept part of the product, summed over merges).
     pub merge_pruned_mass: f64,
     /// Mass pruned by the cores' own selection of H children (Σ over clusters of 1 − captured mass).
@@ -254,8 +257,13 @@ where
             self.clusters.iter().map(|c| skip.is_none() || !c.clear_at(geometry.sensor, geometry.time)).collect();
         let scan = Indexed::new(measurements, route::distance::<G, S, D>(&placed.model));
         let (mut gated, mut caught) = self.gate_all(&placed, geometry.time, &due, &scan, skip)?;
-        let routing = route::route(&gated, measurements.len());
-        let mut report = PartitionReport { unclaimed: routing.unclaimed.len(), ..Default::default() };
+        let objects: Vec<usize> = self.clusters.iter().map(|c| c.rest.max_objects()).collect();
+        let routing = route::route(&gated, measurements.len(), &objects, N);
+        let mut report = PartitionReport {
+            unclaimed: routing.unclaimed.len(),
+            merges_declined: routing.declined,
+            ..Default::default()
+        };
         // Skipped clusters are left alone; quiet ones (no measurement, no track in view) are stepped at the
         // end (§13.2); the work of the scan is each other group's state (its own, caught up, or a merge's)
         // and its measurements.

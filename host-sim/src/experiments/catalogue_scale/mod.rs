@@ -129,6 +129,7 @@ pub(crate) fn run_on(
     let prior_labels = objects.iter().map(|o| o.label.0).collect();
     let mut score = Score::new(scenario.evaluation, births, prior_labels);
     let (mut figures, mut rejected, mut clusters_max, mut largest) = (vec![], 0usize, 0usize, 0usize);
+    let mut merges_declined = 0;
     let mut rss_by_hour = vec![];
     let last = world.scans() - 1;
     for k in 0..=last {
@@ -144,6 +145,7 @@ pub(crate) fn run_on(
             Ok(report) => {
                 clusters_max = clusters_max.max(report.clusters);
                 largest = largest.max(report.largest_cluster);
+                merges_declined += report.merges_declined;
                 stepped_clusters = report.clusters.saturating_sub(report.skipped);
                 coasted = report.coasted;
             }
@@ -176,6 +178,7 @@ pub(crate) fn run_on(
     let outcome = Outcome {
         figures,
         rejected,
+        merges_declined,
         clusters_max,
         largest,
         digest: tracker.digest(),
@@ -191,6 +194,7 @@ pub(crate) fn run_on(
 struct Outcome {
     figures: Vec<ScanFigures>,
     rejected: usize,
+    merges_declined: usize,
     clusters_max: usize,
     largest: usize,
     digest: u64,
@@ -251,6 +255,7 @@ fn report(
         objects_in_view_max: f.iter().map(|s| s.in_view).max().unwrap_or(0),
         observations_max: f.iter().map(|s| s.measurements).max().unwrap_or(0),
         rejected_scans: outcome.rejected,
+        merges_declined: outcome.merges_declined,
         scored_scans: scored.scored_scans,
         total_wall_s: started.elapsed().as_secs_f64(),
         digest: format!("{:016x}", outcome.digest),

@@ -68,6 +68,10 @@ pub struct ScaleReport {
     pub observations_max: usize,
     /// Scans the tracker refused (each a warning naming the cluster).
     pub rejected_scans: usize,
+    /// Measurements gated by two clusters whose merge could hold more objects than a cluster's N: not
+    /// merged, each measurement kept by the cluster that gated it first (docs/maths.md §13.3).
+    #[serde(default)]
+    pub merges_declined: usize,
     /// Scans scored (one a simulated minute, and the last).
     pub scored_scans: usize,
     /// Wall-clock seconds of the whole command (catalogue, simulation, tracking, scoring, files).
