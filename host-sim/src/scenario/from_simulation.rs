@@ -1,5 +1,5 @@
-//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
-//! version 2 scenario files ([`crate::scenario::v2`]).
+//! `host-sim generate radar-leo | optical-geo | optical-leo | tiny-3d`: the 3-D presets of [`crate::ssa`]
+//! written as version 2 scenario files ([`crate::scenario::v2`]).
 //!
 //! The truth of every object at every scan comes from [`crate::sim::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
@@ -60,7 +60,7 @@ impl Preset3d {
     }
 
     /// The simulation of this preset with `seed` and objects unknown to the prior (`radar-leo`: missing
-    /// objects and a break-up; `optical-geo` and `tiny-3d`: missing objects).
+    /// objects and a break-up; `optical-geo`, `optical-leo` and `tiny-3d`: missing objects).
     ///
     /// # Errors
     /// Bad input: unknowns the preset cannot have; otherwise the simulator's message.
