@@ -233,6 +233,7 @@ fn help_lists_every_preset_experiment_tracker_and_profile() {
                 "linear-small",
                 "radar-leo",
                 "optical-geo",
+                "optical-leo",
                 "tiny-3d",
             ][..],
         ),
@@ -1831,6 +1832,7 @@ fn generate_unknowns_need_a_3d_preset_and_a_fraction_in_range() {
         &["generate", "linear-small", "--missing-fraction", "0.2"][..],
         &["generate", "tiny-3d", "--breakup", "3"],
         &["generate", "optical-geo", "--breakup", "3"],
+        &["generate", "optical-leo", "--breakup", "3"],
         &["generate", "radar-leo", "--missing-fraction", "1.5"],
     ] {
         let mut args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_ref()).collect();

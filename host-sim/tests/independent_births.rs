@@ -338,5 +338,5 @@ fn small_optical_tracklet_check() {
     let (summary, _) =
         host_sim::pipeline::orbital::run(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), true, &dir.0)
             .expect("run");
-    assert!(summary.tracklet_births > 0, "no birth from a tracklet");
+    assert!(summary.tracklets_formed > 0, "no tracklet formed");
 }

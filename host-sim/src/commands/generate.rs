@@ -24,7 +24,7 @@ pub struct Args {
     out: PathBuf,
     #[command(flatten)]
     catalogue: CatalogueArgs,
-    /// radar-leo, optical-geo, tiny-3d: fraction of the objects left out of the prior, in [0, 1].
+    /// radar-leo, optical-geo, optical-leo, tiny-3d: fraction of the objects left out of the prior, in [0, 1].
     #[arg(long, default_value_t = 0.0)]
     missing_fraction: f64,
     /// radar-leo: fragments of a break-up during the run (0: none).
@@ -151,6 +151,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Planar(Preset::Crossings),
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
+            AnyPreset::Ssa(Preset3d::OpticalLeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
             AnyPreset::Ssa(Preset3d::SsaNetwork),
             AnyPreset::Ssa(Preset3d::TinyNetwork),
@@ -195,7 +196,9 @@ pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     }
     let unknowns_refused = || -> Result<(), Error> {
         if missing_fraction != 0.0 || breakup != 0 {
-            return Err(Error::input("--missing-fraction and --breakup need radar-leo or optical-geo"));
+            return Err(Error::input(
+                "--missing-fraction and --breakup need a 3-D preset (radar-leo, optical-geo, optical-leo, tiny-3d)",
+            ));
         }
         Ok(())
     };

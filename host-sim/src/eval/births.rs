@@ -100,6 +100,12 @@ impl BirthTally {
         self.births.get(&id).and_then(|b| b.confirmed).map(|c| c.0)
     }
 
+    /// The labels `counted` picks that the MAP hypothesis held with existence ≥ the confirmation threshold
+    /// at some scan (near a true object or not).
+    pub fn confirmed_labels(&self, counted: impl Fn(u32) -> bool) -> usize {
+        self.labels.iter().filter(|(label, l)| l.confirmed && counted(**label)).count()
+    }
+
     /// Whether `id` is a birth.
     pub fn is_birth(&self, id: u64) -> bool {
         self.births.contains_key(&id)

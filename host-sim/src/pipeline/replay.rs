@@ -301,7 +301,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             refused,
             numerical_drops,
             lost_tracks: info.map_or(0, |i| i.lost_tracks),
-            tracklet_births: info.map_or(0, |i| i.tracklet_births),
+            tracklets_formed: info.map_or(0, |i| i.tracklets_formed),
         });
     }
     bar.finish_and_clear();
@@ -376,7 +376,10 @@ fn summarise(
         sensor_kinds: heading.sensor_kinds.clone(),
         numerical_drops: NumericalDropsSummary::default(),
         lost_tracks: records.iter().map(|r| r.lost_tracks).sum(),
-        tracklet_births: records.iter().map(|r| r.tracklet_births).sum(),
+        tracklets_formed: records.iter().map(|r| r.tracklets_formed).sum(),
+        tracklet_births: heading
+            .births_from_tracklets_only
+            .then(|| tally.births.confirmed_labels(|label| !tally.prior_labels.contains(&label))),
         refused_scans: RefusedScans::default(),
         catalogue_dropped: None,
         residuals: None,

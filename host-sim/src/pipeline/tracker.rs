@@ -39,7 +39,7 @@ pub struct StepInfo {
     /// Tracks the core declared lost (`tracker_core::TrackLoss`); none for the reference's own count.
     pub lost_tracks: usize,
     /// Unexplained measurements whose birth cells came from a tracklet (docs/maths.md §5.10).
-    pub tracklet_births: usize,
+    pub tracklets_formed: usize,
 }
 
 /// Whether the core refused the scan for its own input (a measurement outside the field of view or not

@@ -77,6 +77,8 @@ pub struct Heading {
     pub peak_counts_prior: bool,
     /// Whether the reference's budget figures are reported.
     pub reference: bool,
+    /// Whether every birth cell comes from a tracklet (then `summary.json` counts `tracklet_births`).
+    pub births_from_tracklets_only: bool,
 }
 
 /// A world: a scenario and its tracker, scored positions of `P` coordinates.
@@ -171,7 +173,7 @@ pub struct ScanRecord {
     /// Tracks the core declared lost at this scan (`tracker_core::TrackLoss`).
     pub lost_tracks: usize,
     /// Unexplained measurements whose birth cells came from a tracklet (docs/maths.md §5.10).
-    pub tracklet_births: usize,
+    pub tracklets_formed: usize,
 }
 
 /// Writes one line of `estimates.csv`: the scan's columns, then label, mean, existence and the bound.

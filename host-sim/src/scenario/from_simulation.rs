@@ -1,5 +1,5 @@
-//! `host-sim generate radar-leo | optical-geo | tiny-3d`: the 3-D presets of [`crate::ssa`] written as
-//! version 2 scenario files ([`crate::scenario::v2`]).
+//! `host-sim generate radar-leo | optical-geo | optical-leo | tiny-3d`: the 3-D presets of [`crate::ssa`]
+//! written as version 2 scenario files ([`crate::scenario::v2`]).
 //!
 //! The truth of every object at every scan comes from [`crate::sim::orbit`]'s adaptive RKF7(8) two-body + J2
 //! integrator, step by step from the epoch (never from the tracker's fixed-step RK4). Every object exists
@@ -15,7 +15,7 @@ use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::v2::*;
 use crate::scenario::{
     AdmissiblePresetSpec, BirthDetectionSpec, BirthEventsSpec, BirthRegionSpec, EvaluationSpec, MeasuredBirthsSpec,
-    NumericalFailureSpec, SamplerSpec, SelectionSpec, SensorRegionSpec, StoreOverflowSpec, TrackerSpec,
+    NumericalFailureSpec, SamplerSpec, SelectionSpec, SensorRegionSpec, StoreOverflowSpec, TrackerSpec, TrackletSpec,
     TruthObjectSpec,
 };
 use crate::sim::network::NetworkConfig;
@@ -36,6 +36,9 @@ pub enum Preset3d {
     RadarLeo,
     /// A staring telescope on the GEO belt, 32 objects (3 co-located clusters), 4 h.
     OpticalGeo,
+    /// A wide-field telescope at twilight, 100 sunlit LEO objects crossing its field, a frame every 2 s;
+    /// unknown objects born from tracklets ([`crate::sim::optical_leo`]).
+    OpticalLeo,
     /// One radar, 3 LEO objects, 11 scans over 100 s (tests).
     #[value(name = "tiny-3d")]
     Tiny3d,
@@ -57,7 +60,7 @@ impl Preset3d {
     }
 
     /// The simulation of this preset with `seed` and objects unknown to the prior (`radar-leo`: missing
-    /// objects and a break-up; `optical-geo` and `tiny-3d`: missing objects).
+    /// objects and a break-up; `optical-geo`, `optical-leo` and `tiny-3d`: missing objects).
     ///
     /// # Errors
     /// Bad input: unknowns the preset cannot have; otherwise the simulator's message.
@@ -69,6 +72,13 @@ impl Preset3d {
             Preset3d::OpticalGeo => {
                 presets::optical_geo_with(seed, &OpticalGeoConfig { unknowns: *unknowns, ..OpticalGeoConfig::PRESET })
             }
+            Preset3d::OpticalLeo => crate::sim::optical_leo::optical_leo_with(
+                seed,
+                &crate::sim::optical_leo::OpticalLeoConfig {
+                    unknowns: *unknowns,
+                    ..crate::sim::optical_leo::OpticalLeoConfig::PRESET
+                },
+            ),
             Preset3d::Tiny3d => presets::tiny_3d_with(seed, unknowns),
             Preset3d::SsaNetwork => crate::sim::network::ssa_network(seed, unknowns, &NetworkConfig::PRESET),
             Preset3d::TinyNetwork => crate::sim::network::ssa_network(seed, unknowns, &NetworkConfig::TINY),
@@ -215,6 +225,49 @@ pub const TELESCOPE_GEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     link_waiting: true,
 };
 
+/// The name of the `optical-leo` simulation, whose settings are not its measurement kind's.
+const OPTICAL_LEO: &str = "optical-leo";
+
+/// `optical-leo`'s settings: a catalogue-quality prior (as the LEO radars'), the telescope's error bound
+/// (10 km) and cut-off (20 km), births only from tracklets ([`OPTICAL_LEO_BIRTHS`]).
+fn optical_leo_settings() -> Settings {
+    let telescope = settings(Measurement3dSpec::Optical);
+    Settings { births: OPTICAL_LEO_BIRTHS, evaluation: telescope.evaluation, ..settings(Measurement3dSpec::Radar) }
+}
+
+/// The birth pool `optical-leo` writes when objects are unknown to the prior: births only from 3-frame
+/// tracklets (docs/maths.md §5.10) in the LEO region, no single-frame cells (`single_frame` false), 12 ln-range
+/// × 4 range-rate cells (48, within the host profile's B = 64). A pass gives 5 to 15 frames 2 s apart, so a
+/// tracklet spans 4 s (6 s with one frame missed); three frames fit exactly (no χ² test, docs/maths.md
+/// §5.10), so only the rate and acceleration bounds of a LEO object seen from the ground above 20° elevation
+/// test them (angular rate ≤ 2°/s, acceleration ≤ 0.05°/s², jerk ≤ 10⁻³ °/s³). Four frames confirmed
+/// fewer births: a short pass ends before its track is confirmed (docs/results.md, "optical-leo"). Cells
+/// live 5 s: the next frame, or the one after when the next misses.
+pub const OPTICAL_LEO_BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
+    region: AdmissiblePresetSpec::Leo,
+    velocity_sigma: 1.0,
+    headings: None,
+    speeds: None,
+    climbs: None,
+    ranges: None,
+    expected_births: 1e-2,
+    max_probability: 1e-2,
+    min_unexplained: 0.5,
+    lifetime: 5.0,
+    tracklets: Some(TrackletSpec {
+        frames: 3,
+        max_span: 6.5,
+        max_chi_squared: 13.8,
+        max_rate_deg_s: 2.0,
+        max_acceleration_deg_s2: 0.05,
+        max_jerk_deg_s3: 1e-3,
+        region: AdmissiblePresetSpec::Leo,
+        cells: [12, 4],
+        single_frame: false,
+    }),
+    link_waiting: false,
+};
+
 /// Figures of a generated file.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Generated {
@@ -258,7 +311,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
     let kinds: Vec<Measurement3dSpec> = sim.sensors.iter().map(|s| file_kind(s.kind)).collect();
     let first = *kinds.first().ok_or_else(|| Error::internal("simulation has no sensor"))?;
     let measurement = if kinds.iter().all(|k| *k == first) { first } else { Measurement3dSpec::Network };
-    let settings = settings(measurement);
+    let settings = if sim.name == OPTICAL_LEO { optical_leo_settings() } else { settings(measurement) };
     let unknown = sim.objects.iter().any(|o| !o.in_prior);
     let mut sensors: Vec<Sensor3dSpec> = sim.sensors.iter().map(sensor_spec).collect();
     if measurement == Measurement3dSpec::Network {

@@ -72,10 +72,17 @@ pub struct RunSummary {
     /// Absent when none.
     #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
     pub lost_tracks: usize,
-    /// Unexplained measurements whose birth cells came from a tracklet (`birth.measured.tracklets`,
-    /// docs/maths.md §5.10). Absent when none.
+    /// Tracklets linked: unexplained measurements whose birth cells came from a tracklet
+    /// (`birth.measured.tracklets`, docs/maths.md §5.10), summed over the scans. Absent when none.
     #[serde(default, skip_serializing_if = "crate::scenario::is_default")]
-    pub tracklet_births: usize,
+    pub tracklets_formed: usize,
+    /// Born labels (not the prior's) that the MAP hypothesis held with existence ≥ `confirmation_existence`
+    /// at some scan, when every birth cell comes from a tracklet (`birth.measured.tracklets` with
+    /// `single_frame` false, no `link_waiting`, no fixed cells, only sensors of directions); counted whether
+    /// or not the track is near a true object (those that are not are also `false_tracks`). Absent
+    /// otherwise: a born label's cells are not traced to their tracklet.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracklet_births: Option<usize>,
     /// Scans the core refused for their input; the run went on (issue 29).
     #[serde(default)]
     pub refused_scans: super::RefusedScans,

@@ -149,6 +149,7 @@ impl World<3> for OrbitalWorld<'_> {
                 .collect(),
             peak_counts_prior: true,
             reference: false,
+            births_from_tracklets_only: scenario.births_from_tracklets_only(),
         }
     }
 

@@ -150,7 +150,7 @@ where
             budget_reached: false,
             numerical_drops: report.numerical_drops,
             lost_tracks: report.lost_tracks,
-            tracklet_births: report.birth_pool.tracklets,
+            tracklets_formed: report.birth_pool.tracklets,
         })
     }
 
@@ -318,9 +318,14 @@ pub fn choose_profile(scenario: &Scenario3d, asked: Option<Profile>) -> Profile 
 }
 
 /// The most birth components one measurement of `scenario` can give (0 without measured births,
-/// [`Measurement3dSpec::birth_components`]). A measurement whose components do not fit the pool gives no
-/// birth.
+/// [`Measurement3dSpec::birth_components`]; its tracklet's cells when every birth comes from a tracklet). A
+/// measurement whose components do not fit the pool gives no birth.
 pub fn birth_components_per_measurement(scenario: &Scenario3d) -> usize {
+    if scenario.births_from_tracklets_only()
+        && let Some(tracklets) = scenario.birth.measured.and_then(|m| m.tracklets)
+    {
+        return tracklets.cells[0].saturating_mul(tracklets.cells[1]);
+    }
     (0..scenario.sensors.len())
         .filter_map(|i| Some(scenario.kind(i).birth_components(&scenario.birth_region(i)?)))
         .max()

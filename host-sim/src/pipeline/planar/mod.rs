@@ -119,6 +119,7 @@ impl World<2> for PlanarWorld<'_> {
                 .collect(),
             peak_counts_prior: false,
             reference: self.kind == TrackerKind::Reference,
+            births_from_tracklets_only: false,
         }
     }
 

@@ -52,7 +52,7 @@ where
             budget_reached: false,
             numerical_drops: report.numerical_drops,
             lost_tracks: report.lost_tracks,
-            tracklet_births: report.birth_pool.tracklets,
+            tracklets_formed: report.birth_pool.tracklets,
         })
     }
 
@@ -104,7 +104,7 @@ impl<M: MotionModel<f64, 4> + Send> Runner for ReferenceRunner<M> {
             budget_reached: report.budget_reached,
             numerical_drops: tracker_core::report::NumericalDrops::default(),
             lost_tracks: 0,
-            tracklet_births: 0,
+            tracklets_formed: 0,
         })
     }
 

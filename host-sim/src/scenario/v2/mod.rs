@@ -472,6 +472,19 @@ impl Scenario3d {
         Measurement3dSpec::SENSOR_KINDS.into_iter().filter(|kind| present.contains(kind)).collect()
     }
 
+    /// Whether every birth cell comes from a tracklet: `birth.measured.tracklets` with `single_frame` false
+    /// and no `link_waiting`, no fixed cells, and only sensors of directions (optical, az/el) with no birth
+    /// region of their own.
+    pub fn births_from_tracklets_only(&self) -> bool {
+        let tracklets_only =
+            self.birth.measured.is_some_and(|m| m.tracklets.is_some_and(|t| !t.single_frame) && !m.link_waiting);
+        tracklets_only
+            && self.birth.cells.is_empty()
+            && self.sensors.iter().all(|s| s.birth_region.is_none())
+            && (0..self.sensors.len())
+                .all(|i| matches!(self.kind(i), Measurement3dSpec::Optical | Measurement3dSpec::AzEl))
+    }
+
     /// Objects of the prior's largest hypothesis.
     pub fn max_prior_objects(&self) -> usize {
         self.prior.hypotheses.iter().map(|h| h.objects.len()).max().unwrap_or(0)
