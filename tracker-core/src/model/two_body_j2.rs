@@ -261,16 +261,30 @@ impl<T: Real> TwoBodyJ2<T> {
     }
 }
 
-impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
-    fn propagate(&self, state: &SVector<T, 6>, dt: T) -> Result<Propagation<T, 6>, ModelError> {
+/// The sub-steps and constants of one RK4 propagation over `dt`, shared by [`TwoBodyJ2::propagate`] and
+/// its mean-only twin so that both take the same steps with the same operations.
+struct Rk4<T> {
+    steps: u32,
+    h: T,
+    half: T,
+    sixth: T,
+    two: T,
+}
+
+impl<T: Real> TwoBodyJ2<T> {
+    /// Checks that `state` is finite and splits `dt` into the RK4 sub-steps (§6.7).
+    fn rk4(&self, state: &SVector<T, 6>, dt: T) -> Result<Rk4<T>, ModelError> {
         if !state.iter().all(|v| v.is_finite_value()) {
             return Err(ModelError::NonFinite);
         }
         let (steps, h) = super::rk4_substeps(dt, self.max_step, self.max_substeps)?;
-        let half = c::<T>(0.5);
-        let sixth = T::one() / c(6.0);
-        let two = c::<T>(2.0);
+        Ok(Rk4 { steps, h, half: c(0.5), sixth: T::one() / c(6.0), two: c(2.0) })
+    }
+}
 
+impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
+    fn propagate(&self, state: &SVector<T, 6>, dt: T) -> Result<Propagation<T, 6>, ModelError> {
+        let Rk4 { steps, h, half, sixth, two } = self.rk4(state, dt)?;
         let mut x = *state;
         let mut phi = SMatrix::<T, 6, 6>::identity();
         for _ in 0..steps {
@@ -290,13 +304,7 @@ impl<T: Real> MotionModel<T, 6> for TwoBodyJ2<T> {
 
     /// The state of [`Self::propagate`]'s RK4, the same sub-steps and operations, without Φ.
     fn propagate_mean(&self, state: &SVector<T, 6>, dt: T) -> Result<SVector<T, 6>, ModelError> {
-        if !state.iter().all(|v| v.is_finite_value()) {
-            return Err(ModelError::NonFinite);
-        }
-        let (steps, h) = super::rk4_substeps(dt, self.max_step, self.max_substeps)?;
-        let half = c::<T>(0.5);
-        let sixth = T::one() / c(6.0);
-        let two = c::<T>(2.0);
+        let Rk4 { steps, h, half, sixth, two } = self.rk4(state, dt)?;
         let mut x = *state;
         for _ in 0..steps {
             let k1x = self.velocity_and_acceleration(&x)?;
