@@ -139,7 +139,9 @@ fn report<W: SoakWorld>(
         mean_ms_per_scan_first_tenth: times.tenths().0,
         mean_ms_per_scan_last_tenth: times.tenths().1,
         peak_resident_kib_start: resident_start,
-        peak_resident_kib_end: peak_resident_kib(),
+        // Linux updates its high-water mark lazily (VmHWM reads max(hiwater, RSS now)), so a later read can be
+        // lower than an earlier one; the peak over the run is at least the one read after the first scan.
+        peak_resident_kib_end: peak_resident_kib().map(|end| end.max(resident_start.unwrap_or(0))),
         numerical_drops: health.numerical_drops,
         objects_within_10km,
         mean_nees,
