@@ -63,6 +63,14 @@ fn short_run() {
     assert!(d["births_confirmed"].as_u64() <= d["births_detected"].as_u64(), "{d}");
     assert_eq!(d["births_detected"].as_u64(), Some(report.births_total as u64), "{json}");
     assert_eq!(d["false_tracks"], json["false_tracks"]);
+    // Each detected birth not confirmed is listed with how much it was seen.
+    let unconfirmed = d["unconfirmed_births"].as_array().expect("unconfirmed_births");
+    let (detected, confirmed) = (d["births_detected"].as_u64().expect("n"), d["births_confirmed"].as_u64().expect("n"));
+    assert_eq!(unconfirmed.len() as u64, detected - confirmed, "{d}");
+    for birth in unconfirmed {
+        assert!(birth["detections"].as_u64().is_some_and(|n| n >= 1), "{birth}");
+        assert!(birth["detected_from_s"].as_f64() <= birth["detected_until_s"].as_f64(), "{birth}");
+    }
     // 0.1 h of the telescope's night: the three sensors in turn, one scan every 20 s / 3 from 0 to 360 s.
     let scans = d["scans"].as_u64().expect("scans");
     assert!((54..=55).contains(&scans), "{scans}");

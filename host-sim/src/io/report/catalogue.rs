@@ -78,4 +78,22 @@ pub struct CatalogueTracker {
     pub max_ms_per_scan: f64,
     /// Scans the tracker rejected.
     pub rejected_scans: usize,
+    /// The detected births it did not confirm, and how much each was seen.
+    #[serde(default)]
+    pub unconfirmed_births: Vec<UnconfirmedBirth>,
+}
+
+/// A birth some sensor detected and the tracker did not confirm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UnconfirmedBirth {
+    /// Object id (its index in the catalogue).
+    pub object: u64,
+    /// Its catalogue number.
+    pub norad_id: u64,
+    /// Its detections, by any sensor.
+    pub detections: usize,
+    /// Time (s since the start) of its first and last detection.
+    pub detected_from_s: f64,
+    /// See `detected_from_s`.
+    pub detected_until_s: f64,
 }

@@ -21,7 +21,7 @@ mod scans;
 mod soak;
 mod summary;
 
-pub use catalogue::{CatalogueReport, CatalogueTracker};
+pub use catalogue::{CatalogueReport, CatalogueTracker, UnconfirmedBirth};
 pub use compare::{Compare3dSummary, CompareReport, CompareScan, CompareSide, CompareSummary};
 pub use dropped::{NumericalDrop, NumericalDropsSummary, RefusedScan, RefusedScans};
 pub use experiments::{
