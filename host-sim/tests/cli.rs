@@ -1191,6 +1191,7 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
         "in_view_red_stars",
         "label_switches",
         "max_detections_to_confirm",
+        "max_labels_per_birth",
         "max_ms_per_scan",
         "mean_captured_mass",
         "mean_detections_to_confirm",
@@ -1775,11 +1776,15 @@ fn check_birth_keys(file: &Value, summary: &Value) {
             assert!(first <= c, "{r}");
             let scans = c - first + 1;
             assert_eq!(r["scans_to_confirm"], json!(scans), "{r}");
+            assert!(r["confirmed_labels"].as_u64().is_some_and(|n| n >= 1), "{r}");
             confirmed.push(detections);
         } else {
             assert_eq!((r["detections_to_confirm"].clone(), r["scans_to_confirm"].clone()), (json!(null), json!(null)));
+            assert_eq!(r["confirmed_labels"], json!(0), "{r}");
         }
     }
+    let most_labels = records.iter().filter_map(|r| r["confirmed_labels"].as_u64()).filter(|&n| n > 0).max();
+    assert_eq!(summary["max_labels_per_birth"], json!(most_labels), "{summary}");
     assert_eq!(summary["births_confirmed"], json!(confirmed.len()), "{summary}");
     if confirmed.is_empty() {
         assert_eq!(summary["mean_detections_to_confirm"], json!(null));
