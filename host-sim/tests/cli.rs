@@ -234,6 +234,7 @@ fn help_lists_every_preset_experiment_tracker_and_profile() {
                 "radar-leo",
                 "optical-geo",
                 "optical-leo",
+                "optical-heo",
                 "tiny-3d",
             ][..],
         ),
@@ -1838,6 +1839,7 @@ fn generate_unknowns_need_a_3d_preset_and_a_fraction_in_range() {
         &["generate", "tiny-3d", "--breakup", "3"],
         &["generate", "optical-geo", "--breakup", "3"],
         &["generate", "optical-leo", "--breakup", "3"],
+        &["generate", "optical-heo", "--missing-fraction", "0.2"],
         &["generate", "radar-leo", "--missing-fraction", "1.5"],
     ] {
         let mut args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_ref()).collect();
