@@ -234,6 +234,7 @@ fn help_lists_every_preset_experiment_tracker_and_profile() {
                 "radar-leo",
                 "optical-geo",
                 "optical-leo",
+                "optical-heo",
                 "tiny-3d",
             ][..],
         ),
@@ -1191,6 +1192,7 @@ fn run_outputs_keep_their_keys_and_read_back_unchanged() {
         "in_view_red_stars",
         "label_switches",
         "max_detections_to_confirm",
+        "max_labels_per_birth",
         "max_ms_per_scan",
         "mean_captured_mass",
         "mean_detections_to_confirm",
@@ -1775,11 +1777,15 @@ fn check_birth_keys(file: &Value, summary: &Value) {
             assert!(first <= c, "{r}");
             let scans = c - first + 1;
             assert_eq!(r["scans_to_confirm"], json!(scans), "{r}");
+            assert!(r["confirmed_labels"].as_u64().is_some_and(|n| n >= 1), "{r}");
             confirmed.push(detections);
         } else {
             assert_eq!((r["detections_to_confirm"].clone(), r["scans_to_confirm"].clone()), (json!(null), json!(null)));
+            assert_eq!(r["confirmed_labels"], json!(0), "{r}");
         }
     }
+    let most_labels = records.iter().filter_map(|r| r["confirmed_labels"].as_u64()).filter(|&n| n > 0).max();
+    assert_eq!(summary["max_labels_per_birth"], json!(most_labels), "{summary}");
     assert_eq!(summary["births_confirmed"], json!(confirmed.len()), "{summary}");
     if confirmed.is_empty() {
         assert_eq!(summary["mean_detections_to_confirm"], json!(null));
@@ -1833,6 +1839,7 @@ fn generate_unknowns_need_a_3d_preset_and_a_fraction_in_range() {
         &["generate", "tiny-3d", "--breakup", "3"],
         &["generate", "optical-geo", "--breakup", "3"],
         &["generate", "optical-leo", "--breakup", "3"],
+        &["generate", "optical-heo", "--missing-fraction", "0.2"],
         &["generate", "radar-leo", "--missing-fraction", "1.5"],
     ] {
         let mut args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_ref()).collect();

@@ -152,6 +152,7 @@ impl clap::ValueEnum for AnyPreset {
             AnyPreset::Ssa(Preset3d::RadarLeo),
             AnyPreset::Ssa(Preset3d::OpticalGeo),
             AnyPreset::Ssa(Preset3d::OpticalLeo),
+            AnyPreset::Ssa(Preset3d::OpticalHeo),
             AnyPreset::Ssa(Preset3d::Tiny3d),
             AnyPreset::Ssa(Preset3d::SsaNetwork),
             AnyPreset::Ssa(Preset3d::TinyNetwork),

@@ -7,12 +7,16 @@
 //! `origins`) from its first one up to and including the confirmation scan, and its *scans to
 //! confirmation* the scans from the first detection to the confirmation, both ends counted.
 //!
+//! Its *labels* are the distinct labels of the confirmed MAP tracks (existence ≥ `confirmation_existence`)
+//! that GOSPA assigns to it at any scan from its first detection on: 1 when it is confirmed under one label
+//! and keeps it (or loses it and is never found again), more when a second label takes it over.
+//!
 //! A *false track* is a label that is in the MAP hypothesis with existence ≥ `confirmation_existence`
 //! at one scan at least, and whose MAP estimate is never closer than `error_bound` to a true object at
 //! any scan where the label is in the MAP hypothesis.
 
 use crate::io::report::{BirthConfirmation, BirthFigures, BirthRecord, BirthsSummary};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// One MAP track as the tally sees it: label, position, existence of the label.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,12 +29,14 @@ pub struct MapTrack<'a> {
     pub existence: f64,
 }
 
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 struct Birth {
     first_detection: Option<usize>,
     detections: usize,
     /// (scan, detections by then).
     confirmed: Option<(usize, usize)>,
+    /// The confirmed labels assigned to it from its first detection on.
+    labels: BTreeSet<u32>,
 }
 
 /// What the tally knows of a label of the MAP hypothesis.
@@ -80,11 +86,12 @@ impl BirthTally {
         for ((id, _), assigned) in truth.iter().zip(assignment) {
             let Some(b) = self.births.get_mut(id) else { continue };
             // Not before its first detection: a track near an undetected birth is a neighbour's.
-            if b.confirmed.is_none()
-                && b.first_detection.is_some()
-                && assigned.is_some_and(|e| map.get(e).is_some_and(|t| t.existence >= self.threshold))
-            {
-                b.confirmed = Some((k, b.detections));
+            let confirmed_track = assigned
+                .and_then(|e| map.get(e))
+                .filter(|t| t.existence >= self.threshold && b.first_detection.is_some());
+            if let Some(track) = confirmed_track {
+                b.confirmed.get_or_insert((k, b.detections));
+                b.labels.insert(track.label);
             }
         }
         for t in map {
@@ -122,6 +129,7 @@ impl BirthTally {
                 confirmation_scan: b.confirmed.map(|c| c.0),
                 detections_to_confirm: b.confirmed.map(|c| c.1),
                 scans_to_confirm: b.confirmed.zip(b.first_detection).map(|((scan, _), first)| scan + 1 - first),
+                confirmed_labels: b.labels.len(),
             })
             .collect();
         let detections: Vec<usize> = records.iter().filter_map(|r| r.detections_to_confirm).collect();
@@ -131,6 +139,11 @@ impl BirthTally {
             mean_detections_to_confirm: (!detections.is_empty())
                 .then(|| detections.iter().sum::<usize>() as f64 / detections.len() as f64),
             max_detections_to_confirm: detections.iter().copied().max(),
+            max_labels_per_birth: records
+                .iter()
+                .filter(|r| r.confirmation_scan.is_some())
+                .map(|r| r.confirmed_labels)
+                .max(),
             false_tracks: self.labels.values().filter(|l| l.confirmed && !l.near).count(),
             records,
         }
@@ -154,6 +167,7 @@ impl BirthFigures {
                 .collect(),
             mean_detections_to_confirm: self.mean_detections_to_confirm,
             max_detections_to_confirm: self.max_detections_to_confirm,
+            max_labels_per_birth: self.max_labels_per_birth,
             false_tracks: has_truth.then_some(self.false_tracks),
             birth_confirmations: self.records,
         }
@@ -199,9 +213,34 @@ mod tests {
                 confirmation_scan: Some(4),
                 detections_to_confirm: Some(3),
                 scans_to_confirm: Some(4),
+                confirmed_labels: 1,
             }]
         );
         assert_eq!((f.mean_detections_to_confirm, f.max_detections_to_confirm), (Some(3.0), Some(3)));
+        assert_eq!(f.max_labels_per_birth, Some(1));
+    }
+
+    #[test]
+    fn a_birth_taken_over_by_a_second_label_counts_two_labels() {
+        // Births 7 and 8, both detected at scan 0. Birth 7: label 9 confirms it at scan 1, label 9 again at
+        // scan 2, then label 12 takes it at scan 3 (a re-birth): 2 labels. Birth 8: label 10, unconfirmed
+        // at scan 1 (existence 0.3, not counted), confirmed at scan 2 and kept: 1 label.
+        let mut tally = BirthTally::new([7, 8], 0.5, 3.0);
+        let (p7, p8) = ([0.0, 0.0], [50.0, 0.0]);
+        let truth = [(7, &p7[..]), (8, &p8[..])];
+        tally.record(0, &truth, [7, 8], &[], &[None, None]);
+        let scans: [(u32, f64, u32, f64); 3] = [(9, 0.8, 10, 0.3), (9, 0.9, 10, 0.7), (12, 0.9, 10, 0.8)];
+        for (k, (l7, e7, l8, e8)) in scans.into_iter().enumerate() {
+            let map = [track(l7, &p7, e7), track(l8, &p8, e8)];
+            tally.record(k + 1, &truth, [7, 8], &map, &[Some(0), Some(1)]);
+        }
+        let f = tally.figures();
+        let labels: Vec<usize> = f.records.iter().map(|r| r.confirmed_labels).collect();
+        assert_eq!(labels, vec![2, 1]);
+        assert_eq!(f.max_labels_per_birth, Some(2));
+        assert_eq!(f.records[0].confirmation_scan, Some(1), "confirmed by its first label");
+        // None confirmed: no maximum.
+        assert_eq!(BirthTally::new([1], 0.5, 3.0).figures().max_labels_per_birth, None);
     }
 
     #[test]

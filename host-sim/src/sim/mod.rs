@@ -18,6 +18,7 @@ pub mod frames;
 #[cfg(test)]
 mod long_gap_tests;
 pub mod network;
+pub mod optical_heo;
 pub mod optical_leo;
 pub mod orbit;
 pub mod physics;

@@ -136,6 +136,8 @@ pub struct BirthFigures {
     pub mean_detections_to_confirm: Option<f64>,
     /// Largest detections to confirmation (`None`: none confirmed).
     pub max_detections_to_confirm: Option<usize>,
+    /// Most confirmed labels that took one confirmed birth (`None`: none confirmed).
+    pub max_labels_per_birth: Option<usize>,
     /// False tracks over the run.
     pub false_tracks: usize,
 }
@@ -158,6 +160,10 @@ pub struct BirthsSummary {
     /// Largest detections to confirmation; `null` when no birth is confirmed.
     #[serde(default)]
     pub max_detections_to_confirm: Option<usize>,
+    /// Over the confirmed births, the most distinct confirmed labels GOSPA assigned to one of them (1: each
+    /// confirmed under one label); `null` when no birth is confirmed.
+    #[serde(default)]
+    pub max_labels_per_birth: Option<usize>,
     /// MAP labels confirmed at some scan and never within the error bound of an object; `null` without
     /// truth.
     #[serde(default)]
@@ -177,6 +183,7 @@ impl BirthsSummary {
                 .collect(),
             mean_detections_to_confirm: figures.mean_detections_to_confirm,
             max_detections_to_confirm: figures.max_detections_to_confirm,
+            max_labels_per_birth: figures.max_labels_per_birth,
             false_tracks: has_truth.then_some(figures.false_tracks),
             birth_confirmations: figures.records,
         }
@@ -207,6 +214,9 @@ pub struct BirthRecord {
     pub detections_to_confirm: Option<usize>,
     /// Scans from the first detection to the confirmation, both counted (`null`: never confirmed).
     pub scans_to_confirm: Option<usize>,
+    /// Distinct confirmed labels GOSPA assigned to it from its first detection on (0: never confirmed).
+    #[serde(default)]
+    pub confirmed_labels: usize,
 }
 
 /// A scan the tracker rejected.
