@@ -2,7 +2,7 @@
 //! object unknown to it, the first two hours of the night, each in the field for at least 20 minutes) is generated
 //! and run; each eccentric object is born from tracklets and confirmed under one label. The preset asks 4
 //! minutes only; passes shorter than about half an hour often end before their range along the line of sight
-//! comes within the 10 km bound (docs/results.md, "optical-heo").
+//! comes within the 10 km bound (docs/results.md, "optical-heo"), so the preset's field is wide.
 
 mod common;
 
@@ -50,10 +50,10 @@ fn small_run_check() {
     assert_eq!(summary.tracklet_births, Some(2));
 }
 
-/// The seed of the small run: one where both objects are confirmed. Of seeds 1–6 of this small scenario, 4
-/// and 6 confirm both; the others confirm one (1 false track each: the other object's own label, more than
-/// 10 km off along the line of sight); every one keeps each object under one label.
-const SEED: u64 = 4;
+/// The seed of the small run. With the preset's 20° field every one of seeds 1–8 of this small scenario
+/// confirms both objects under one label each with no false track; with `optical-geo`'s 3° field only seeds 4
+/// and 6 did (the others ended one object more than 10 km off along the line of sight).
+const SEED: u64 = 1;
 
 #[test]
 fn optical_heo_is_deterministic_and_its_eccentric_objects_are_unknown_to_the_prior() {

@@ -1,12 +1,15 @@
-//! The `optical-heo` preset (issue 31): the GEO telescope of `optical-geo` at night, with objects on
-//! transfer (GTO) and Molniya orbits that the prior does not know, crossing its field; the telescope must
-//! start them itself from tracklets (docs/maths.md §5.10) in the region of every bound orbit.
+//! The `optical-heo` preset (issue 31): a wide-field telescope at night about `optical-geo`'s boresight,
+//! with objects on transfer (GTO) and Molniya orbits that the prior does not know, crossing its field; the
+//! telescope must start them itself from tracklets (docs/maths.md §5.10) in the region of every bound orbit.
 //!
 //! Station-kept GEO objects (known to the prior) stay in the field. Each eccentric object is aimed at a
 //! point of the field at a random frame time, at a true anomaly of the far half of its orbit (90°–270°:
-//! 11,000 to 46,000 km from the Earth's centre), where it crosses the field in minutes to an hour; it is
-//! redrawn until it is sunlit and in the field in enough frames. Frames come every 30 s while the Sun is
-//! below −12° at the site.
+//! 11,000 to 46,000 km from the Earth's centre), where it crosses the field; it is redrawn until it is
+//! sunlit and in the field in enough frames. Frames come every 30 s while the Sun is below −12° at the site.
+//! The field is wide (20° half-angle: an array of cameras as survey systems for faint moving objects use),
+//! because from one site range along the line of sight is observed only over tens of minutes of arc: with
+//! `optical-geo`'s 3° field most passes lasted minutes and 34 of 80 objects ended more than 10 km off along
+//! the line of sight (docs/results.md, "optical-heo").
 
 use super::error::SsaError;
 use super::field_of_view::LookShape;
@@ -37,13 +40,22 @@ pub struct OpticalHeoConfig {
     pub cadence: f64,
     /// Frames in which every eccentric object is seen (its orbit is redrawn until it is).
     pub min_frames: usize,
+    /// Half-angle of the telescope's field (degrees), about `optical-geo`'s boresight.
+    pub half_angle_deg: f64,
 }
 
 impl OpticalHeoConfig {
     /// The `optical-heo` preset: 6 GEO objects, 4 GTO and 4 Molniya objects, the dark part of 4 hours
     /// from 02:00 UTC, a frame every 30 s.
-    pub const PRESET: OpticalHeoConfig =
-        OpticalHeoConfig { geo: 6, gto: 4, molniya: 4, duration: 4.0 * 3600.0, cadence: 30.0, min_frames: 8 };
+    pub const PRESET: OpticalHeoConfig = OpticalHeoConfig {
+        geo: 6,
+        gto: 4,
+        molniya: 4,
+        duration: 4.0 * 3600.0,
+        cadence: 30.0,
+        min_frames: 8,
+        half_angle_deg: 20.0,
+    };
 }
 
 /// The epoch: `optical-geo`'s, evening at the site (18:40 local mean solar time).
@@ -52,15 +64,15 @@ const OPTICAL_HEO_EPOCH: &str = "2026-03-20T02:00:00Z";
 /// Frames are taken while the Sun's elevation at the site is below this (degrees): nautical twilight over.
 const DARK_DEG: f64 = -12.0;
 
-/// `optical-heo`: the telescope of `optical-geo` ([`geo_telescope`]: 32° N 110° W, a cone of half-angle 3°
-/// about the GEO belt on its meridian, σ 1.5″, p_D 0.95, 1 clutter per frame), a frame every 30 s while the
-/// Sun is below −12° at the site within 4 h of 02:00 UTC on 2026-03-20. Objects: 6 station-kept GEO
-/// objects within ±2° of longitude of the meridian (known to the prior); 4 GTO objects (perigee altitude
-/// 200–600 km, apogee radius 42,164 ± 500 km, inclination up to 28.5°) and 4 Molniya objects (a 26,560 km,
-/// e 0.70–0.74, i 63.4°, the argument of perigee the one that puts the aim point at the drawn true
-/// anomaly), unknown to the prior; each aimed at a point within half the field's half-angle of the
-/// boresight at a random frame time with a true anomaly in 90°–270°, and redrawn (at most 200 times, from
-/// its own stream) until it is seen, sunlit and in the field, in at least 8 frames.
+/// `optical-heo`: the telescope of `optical-geo` ([`geo_telescope`]: 32° N 110° W, about the GEO belt on its
+/// meridian, σ 1.5″, p_D 0.95, 1 clutter per frame) with a cone of half-angle 20° (`half_angle_deg`;
+/// `optical-geo`'s is 3°), a frame every 30 s while the Sun is below −12° at the site within 4 h of 02:00 UTC
+/// on 2026-03-20. Objects: 6 station-kept GEO objects within ±2° of longitude of the meridian (known to the
+/// prior); 4 GTO objects (perigee altitude 200–600 km, apogee radius 42,164 ± 500 km, inclination up to 28.5°)
+/// and 4 Molniya objects (a 26,560 km, e 0.70–0.74, i 63.4°, the argument of perigee the one that puts the aim
+/// point at the drawn true anomaly), unknown to the prior; each aimed at a point within half the field's
+/// half-angle of the boresight at a random frame time with a true anomaly in 90°–270°, and redrawn (at most 200
+/// times, from its own stream) until it is seen, sunlit and in the field, in at least 8 frames.
 ///
 /// # Errors
 /// [`SsaError`] if propagation fails, an orbit search fails, or a scan would exceed the measurements a
@@ -120,7 +132,11 @@ fn aimed_eccentric(point: [f64; 3], shape: &Shape, inclination: f64, nu: f64, as
 /// # Errors
 /// As [`optical_heo`].
 pub fn optical_heo_with(seed: u64, config: &OpticalHeoConfig) -> Result<SsaScenario, SsaError> {
-    let sensors = vec![geo_telescope()];
+    let mut telescope = geo_telescope();
+    if let LookShape::Cone { half_angle, .. } = &mut telescope.fov.shape {
+        *half_angle = deg(config.half_angle_deg);
+    }
+    let sensors = vec![telescope];
     let sensor = &sensors[0];
     let epoch_jd = parse_iso8601(OPTICAL_HEO_EPOCH)?;
     let schedule = dark_schedule(&sensor.site, epoch_jd, config);
