@@ -1012,6 +1012,34 @@ fn soak_scan_count_is_bounded() {
     }
 }
 
+/// The truth's process noise of a 3-D soak (docs/maths.md §8.6) must be a density, and the planar soak has none.
+#[test]
+fn soak_truth_process_noise_is_checked() {
+    let dir = TempDir::new("soak-truth-noise");
+    let out = dir.join("soak.json");
+    for (scenario, q, expect) in [
+        ("optical-geo", "0", "--truth-process-noise 0: must be finite and > 0"),
+        ("optical-geo", "NaN", "--truth-process-noise NaN: must be finite and > 0"),
+        ("planar", "1e-12", "--truth-process-noise: only for the 3-D soaks"),
+    ] {
+        let output = host_sim(&[
+            "soak".as_ref(),
+            "--scenario".as_ref(),
+            scenario.as_ref(),
+            "--scans".as_ref(),
+            "10".as_ref(),
+            "--truth-process-noise".as_ref(),
+            q.as_ref(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        if let Err(why) = check_malformed(&output, expect) {
+            panic!("{scenario} {q}: {why}\n{}", describe(&output));
+        }
+        assert!(!out.exists());
+    }
+}
+
 /// A short soak on the radar geometry (issue 17 item 7): healthy, every object kept, the new keys present.
 #[test]
 fn a_short_radar_soak_keeps_its_objects() {

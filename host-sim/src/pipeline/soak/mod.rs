@@ -9,29 +9,27 @@ pub mod planar;
 mod run;
 
 pub use common::{MAX_SCANS, Scenario};
+pub use orbital::Noise;
 
 use crate::error::Error;
 use crate::io::report::SoakReport;
 
-/// Runs `scans` scans of the soak `scenario` with `seed` and returns the report; `process_noise` replaces
-/// the 3-D preset tracker's q.
+/// Runs `scans` scans of the soak `scenario` with `seed` and returns the report; `noise` replaces the 3-D
+/// preset tracker's q and gives its truth process noise.
 ///
 /// # Errors
 /// As [`planar::run`] and [`orbital::run`]; [`Error::Input`] for a process noise given to the planar soak.
-pub fn run_scenario(
-    scenario: Scenario,
-    scans: u64,
-    seed: u64,
-    process_noise: Option<f64>,
-    quiet: bool,
-) -> Result<SoakReport, Error> {
+pub fn run_scenario(scenario: Scenario, scans: u64, seed: u64, noise: Noise, quiet: bool) -> Result<SoakReport, Error> {
     match scenario {
-        Scenario::Planar if process_noise.is_some() => {
+        Scenario::Planar if noise.tracker.is_some() => {
             Err(Error::input("--process-noise: only for the 3-D soaks (radar-leo, optical-geo, ssa-network)"))
+        }
+        Scenario::Planar if noise.truth.is_some() => {
+            Err(Error::input("--truth-process-noise: only for the 3-D soaks (radar-leo, optical-geo, ssa-network)"))
         }
         Scenario::Planar => planar::run(scans, seed, quiet),
         Scenario::RadarLeo | Scenario::OpticalGeo | Scenario::SsaNetwork => {
-            orbital::run(scenario, scans, seed, process_noise, quiet)
+            orbital::run(scenario, scans, seed, noise, quiet)
         }
     }
 }
