@@ -19,7 +19,7 @@ use super::site::{Site, WGS84_A};
 use super::ssa::{Plan, SsaScenario, observers, simulate, visibility};
 use super::time::{EARTH_ROTATION_RATE, earth_rotation_angle, parse_iso8601};
 use super::truth::{ObjectTruth, geosynchronous, kepler_state, track};
-use super::vector::{add, deg, dot, scale};
+use super::vector::deg;
 use crate::scenario::from_catalogue::{sun_elevation, sun_position, sunlit};
 use crate::sim::orbit::Propagator;
 use crate::sim::rng::{Random, Stream};
@@ -185,12 +185,7 @@ pub fn optical_heo_with(seed: u64, config: &OpticalHeoConfig) -> Result<SsaScena
             // of the orbit's radius at ν (the site is inside it: the far root).
             let el = elevation + random.between(-0.5, 0.5) * half_angle;
             let az = azimuth + random.between(-0.5, 0.5) * half_angle / el.cos();
-            let local = [el.cos() * az.sin(), el.cos() * az.cos(), el.sin()];
-            let d =
-                add(add(scale(observer.east, local[0]), scale(observer.north, local[1])), scale(observer.up, local[2]));
-            let b = dot(observer.position, d);
-            let rho = -b + (b * b - dot(observer.position, observer.position) + radius * radius).sqrt();
-            let point = add(observer.position, scale(d, rho));
+            let point = observer.sphere_crossing(observer.direction(az, el), radius);
             let low = shape.inclination[0].max(radec(point)[1].abs() + deg(1.0));
             let high = shape.inclination[1].max(low);
             let inclination = random.between(low, high);

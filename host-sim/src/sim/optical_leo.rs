@@ -16,7 +16,7 @@ use super::site::{Site, WGS84_A};
 use super::ssa::{Plan, SsaScenario, observers, simulate, visibility};
 use super::time::{earth_rotation_angle, parse_iso8601};
 use super::truth::{ObjectTruth, Unknowns, aimed_circular, mark_missing, track};
-use super::vector::{add, deg, dot, norm, scale};
+use super::vector::{deg, norm};
 use crate::scenario::from_catalogue::{sun_elevation, sun_position, sunlit};
 use crate::sim::orbit::Propagator;
 use crate::sim::rng::{Random, Stream};
@@ -134,14 +134,9 @@ pub fn optical_leo_with(seed: u64, config: &OpticalLeoConfig) -> Result<SsaScena
             // A line of sight within half the half-angle of the boresight.
             let el = elevation + random.between(-0.5, 0.5) * half_angle;
             let az = azimuth + random.between(-0.5, 0.5) * half_angle / el.cos();
-            let local = [el.cos() * az.sin(), el.cos() * az.cos(), el.sin()];
-            let d =
-                add(add(scale(observer.east, local[0]), scale(observer.north, local[1])), scale(observer.up, local[2]));
+            let d = observer.direction(az, el);
             let radius = WGS84_A + random.between(500.0, 1500.0);
-            // The line of sight's crossing of the sphere of that radius.
-            let b = dot(observer.position, d);
-            let rho = -b + (b * b - dot(observer.position, observer.position) + radius * radius).sqrt();
-            let point = add(observer.position, scale(d, rho));
+            let point = observer.sphere_crossing(d, radius);
             let aim = radec(point);
             let lo = aim[1].abs() + deg(3.0);
             let inclination = random.between(lo, PI - lo);

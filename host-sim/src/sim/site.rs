@@ -77,6 +77,14 @@ impl Observer {
         add(add(scale(self.east, ce * sa), scale(self.north, ce * ca)), scale(self.up, se))
     }
 
+    /// Where the line of sight along the unit vector `d` meets the sphere of `radius` (km) about the Earth's
+    /// centre: the far root, the one ahead of a site inside the sphere.
+    pub fn sphere_crossing(&self, d: V3, radius: f64) -> V3 {
+        let b = dot(self.position, d);
+        let rho = -b + (b * b - dot(self.position, self.position) + radius * radius).sqrt();
+        add(self.position, scale(d, rho))
+    }
+
     /// (range, azimuth, elevation) of an inertial position.
     pub fn range_az_el(&self, position: V3) -> (f64, f64, f64) {
         let d = sub(position, self.position);
