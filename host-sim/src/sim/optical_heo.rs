@@ -221,7 +221,7 @@ pub fn optical_heo_with(seed: u64, config: &OpticalHeoConfig) -> Result<SsaScena
 mod tests {
     use super::*;
     use crate::sim::truth::MU;
-    use crate::sim::vector::{norm, pos, vel};
+    use crate::sim::vector::{add, norm, pos, scale, vel};
 
     #[test]
     fn an_aimed_eccentric_orbit_passes_through_its_point_with_its_shape() {
