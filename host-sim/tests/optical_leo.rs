@@ -54,3 +54,34 @@ fn optical_leo_is_deterministic_and_its_telescope_sees_only_in_twilight() {
     assert!((1564.0..1570.0).contains(&first), "the first frame at {first} s, not when the Sun is at −6°");
     assert!(a.scans.windows(2).all(|w| w[1].time - w[0].time == 2.0), "a frame every 2 s");
 }
+
+#[test]
+fn the_partitioned_tracker_counts_the_tracklets_its_birth_cluster_forms() {
+    let worker = std::thread::Builder::new().stack_size(1 << 28).spawn(partitioned_check).expect("thread");
+    worker.join().expect("the check passes");
+}
+
+/// The same small scenario through the partitioned tracker (`run` chooses it for a catalogue larger than one
+/// tracker's N): the preset's 12 × 4 tracklet cells do not fit a cluster's B = 32 and are refused at build
+/// (they would never give a birth); with 8 × 4 the unclaimed measurements go to the birth cluster, whose pool
+/// links them into tracklets, and each scan's report carries how many it formed.
+fn partitioned_check() {
+    use host_sim::partition::runner::{CLUSTER, build};
+    use host_sim::pipeline::orbital::corrections::corrected_measurements;
+    let mut scenario = small(3);
+    let tracklets = scenario.birth.measured.as_mut().and_then(|m| m.tracklets.as_mut()).expect("tracklet births");
+    assert!(tracklets.cells[0] * tracklets.cells[1] > CLUSTER.birth_cells);
+    match build(TrackerKind::Rfisst, &scenario) {
+        Ok(_) => panic!("tracklet cells beyond a cluster's B accepted"),
+        Err(e) => assert!(e.to_string().contains("tracklet births: cells"), "{e}"),
+    }
+    let tracklets = scenario.birth.measured.as_mut().and_then(|m| m.tracklets.as_mut()).expect("tracklet births");
+    tracklets.cells = [8, 4];
+    let mut tracker = build(TrackerKind::Rfisst, &scenario).expect("partitioned");
+    let mut formed = 0;
+    for scan in &scenario.scans {
+        let zs = corrected_measurements(&scenario, scan);
+        formed += tracker.step(scan.sensor, scan.time, &zs).expect("every scan accepted").tracklets_formed;
+    }
+    assert!(formed >= 3, "tracklets formed by the birth cluster: {formed}");
+}

@@ -248,6 +248,27 @@ fn measured_birth_settings_are_checked_and_a_full_pool_loses_nothing_else() {
     let full = [birth_cell(), birth_cell(), birth_cell()];
     assert!(matches!(with(BirthEvents::Independent, measured, &full), Err(ConfigError::MeasuredBirths(_))));
     assert_eq!(with(BirthEvents::Independent, measured, &full[..2]), Ok(()));
+    // A tracklet's ranges × rates cells must fit beside the fixed cells, else it could never give a birth.
+    let tracklets = |cells| MeasuredBirths {
+        tracklets: Some(tracker_core::pool::TrackletBirths {
+            frames: 3,
+            max_span: 10.0,
+            limits: tracker_core::model::LinkLimits {
+                max_chi_squared: 13.8,
+                max_rate: 1.0,
+                max_acceleration: 0.1,
+                max_jerk: 0.0,
+            },
+            region: AdmissibleRegion::planar(2.0),
+            cells,
+            single_frame: false,
+        }),
+        ..measured
+    };
+    assert_eq!(with(BirthEvents::Independent, tracklets([3, 1]), &[]), Ok(()));
+    assert_eq!(with(BirthEvents::Independent, tracklets([2, 1]), &full[..1]), Ok(()));
+    let refused = with(BirthEvents::Independent, tracklets([3, 1]), &full[..1]);
+    assert!(matches!(refused, Err(ConfigError::MeasuredBirths(reason)) if reason.contains("tracklet")), "{refused:?}");
 
     // Four unexplained measurements (equal α) for a pool of three cells: each new cell goes in, the oldest
     // gives way to the fourth; counted, the scan fine.

@@ -97,7 +97,7 @@ fn info(report: &super::PartitionReport) -> StepInfo {
         budget_reached: false,
         numerical_drops: NumericalDrops::default(),
         lost_tracks: 0,
-        tracklets_formed: 0,
+        tracklets_formed: report.tracklets_formed,
     }
 }
 

@@ -61,6 +61,8 @@ pub struct PartitionReport {
     pub born_clusters: usize,
     /// Measurements routed to the birth cluster.
     pub unclaimed: usize,
+    /// Tracklets the birth cluster's pool formed from them (docs/maths.md §5.10).
+    pub tracklets_formed: usize,
     /// Clusters with no measurement and no track in view, stepped last with an empty scan, or with a view
     /// skip given their tracks' predictions (§13.2).
     pub quiet: usize,
@@ -427,6 +429,7 @@ where
         }
         let step = birth_step.map_err(|error| PartitionError::Cluster { cluster: ClusterId::BIRTH, error })?;
         report.step_pruned_mass += (1.0 - step.captured_mass).max(0.0);
+        report.tracklets_formed = step.birth_pool.tracklets;
         report.clusters_with_measurements =
             work.iter().filter(|w| !w.2.is_empty()).count() + usize::from(!unclaimed.is_empty());
         Ok((stepped, birth))

@@ -149,6 +149,14 @@ fn check_event_probabilities<T: Real, M, G, const S: usize, const N: usize, cons
         if config.birth.cells.len() >= B {
             return Err(ConfigError::MeasuredBirths("measured births need room in the B cells besides the fixed ones"));
         }
+        // A tracklet's cells that cannot all be held would give no birth at all (docs/maths.md §5.10).
+        if let Some(tracklets) = &measured.tracklets
+            && tracklets.cells[0].saturating_mul(tracklets.cells[1]) > B - config.birth.cells.len()
+        {
+            return Err(ConfigError::MeasuredBirths(
+                "tracklet births: cells (ln-range × range-rate) must fit the B cells besides the fixed ones",
+            ));
+        }
     }
     Ok(())
 }
