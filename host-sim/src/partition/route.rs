@@ -126,6 +126,13 @@ where
     Gated { measurements, in_view, clear_for, predicted, coasted: None }
 }
 
+/// The oldest a cluster's state may be for it to coast (s; docs/maths.md §13.2). Past it the cluster goes
+/// through the full gate and is given its predictions, so no prediction from its state spans more than this
+/// plus the gap to its next gating. One prediction over hours takes the process noise as a single
+/// white-acceleration step in the axes of its first state, not as the orbit carries it (§6.7): unbounded
+/// coasts raised the observed objects' median error over a day at 1,000 objects from 0.42 to 1.05 km.
+pub const MAX_COAST_AGE_S: f64 = 60.0;
+
 /// The gates of a cluster whose tracks' means alone, predicted to the scan, are all cleared from the
 /// scanning sensor (docs/maths.md §13.2, coasting): no track in view, no measurement, the clearances from
 /// those means, and the means as [`Gated::coasted`]; `None` when a mean's prediction fails or a track has no

@@ -336,7 +336,9 @@ where
                     let dt = time - rest.time();
                     // A coast continues from its means; a caught-up rest starts afresh (§13.2).
                     let from = c.coast.as_ref().filter(|_| caught.is_none()).map(|k| (&k.means[..], time - k.time));
-                    let coasted = skip.and_then(|skip| route::coast(motion, rest.tracks(), dt, from, &skip));
+                    // A coast ends once the state is MAX_COAST_AGE_S old: its next full prediction stays short.
+                    let coasting = skip.filter(|_| dt <= route::MAX_COAST_AGE_S);
+                    let coasted = coasting.and_then(|skip| route::coast(motion, rest.tracks(), dt, from, &skip));
                     let gated = coasted.unwrap_or_else(|| {
                         route::gate(motion, placed, rest.tracks(), dt, scan, self.config.gate, skip)
                     });

@@ -291,3 +291,35 @@ fn a_coasting_cluster_is_out_of_view_and_gates_nothing_as_the_full_gate_from_its
     assert!(in_view >= 20 && hits >= 20 && fresh >= 50 && chained >= 1000, "{in_view} {hits} {fresh} {chained}");
     eprintln!("{in_view} in view, {hits} measurements gated; {fresh} coasts from the rest, {chained} chained");
 }
+
+#[test]
+fn a_cluster_coasts_only_while_its_state_is_at_most_the_coast_age_old() {
+    // Half an hour of a 40-object catalogue: clusters coast, and each coast ends by MAX_COAST_AGE_S
+    // (docs/maths.md §13.2), so the core's next prediction from a cluster's state stays short.
+    use crate::partition::route::MAX_COAST_AGE_S;
+    let worker = std::thread::Builder::new().stack_size(256 << 20).spawn(|| {
+        let mut world = world::World::new(catalogue(40, 7), 0.5, 7).expect("world");
+        let scenario = world.scenario().expect("scenario");
+        let (config, prior) =
+            config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst).expect("config");
+        let mut tracker = Partitioned::<Radars, 3>::new(config, &prior[0].1, scenario.prior.time, 0.0)
+            .expect("tracker")
+            .with_view_skip(ground_closing_speed);
+        let (mut coasting, mut oldest) = (0usize, 0.0f64);
+        for k in 0..world.scans() {
+            let scan = world.scan(k).expect("scan");
+            let geometry = ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
+            tracker.step(&geometry, &scan.measurements).expect("step");
+            for c in tracker.clusters() {
+                if let Some(coast) = &c.coast {
+                    coasting += 1;
+                    oldest = oldest.max(coast.time - c.rest.time());
+                }
+            }
+        }
+        (coasting, oldest)
+    });
+    let (coasting, oldest) = worker.expect("thread").join().expect("run");
+    assert!(coasting >= 1000, "coasting clusters: {coasting}");
+    assert!(oldest <= MAX_COAST_AGE_S && oldest >= 0.5 * MAX_COAST_AGE_S, "oldest coasting state: {oldest} s");
+}
