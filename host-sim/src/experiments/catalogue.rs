@@ -319,8 +319,8 @@ pub fn sensors(scan_interval_s: f64) -> SensorsFile {
 /// telescope sees is started. The telescope's frames come every 20 s (the sensors take turns): 4 frames span
 /// 60 s, 80 s with one missed (`max_span` 90 s). The link test: χ² ≤ 13.8 (2 degrees of freedom, 99.9 %),
 /// angular rate ≤ 0.1°/s, so only objects beyond LEO (a LEO object crosses the sky at up to 1°/s and its
-/// births are the radars'), accelerations ≤ 10⁻³ °/s², jerk
-/// ≤ 10⁻⁵ °/s³; 12 ln-range × 4 range-rate cells (48, within the host profile's 64). A direction that links
+/// births are the radars'), accelerations ≤ 10⁻³ °/s², jerk ≤ 10⁻⁵ °/s³; 12 ln-range × 4 range-rate cells
+/// (48, within the host profile's 64; a partitioned tracker's B = 32 refuses them). A direction that links
 /// with nothing keeps its single-frame GEO cells (`single_frame`), as before tracklets.
 pub const BIRTHS: MeasuredBirthsSpec = MeasuredBirthsSpec {
     tracklets: Some(TrackletSpec {
