@@ -4,6 +4,7 @@
 use super::CliError;
 use crate::error::Error;
 use crate::io::catalogue::CatalogueDropped;
+use crate::scenario::from_catalogue::Generation;
 use crate::scenario::from_simulation::{Generated, Preset3d};
 use crate::scenario::v2::Scenario3d;
 use crate::sim::planar::Preset;
@@ -92,9 +93,9 @@ pub struct CatalogueArgs {
     /// generate catalogue: the start, UTC `YYYY-MM-DDTHH:MM:SS[.f][Z]` (the scenario's epoch).
     #[arg(long)]
     start: Option<String>,
-    /// generate catalogue: the duration in hours, at most 744, and at most what makes a scenario `run`
-    /// reads (256 MiB: about 130 bytes per object and scan, roughly 2e6 objects x scans); refused up front
-    /// with the estimated size (exit code 2).
+    /// generate catalogue: the duration in hours, at most 744; `generate catalogue`: at most what makes a
+    /// scenario `run` reads (256 MiB: about 130 bytes per object and scan, roughly 2e6 objects x scans),
+    /// refused up front with the estimated size (exit code 2); `run-catalogue` draws a longer run as it goes.
     #[arg(long)]
     duration_hours: Option<f64>,
 }
@@ -103,11 +104,7 @@ impl CatalogueArgs {
     /// The scenario of `generate catalogue` (`command` names the command in messages) and the element sets
     /// it left out.
     pub(super) fn generate(self, command: &str, seed: u64) -> Result<(Scenario3d, Generated, CatalogueDropped), Error> {
-        let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
-        let catalogue_file = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
-        let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
-        let start = self.start.ok_or_else(|| missing("--start"))?;
-        let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+        let (catalogue_file, sensors, start, duration_hours) = self.required(command)?;
         crate::scenario::from_catalogue::generate_screened(crate::scenario::from_catalogue::Request {
             catalogue: &catalogue_file,
             sensors: &sensors,
@@ -115,6 +112,30 @@ impl CatalogueArgs {
             duration_hours,
             seed,
         })
+    }
+
+    /// [`Self::generate`]'s scenario when it fits a scenario file, else its scans drawn as the run goes
+    /// ([`crate::scenario::from_catalogue::generate_or_stream`]).
+    pub(super) fn generate_or_stream(self, command: &str, seed: u64) -> Result<Generation, Error> {
+        let (catalogue, sensors, start, duration_hours) = self.required(command)?;
+        crate::scenario::from_catalogue::generate_or_stream(crate::scenario::from_catalogue::Request {
+            catalogue: &catalogue,
+            sensors: &sensors,
+            start: &start,
+            duration_hours,
+            seed,
+        })
+    }
+
+    /// The four options `command` requires.
+    fn required(self, command: &str) -> Result<(PathBuf, PathBuf, String, f64), Error> {
+        let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
+        Ok((
+            self.catalogue.ok_or_else(|| missing("--catalogue"))?,
+            self.sensors.ok_or_else(|| missing("--sensors"))?,
+            self.start.ok_or_else(|| missing("--start"))?,
+            self.duration_hours.ok_or_else(|| missing("--duration-hours"))?,
+        ))
     }
 
     /// The catalogue options are refused with a preset.

@@ -4,6 +4,7 @@ use super::generate::CatalogueArgs;
 use super::{CliError, Common};
 use crate::pipeline::TrackerKind;
 use crate::scenario::AnyScenario;
+use crate::scenario::from_catalogue::Generation;
 use std::path::PathBuf;
 
 /// The arguments of `run-catalogue`.
@@ -27,9 +28,24 @@ pub struct Args {
 /// Runs `run-catalogue`.
 pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let options = args.common.run_options(args.tracker)?;
-    let (scenario, _, dropped) = args.catalogue.generate("run-catalogue", args.seed)?;
-    let scenario = AnyScenario::V2(Box::new(scenario));
-    let (mut summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
+    let (mut summary, clean, dropped) = match args.catalogue.generate_or_stream("run-catalogue", args.seed)? {
+        Generation::Held(held) => {
+            let (scenario, _, dropped) = *held;
+            let scenario = AnyScenario::V2(Box::new(scenario));
+            let (summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
+            (summary, clean, dropped)
+        }
+        Generation::Streamed(stream) => {
+            eprintln!(
+                "note: {} objects x {} scans: more than a scenario file holds; the scans are drawn as the run goes \
+                 (estimates.csv and tracks.oem: the tracks once a simulated hour and at the end; scenario.json \
+                 without truth)",
+                stream.objects(),
+                stream.scans()
+            );
+            crate::pipeline::run_streamed(*stream, &options, &args.out)?
+        }
+    };
     // The run's summary.json with the element sets the scenario left out.
     summary.catalogue_dropped = Some(dropped);
     crate::pipeline::output::write_json(&args.out.join("summary.json"), &summary)?;

@@ -94,8 +94,9 @@ impl BirthTally {
                 b.labels.insert(track.label);
             }
         }
+        let near_truth = Near::new(truth.iter().map(|(_, p)| *p), self.error_bound, map.len());
         for t in map {
-            let near = truth.iter().any(|(_, p)| distance(p, t.position) < self.error_bound);
+            let near = near_truth.any_within(t.position);
             let label = self.labels.entry(t.label).or_default();
             label.confirmed |= t.existence >= self.threshold;
             label.near |= near;
@@ -174,12 +175,76 @@ impl BirthFigures {
     }
 }
 
+/// Whether a position lies within `bound` of one of a set of points: each point tried in turn, or, when
+/// the points times the queries exceed [`Near::GRID_ABOVE`], only the points of the grid cells (side
+/// `bound`) around it: the same answer (a point within `bound` lies in a neighbouring cell), at a cost that
+/// grows with the points and queries rather than their product.
+struct Near<'a> {
+    points: Vec<&'a [f64]>,
+    bound: f64,
+    grid: Option<std::collections::HashMap<[i64; 3], Vec<usize>>>,
+}
+
+impl<'a> Near<'a> {
+    /// Above this many (point, query) pairs the points go into a grid.
+    const GRID_ABOVE: usize = 1 << 20;
+
+    fn cell(&self, position: &[f64]) -> [i64; 3] {
+        // `as` saturates; a non-finite coordinate is never within the bound of anything.
+        core::array::from_fn(|d| position.get(d).map_or(0, |x| (x / self.bound).floor() as i64))
+    }
+
+    fn new(points: impl Iterator<Item = &'a [f64]>, bound: f64, queries: usize) -> Self {
+        let mut near = Near { points: points.collect(), bound, grid: None };
+        let gridded = bound > 0.0 && bound.is_finite() && near.points.iter().all(|p| p.len() <= 3);
+        if gridded && near.points.len().saturating_mul(queries) > Self::GRID_ABOVE {
+            let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
+            for (i, p) in near.points.iter().enumerate() {
+                grid.entry(near.cell(p)).or_default().push(i);
+            }
+            near.grid = Some(grid);
+        }
+        near
+    }
+
+    fn any_within(&self, position: &[f64]) -> bool {
+        let Some(grid) = &self.grid else {
+            return self.points.iter().any(|p| distance(p, position) < self.bound);
+        };
+        let centre = self.cell(position);
+        (0..27usize).any(|k| {
+            let cell: [i64; 3] =
+                core::array::from_fn(|d| centre[d].saturating_add((k / 3usize.pow(d as u32) % 3) as i64 - 1));
+            grid.get(&cell).is_some_and(|near| near.iter().any(|&i| distance(self.points[i], position) < self.bound))
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn track(label: u32, position: &[f64], existence: f64) -> MapTrack<'_> {
         MapTrack { label, position, existence }
+    }
+
+    /// The grid answers as trying every point does, in 2-D and 3-D, on points at about the bound.
+    #[test]
+    fn near_by_grid_answers_as_every_point() {
+        let mut random = crate::sim::rng::Random::stream(3, crate::sim::rng::Stream::Scenario, 0);
+        for (dimension, bound) in [(2, 1.5), (3, 5.0)] {
+            let points: Vec<Vec<f64>> =
+                (0..2000).map(|_| (0..dimension).map(|_| random.uniform() * 100.0 - 50.0).collect()).collect();
+            let queries: Vec<Vec<f64>> =
+                (0..2000).map(|_| (0..dimension).map(|_| random.uniform() * 100.0 - 50.0).collect()).collect();
+            let slices = || points.iter().map(Vec::as_slice);
+            let (gridded, linear) = (Near::new(slices(), bound, queries.len()), Near::new(slices(), bound, 0));
+            assert!(gridded.grid.is_some() && linear.grid.is_none());
+            let answers: Vec<bool> = queries.iter().map(|q| gridded.any_within(q)).collect();
+            assert_eq!(answers, queries.iter().map(|q| linear.any_within(q)).collect::<Vec<_>>());
+            let near = answers.iter().filter(|&&a| a).count();
+            assert!(near > 200 && near < 1800, "{near} of 2000 near: both answers occur");
+        }
     }
 
     #[test]

@@ -94,6 +94,23 @@ pub fn run_with_scenario_file(
     }
 }
 
+/// `run-catalogue` on a catalogue too large to hold: its scans drawn as the run goes
+/// ([`orbital::run_streamed`]); `summary.json` is scored against the truth drawn with each scan, and
+/// `scenario.json` holds the scans drawn, without truth. Written only when the run succeeds; also returns
+/// the element sets dropped.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_streamed(
+    stream: crate::scenario::catalogue_stream::CatalogueStream,
+    options: &RunOptions,
+    out: &Path,
+) -> Result<(RunSummary, bool, crate::io::catalogue::screen::CatalogueDropped), Error> {
+    crate::io::tdm::stage(out, |dir| {
+        orbital::run_streamed(stream, options.tracker, options.profile, options.quiet, dir)
+    })
+}
+
 /// What `compare` found, per world.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Compared {

@@ -239,6 +239,10 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let mut judge = Judge::new(prior.map.iter().map(|t| t.label));
     let mut residual_plots = crate::pipeline::residual_plots::ResidualPlots::default();
     for k in 0..n {
+        if let Err(e) = world.begin(k) {
+            bar.finish_and_clear();
+            return Err(e);
+        }
         let time = world.time(k);
         let associations = world.associate(k);
         let start = Instant::now();
@@ -280,9 +284,11 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             Some(s) => s.within_bound.iter().map(|&w| Some(w)).collect(),
             None => vec![None; posterior.map.len()],
         };
-        let scan_columns = world.csv_scan_columns(k);
-        for (t, w) in posterior.map.iter().zip(&within) {
-            csv_line(&mut csv, &scan_columns, t, *w).map_err(csv_error)?;
+        if world.estimates_due(k) {
+            let scan_columns = world.csv_scan_columns(k);
+            for (t, w) in posterior.map.iter().zip(&within) {
+                csv_line(&mut csv, &scan_columns, t, *w).map_err(csv_error)?;
+            }
         }
         world.record(k, info.is_some(), &posterior, &within)?;
         records.push(ScanRecord {

@@ -89,6 +89,14 @@ pub trait World<const P: usize> {
     fn scans(&self) -> usize;
     /// Time of scan `k`.
     fn time(&self, k: usize) -> f64;
+    /// Makes scan `k` ready, before anything else of it is asked (a world that draws its scans as the run
+    /// goes draws it here); the replay asks for the scans in order, each once.
+    ///
+    /// # Errors
+    /// The world cannot make the scan (bad input, or a file it reads).
+    fn begin(&mut self, _k: usize) -> Result<(), Error> {
+        Ok(())
+    }
     /// Steps the tracker with scan `k`.
     ///
     /// # Errors
@@ -121,6 +129,11 @@ pub trait World<const P: usize> {
     }
     /// Whether `state` lies in the field of view of scan `k`'s sensor.
     fn in_view(&self, k: usize, state: &[f64]) -> bool;
+    /// Whether `estimates.csv` holds the MAP estimates of scan `k` (every scan's, unless the world says
+    /// otherwise).
+    fn estimates_due(&self, _k: usize) -> bool {
+        true
+    }
     /// The header of `estimates.csv`.
     fn csv_header(&self) -> &'static str;
     /// The columns of `estimates.csv` before the label (scan, time and, in a network, the sensor).

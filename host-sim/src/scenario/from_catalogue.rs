@@ -10,11 +10,13 @@
 //! cylindrical shadow); the Sun is [`sun_position`], the Astronomical Almanac's low-precision formula.
 
 use crate::Error;
-use crate::io::catalogue::{self, Satellite};
-use crate::scenario::from_simulation::{self as generate3d, Generated, KnownTruth};
+use crate::io::catalogue;
+use crate::pipeline::Profile;
+use crate::pipeline::profile::ORBITAL;
+use crate::scenario::catalogue_stream::{CatalogueStream, StreamParts};
+use crate::scenario::from_simulation::Generated;
 use crate::scenario::v2::{MAX_SENSORS, Measurement3dSpec, Scenario3d, Sensor3dSpec, ShapeSpec};
 use crate::scenario::{MAX_FILE_BYTES, ScenarioError, error, read_limited};
-use crate::sim::error::SsaError;
 use crate::sim::field_of_view::FieldOfView;
 use crate::sim::field_of_view::LookShape;
 use crate::sim::sensor::SensorKind;
@@ -65,7 +67,7 @@ fn check_size(objects: u64, scans: u64, clutter_per_scan: f64) -> Result<(), Err
     Err(Error::input(format!(
         "{objects} objects x {scans} scans would make a scenario of about {} MiB ({BYTES_PER_TRUTH_STATE} B per \
          object and scan), more than the {} MiB `run` reads: a shorter run, a longer scan_interval_s or fewer \
-         objects",
+         objects (run-catalogue draws such a run as it goes)",
         bytes >> 20,
         MAX_FILE_BYTES >> 20
     )))
@@ -74,6 +76,20 @@ fn check_size(objects: u64, scans: u64, clutter_per_scan: f64) -> Result<(), Err
 /// Refuses a generated scenario whose file would be larger than `run` reads (the estimate of
 /// [`check_size`] is close, not exact): its exact size, counted without writing it.
 fn check_written_size(scenario: &Scenario3d) -> Result<(), Error> {
+    let bytes = written_bytes(scenario)?;
+    if bytes > MAX_FILE_BYTES {
+        return Err(Error::input(format!(
+            "the generated scenario would be {} MiB, more than the {} MiB `run` reads: a shorter run, a longer \
+             scan_interval_s or fewer objects (run-catalogue draws such a run as it goes)",
+            bytes >> 20,
+            MAX_FILE_BYTES >> 20
+        )));
+    }
+    Ok(())
+}
+
+/// The size of `scenario`'s file, counted without writing it.
+fn written_bytes(scenario: &Scenario3d) -> Result<u64, Error> {
     struct Count(u64);
     impl std::io::Write for Count {
         fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
@@ -86,15 +102,7 @@ fn check_written_size(scenario: &Scenario3d) -> Result<(), Error> {
     }
     let mut count = Count(1); // the final line break
     serde_json::to_writer(&mut count, scenario).map_err(|e| Error::internal(format!("scenario size: {e}")))?;
-    if count.0 > MAX_FILE_BYTES {
-        return Err(Error::input(format!(
-            "the generated scenario would be {} MiB, more than the {} MiB `run` reads: a shorter run, a longer \
-             scan_interval_s or fewer objects",
-            count.0 >> 20,
-            MAX_FILE_BYTES >> 20
-        )));
-    }
-    Ok(())
+    Ok(count.0)
 }
 
 /// One astronomical unit (km).
@@ -295,12 +303,101 @@ pub fn generate(request: Request<'_>) -> Result<(Scenario3d, Generated), Error> 
 
 /// The scenario of a catalogue seen by a sensor network, and the element sets left out
 /// ([`catalogue::screen`]: inside the Earth, decaying or failing SGP4 during the run, given twice), each
-/// also a warning line on stderr.
+/// also a warning line on stderr: every scan of [`CatalogueStream`] drawn and held. A scan may carry more
+/// measurements than one tracker takes only when the catalogue is larger than one tracker's N (the run
+/// then partitions it, docs/maths.md §13).
 ///
 /// # Errors
-/// [`Error::Input`] for a bad file or argument, a catalogue whose every element set is dropped, or a scan
-/// that would carry more measurements than the tracker takes.
+/// [`Error::Input`] for a bad file or argument, a catalogue whose every element set is dropped, a scenario
+/// larger than `run` reads, or a scan that would carry more measurements than the tracker takes.
 pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated, catalogue::CatalogueDropped), Error> {
+    let (parts, _) = prepare(request, Hold::Always)?;
+    let held = held(CatalogueStream::new(parts)?)?;
+    check_written_size(&held.0)?;
+    Ok(held)
+}
+
+/// A catalogue's run: its scenario held whole, or its scans drawn as the run goes.
+pub enum Generation {
+    /// The scenario, as [`generate_screened`] gives it.
+    Held(Box<(Scenario3d, Generated, catalogue::CatalogueDropped)>),
+    /// The scans drawn one at a time ([`stream`]).
+    Streamed(Box<CatalogueStream>),
+}
+
+/// [`generate_screened`]'s scenario when it fits a scenario file `run` reads ([`MAX_FILE_BYTES`],
+/// [`MAX_PROPAGATIONS`]), else its [`stream`] (`run-catalogue`).
+///
+/// # Errors
+/// As [`generate_screened`], but for the scenario's size.
+pub fn generate_or_stream(request: Request<'_>) -> Result<Generation, Error> {
+    let (parts, held_whole) = prepare(request, Hold::IfItFits)?;
+    let scans = CatalogueStream::new(parts)?;
+    if !held_whole {
+        return Ok(Generation::Streamed(Box::new(scans)));
+    }
+    let held = held(scans)?;
+    // The estimate is close, not exact: a scenario it let through may still be too large to write.
+    match written_bytes(&held.0)? <= MAX_FILE_BYTES {
+        true => Ok(Generation::Held(Box::new(held))),
+        false => stream(request).map(|s| Generation::Streamed(Box::new(s))),
+    }
+}
+
+/// Every scan of `stream` drawn and held, with the figures of the scenario (its size not checked).
+fn held(mut stream: CatalogueStream) -> Result<(Scenario3d, Generated, catalogue::CatalogueDropped), Error> {
+    let (mut scans, mut truth_scans) = (Vec::with_capacity(stream.scans()), Vec::with_capacity(stream.scans()));
+    for k in 0..stream.scans() {
+        let (scan, truth) = stream.scan(k)?;
+        scans.push(scan);
+        truth_scans.push(truth);
+    }
+    let (objects, dropped_outside) = (stream.objects(), stream.dropped_outside);
+    let (mut scenario, dropped) = stream.into_parts();
+    scenario.scans = scans;
+    scenario.truth.as_mut().ok_or_else(|| Error::internal("catalogue scenario without truth"))?.scans = truth_scans;
+    scenario.validate().map_err(|e| Error::internal(format!("generated scenario: {e}")))?;
+    let figures = Generated {
+        objects,
+        scans: scenario.scans.len(),
+        measurements: scenario.scans.iter().map(|s| s.measurements.len()).sum(),
+        max_measurements: scenario.max_measurements(),
+        dropped_outside,
+    };
+    check_written_size(&scenario)?;
+    Ok((scenario, figures, dropped))
+}
+
+/// The scans of a catalogue seen by a sensor network, drawn one at a time: [`generate_screened`]'s scenario
+/// without holding it, for a catalogue of any size (scans of any number of measurements; objects screened
+/// every [`STREAM_SCREEN_STEP_S`] before the run, and an object that decays between two screening times
+/// dropped at the scan, with a warning).
+///
+/// # Errors
+/// As [`generate_screened`], but for the scenario's size and the measurements per scan.
+pub fn stream(request: Request<'_>) -> Result<CatalogueStream, Error> {
+    let (parts, _) = prepare(request, Hold::Never)?;
+    CatalogueStream::new(parts)
+}
+
+/// Whether [`prepare`] readies a scenario to be held whole.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Hold {
+    /// Held: refused when too large for a scenario file.
+    Always,
+    /// Streamed.
+    Never,
+    /// Held when it fits a scenario file, else streamed.
+    IfItFits,
+}
+
+/// Seconds between two screening times of a streamed catalogue ([`stream`]).
+pub const STREAM_SCREEN_STEP_S: f64 = 600.0;
+
+/// What [`CatalogueStream`] needs of a request, and whether its scenario is to be held whole
+/// ([`Hold`]): its arguments checked, the schedule, the catalogue screened at every scan time (held) or
+/// every [`STREAM_SCREEN_STEP_S`] (streamed); a held scenario's size checked before anything grows with it.
+fn prepare(request: Request<'_>, hold: Hold) -> Result<(StreamParts, bool), Error> {
     let hours = request.duration_hours;
     if !(hours.is_finite() && hours > 0.0 && hours <= MAX_DURATION_HOURS) {
         return Err(Error::input(format!(
@@ -321,18 +418,19 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
     let duration = hours * 3600.0;
     let slot = sensors_file.scan_interval_s / sensors.len() as f64;
     let slots = (duration / slot).floor() as u64 + 1;
-    if slots.saturating_mul(entries.len() as u64) > MAX_PROPAGATIONS {
-        return Err(Error::input(format!(
+    let propagations = match slots.saturating_mul(entries.len() as u64) > MAX_PROPAGATIONS {
+        true => Err(Error::input(format!(
             "{} objects x {slots} scans exceed {MAX_PROPAGATIONS} SGP4 evaluations: a shorter run, a longer \
-             scan_interval_s or a smaller catalogue",
+             scan_interval_s or a smaller catalogue (run-catalogue draws such a run as it goes)",
             entries.len()
-        )));
-    }
+        ))),
+        false => Ok(()),
+    };
     let dark = sensors_file.max_sun_elevation_deg.to_radians();
-    let (sites, count, optical) = (&sensors[..], sensors.len() as u64, &optical[..]);
+    let (sites, count, optical_of) = (&sensors[..], sensors.len() as u64, &optical[..]);
     let scheduled = || {
         (0..slots).map(move |j| (j as f64 * slot, (j % count) as usize)).filter(move |&(t, s)| {
-            !optical[s] || {
+            !optical_of[s] || {
                 let sun = sun_position(epoch_jd + t / 86_400.0);
                 sun_elevation(&sites[s].site, time::earth_rotation_angle(epoch_jd, t), sun) < dark
             }
@@ -340,7 +438,13 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
     };
     // The scenario's size is known from the request: refuse before anything grows with it.
     let clutter = sensors.iter().map(|s| s.clutter_rate).sum::<f64>() / sensors.len() as f64;
-    check_size(entries.len() as u64, scheduled().count() as u64, clutter)?;
+    let fits = propagations.and_then(|()| check_size(entries.len() as u64, scheduled().count() as u64, clutter));
+    let held_whole = match (hold, fits) {
+        (Hold::Always, Err(e)) => return Err(e),
+        (Hold::Always, Ok(())) => true,
+        (Hold::Never, _) => false,
+        (Hold::IfItFits, fits) => fits.is_ok(),
+    };
     let schedule: Vec<(f64, usize)> = scheduled().collect();
     if schedule.is_empty() {
         return Err(Error::input(format!(
@@ -350,55 +454,38 @@ pub fn generate_screened(request: Request<'_>) -> Result<(Scenario3d, Generated,
         )));
     }
 
-    // Truth by SGP4.
     let file = request.catalogue.display().to_string();
-    let scan_times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
-    let screened = catalogue::screen::screen_scans(&file, entries, epoch, &scan_times)?;
-    let satellites: Vec<Satellite> = screened.satellites;
-    let state = |i: usize, t: f64| -> Result<[f64; 6], Error> {
-        let satellite = &satellites[i];
-        satellite.tracker_state(epoch, t).map(|(r, v)| [r[0], r[1], r[2], v[0], v[1], v[2]]).map_err(|err| {
-            Error::input(format!(
-                "{file}:{}: object {}: at {start} + {t} s: {err}",
-                satellite.entry.line, satellite.entry.norad_id
-            ))
-        })
+    let screened = if !held_whole {
+        let steps = (duration / STREAM_SCREEN_STEP_S).ceil() as usize;
+        let times: Vec<f64> = (0..=steps).map(|k| (k as f64 * STREAM_SCREEN_STEP_S).min(duration)).collect();
+        catalogue::screen::screen_scans(&file, entries, epoch, &times)?
+    } else {
+        let scan_times: Vec<f64> = schedule.iter().map(|&(t, _)| t).collect();
+        catalogue::screen::screen_scans(&file, entries, epoch, &scan_times)?
     };
-    let mut tracks = Vec::with_capacity(satellites.len());
-    let mut visible = Vec::with_capacity(satellites.len());
-    for i in 0..satellites.len() {
-        let mut track = Vec::with_capacity(schedule.len());
-        let mut seen = Vec::with_capacity(schedule.len());
-        for &(t, s) in &schedule {
-            let x = state(i, t)?;
-            seen.push(!optical[s] || sunlit([x[0], x[1], x[2]], sun_position(epoch_jd + t / 86_400.0)));
-            track.push(x);
-        }
-        tracks.push(track);
-        visible.push(seen);
-    }
+    // One tracker takes at most MAX_MEASUREMENTS a scan; a catalogue larger than one tracker's N is
+    // partitioned, and its clusters share a scan's measurements.
+    let partitioned = screened.satellites.len() > ORBITAL.of(Profile::Host).objects;
     let name =
         format!("catalogue {}", request.catalogue.file_name().map_or(file.clone(), |n| n.to_string_lossy().into()));
-    let simulation =
-        crate::sim::ssa::simulate_tracks(&name, request.seed, start, duration, sensors, schedule, tracks, visible)
-            .map_err(|e| match e {
-                SsaError::TooManyMeasurements { scan } => Error::input(format!(
-                    "scan {scan} would carry more than {} measurements (the tracker's limit): fewer objects, a \
-                 narrower field of view or less clutter",
-                    crate::sim::error::MAX_MEASUREMENTS
-                )),
-                other => Error::input(format!("{}: {other}", request.sensors.display())),
-            })?;
-    let (mut scenario, figures) = generate3d::to_scenario_with(
-        &simulation,
-        Some(KnownTruth { state: &state, source: "SGP4 (WGS-72, AFSPC mode)" }),
-    )?;
-    // A sensor's own birth region (network sensors files) is the file's, not the simulation's default.
-    for (spec, file) in scenario.sensors.iter_mut().zip(&sensors_file.sensors) {
-        spec.birth_region = file.birth_region.or(spec.birth_region);
-    }
-    check_written_size(&scenario)?;
-    Ok((scenario, figures, screened.dropped))
+    let parts = StreamParts {
+        name,
+        seed: request.seed,
+        start: start.to_string(),
+        epoch_jd,
+        epoch,
+        duration,
+        sensors,
+        optical,
+        schedule,
+        satellites: screened.satellites,
+        dropped: screened.dropped,
+        max_measurements: (!partitioned).then_some(crate::sim::error::MAX_MEASUREMENTS),
+        catalogue_file: file,
+        sensors_file: request.sensors.display().to_string(),
+        birth_regions: sensors_file.sensors.iter().map(|s| s.birth_region).collect(),
+    };
+    Ok((parts, held_whole))
 }
 
 /// Writes `scenario` to `out` through a temporary file beside it, renamed once complete and only onto a

@@ -351,6 +351,19 @@ pub struct KnownTruth<'a> {
     pub source: &'a str,
 }
 
+/// A generated scenario's description: what made it, its objects, sensors and `scans`, the truth's `source`.
+pub fn description(sim: &SsaScenario, scans: usize, source: &str) -> String {
+    format!(
+        "host-sim generate {} --seed {}: {} objects ({} unknown to the prior), {} sensors, {scans} scans; truth by \
+         {source}",
+        sim.name,
+        sim.seed,
+        sim.objects.len(),
+        sim.objects.iter().filter(|o| !o.in_prior).count(),
+        sim.sensors.len(),
+    )
+}
+
 /// As [`to_scenario`], the truth and the prior means from `known` instead of the RKF7(8) integrator.
 ///
 /// # Errors
@@ -383,16 +396,7 @@ pub fn to_scenario_with(sim: &SsaScenario, known: Option<KnownTruth<'_>>) -> Res
         format: FORMAT_V2.into(),
         version: 2,
         name: sim.name.clone(),
-        description: format!(
-            "host-sim generate {} --seed {}: {} objects ({} unknown to the prior), {} sensors, {} scans; truth by {}",
-            sim.name,
-            sim.seed,
-            sim.objects.len(),
-            sim.objects.iter().filter(|o| !o.in_prior).count(),
-            sim.sensors.len(),
-            sim.scans.len(),
-            known.as_ref().map_or("RKF7(8) two-body + J2", |k| k.source)
-        ),
+        description: description(sim, sim.scans.len(), known.as_ref().map_or("RKF7(8) two-body + J2", |k| k.source)),
         epoch: EpochSpec { utc: Some(sim.epoch.clone()), julian_date: Some(sim.epoch_jd) },
         motion: Motion3dSpec::TwoBodyJ2 {
             process_noise: ProcessNoiseSpec::Isotropic { q: settings.q },

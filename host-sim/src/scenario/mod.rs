@@ -7,6 +7,7 @@
 
 pub mod any;
 mod births;
+pub mod catalogue_stream;
 pub mod checks;
 pub mod from_catalogue;
 pub mod from_simulation;

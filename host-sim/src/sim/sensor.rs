@@ -79,7 +79,7 @@ pub struct SensorSpec {
 }
 
 impl SensorSpec {
-    pub(super) fn check(&self) -> Result<(), SsaError> {
+    pub(crate) fn check(&self) -> Result<(), SsaError> {
         let radar = self.kind.has_range();
         let ok = self.sigma.len() == self.kind.dimension()
             && self.sigma.iter().all(|s| s.is_finite() && *s >= 0.0)

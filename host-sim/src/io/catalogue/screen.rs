@@ -92,21 +92,30 @@ fn checked(entry: CatalogueEntry, start: NaiveDateTime, times: &[f64]) -> Result
     }
     let satellite = Satellite::new(entry).map_err(|e| e.to_string())?;
     for &t in times {
-        match satellite.tracker_state(start, t) {
-            Err(e) => return Err(format!("decays during the run: at start + {} s: {e}", Readable(t))),
-            Ok((r, _)) => {
-                let radius = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-                if !(radius >= floor) {
-                    return Err(format!(
-                        "decays during the run: radius {} km at start + {} s is below {floor} km",
-                        Readable((radius * 10.0).round() / 10.0),
-                        Readable(t)
-                    ));
-                }
-            }
-        }
+        state_in_orbit(&satellite, start, t)?;
     }
     Ok(satellite)
+}
+
+/// The tracker-frame state (km, km/s) of `satellite` at `t` s after `start`, or why it decays there (SGP4
+/// fails, or the radius is below [`EARTH_RADIUS_KM`] + [`MIN_PERIGEE_HEIGHT_KM`]).
+///
+/// # Errors
+/// The reason, as `catalogue_dropped` gives it.
+pub fn state_in_orbit(satellite: &Satellite, start: NaiveDateTime, t: f64) -> Result<[f64; 6], String> {
+    let floor = EARTH_RADIUS_KM + MIN_PERIGEE_HEIGHT_KM;
+    let (r, v) = satellite
+        .tracker_state(start, t)
+        .map_err(|e| format!("decays during the run: at start + {} s: {e}", Readable(t)))?;
+    let radius = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+    if !(radius >= floor) {
+        return Err(format!(
+            "decays during the run: radius {} km at start + {} s is below {floor} km",
+            Readable((radius * 10.0).round() / 10.0),
+            Readable(t)
+        ));
+    }
+    Ok([r[0], r[1], r[2], v[0], v[1], v[2]])
 }
 
 /// The days from `entry`'s epoch to the farther of `start` and `start + last` s.

@@ -30,12 +30,14 @@ pub use tracker::{
 
 use crate::error::Error;
 use crate::eval::consistency::{Associated, ScanAssociations};
+use crate::io::catalogue::screen::CatalogueDropped;
 use crate::io::report::RunSummary;
 use crate::pipeline::profile::ORBITAL;
 use crate::pipeline::profile::Profile;
 use crate::pipeline::tracker::{StepInfo, TrackerKind, is_refused_input};
 use crate::pipeline::world::{Estimate, Heading, Posterior, ScanRecord, StepFailure, TruthObject, World};
-use crate::scenario::v2::Scenario3d;
+use crate::scenario::catalogue_stream::{CatalogueStream, DrawnScan};
+use crate::scenario::v2::{Scan3dSpec, Scenario3d, TruthScan3dSpec};
 use plots::SkyTruth;
 use std::path::{Path, PathBuf};
 use tracker_core::StepError;
@@ -87,10 +89,33 @@ macro_rules! with_measurement {
     };
 }
 
+/// Where an orbital run's scans and truth come from.
+enum Scans {
+    /// The scenario's own.
+    Held,
+    /// Drawn as the run goes (a catalogue too large to hold, [`CatalogueStream`]): the scan being replayed,
+    /// and every scan drawn so far without its truth (for `scenario.json`).
+    Streamed { stream: Box<CatalogueStream>, current: Box<DrawnScan>, drawn: Vec<Scan3dSpec> },
+}
+
+impl Scans {
+    /// The truth at scan `k` of `scenario`'s run, when it has truth.
+    fn truth<'s>(&'s self, scenario: &'s Scenario3d, k: usize) -> Option<&'s TruthScan3dSpec> {
+        match self {
+            Scans::Held => scenario.truth.as_ref().map(|t| &t.scans[k]),
+            Scans::Streamed { current, .. } => Some(&current.1),
+        }
+    }
+}
+
+/// Simulated seconds between two snapshots of a streamed run's `estimates.csv` and `tracks.oem`.
+pub const STREAMED_SNAPSHOT_S: f64 = 3600.0;
+
 /// The orbital world's adapter: a scenario, its tracker, its sensors' geometry and its own outputs (the
 /// OEM, the sky plots).
 pub struct OrbitalWorld<'a> {
     scenario: &'a Scenario3d,
+    scans: Scans,
     kind: TrackerKind,
     profile: Profile,
     runner: Box<dyn Runner3d>,
@@ -114,6 +139,7 @@ impl<'a> OrbitalWorld<'a> {
         let sensors = scenario.sensors.len();
         Ok(Self {
             scenario,
+            scans: Scans::Held,
             kind,
             profile,
             runner: build3d(kind, profile, scenario)?,
@@ -126,8 +152,52 @@ impl<'a> OrbitalWorld<'a> {
         })
     }
 
+    /// The world of a catalogue drawn as the run goes: `scenario` is `stream`'s configuration and prior
+    /// ([`CatalogueStream::scenario`]). Its `estimates.csv` and `tracks.oem` hold the MAP tracks once every
+    /// [`STREAMED_SNAPSHOT_S`] and at the last scan; it writes `scenario.json` with the scans drawn and no
+    /// truth.
+    ///
+    /// # Errors
+    /// As [`OrbitalWorld::new`].
+    pub fn streamed(
+        scenario: &'a Scenario3d,
+        stream: CatalogueStream,
+        kind: TrackerKind,
+        profile: Profile,
+        out: &Path,
+    ) -> Result<Self, Error> {
+        let mut world = Self::new(scenario, kind, profile, out)?;
+        let empty = (
+            Scan3dSpec { time: 0.0, sensor: 0, measurements: vec![] },
+            TruthScan3dSpec { objects: vec![], origins: None },
+        );
+        world.scans = Scans::Streamed { stream: Box::new(stream), current: Box::new(empty), drawn: vec![] };
+        Ok(world)
+    }
+
     fn state(state: &[f64]) -> &[f64; 6] {
         state.try_into().expect("orbital states have 6 entries")
+    }
+
+    /// Scan `k` (a streamed world holds only the scan being replayed: [`World::begin`] drew it).
+    fn scan(&self, k: usize) -> &Scan3dSpec {
+        match &self.scans {
+            Scans::Held => &self.scenario.scans[k],
+            Scans::Streamed { current, .. } => &current.0,
+        }
+    }
+
+    /// The truth at scan `k`, when the scenario has truth.
+    fn truth_scan(&self, k: usize) -> Option<&TruthScan3dSpec> {
+        self.scans.truth(self.scenario, k)
+    }
+
+    /// Whether scan `k` is a snapshot of a streamed run (the first scan at or after each multiple of
+    /// [`STREAMED_SNAPSHOT_S`], and the last scan); every scan of a held one.
+    fn snapshot(&self, k: usize) -> bool {
+        let Scans::Streamed { stream, .. } = &self.scans else { return true };
+        let hour = |k: usize| (stream.time(k) / STREAMED_SNAPSHOT_S).floor();
+        k == 0 || k + 1 == stream.scans() || hour(k) > hour(k - 1)
     }
 }
 
@@ -154,15 +224,29 @@ impl World<3> for OrbitalWorld<'_> {
     }
 
     fn scans(&self) -> usize {
-        self.scenario.scans.len()
+        match &self.scans {
+            Scans::Held => self.scenario.scans.len(),
+            Scans::Streamed { stream, .. } => stream.scans(),
+        }
     }
 
     fn time(&self, k: usize) -> f64 {
-        self.scenario.scans[k].time
+        match &self.scans {
+            Scans::Held => self.scenario.scans[k].time,
+            Scans::Streamed { stream, .. } => stream.time(k),
+        }
+    }
+
+    fn begin(&mut self, k: usize) -> Result<(), Error> {
+        if let Scans::Streamed { stream, current, drawn } = &mut self.scans {
+            **current = stream.scan(k)?;
+            drawn.push(current.0.clone());
+        }
+        Ok(())
     }
 
     fn step(&mut self, k: usize) -> Result<StepInfo, StepFailure> {
-        let scan = &self.scenario.scans[k];
+        let scan = self.scan(k);
         let zs = corrections::corrected_measurements(self.scenario, scan);
         self.runner.step_or_failure(scan.sensor, scan.time, &zs)
     }
@@ -179,17 +263,17 @@ impl World<3> for OrbitalWorld<'_> {
     }
 
     fn truth(&self, k: usize) -> Option<Vec<TruthObject<'_>>> {
-        let truth = self.scenario.truth.as_ref()?;
-        Some(truth.scans[k].objects.iter().map(|o| TruthObject { id: o.id, state: &o.state }).collect())
+        let truth = self.truth_scan(k)?;
+        Some(truth.objects.iter().map(|o| TruthObject { id: o.id, state: &o.state }).collect())
     }
 
     fn detected(&self, k: usize) -> Vec<u64> {
-        let origins = self.scenario.truth.as_ref().and_then(|t| t.scans[k].origins.as_ref());
+        let origins = self.truth_scan(k).and_then(|t| t.origins.as_ref());
         origins.into_iter().flatten().flatten().copied().collect()
     }
 
     fn sensor_name(&self, k: usize) -> Option<String> {
-        self.scenario.sensors.get(self.scenario.scans[k].sensor).map(|s| s.name.clone())
+        self.scenario.sensors.get(self.scan(k).sensor).map(|s| s.name.clone())
     }
 
     fn judged(&self) -> bool {
@@ -197,7 +281,7 @@ impl World<3> for OrbitalWorld<'_> {
     }
 
     fn associate(&self, k: usize) -> Option<ScanAssociations> {
-        let scan = &self.scenario.scans[k];
+        let scan = self.scan(k);
         let kind = self.scenario.kind(scan.sensor);
         let zs = corrections::corrected_measurements(self.scenario, scan);
         let (dimension, associations) = self.runner.associate(scan.sensor, scan.time, &zs);
@@ -235,7 +319,7 @@ impl World<3> for OrbitalWorld<'_> {
     }
 
     fn in_view(&self, k: usize, state: &[f64]) -> bool {
-        let scan = &self.scenario.scans[k];
+        let scan = self.scan(k);
         self.geometry.in_view(scan.sensor, scan.time, Self::state(state))
     }
 
@@ -243,30 +327,42 @@ impl World<3> for OrbitalWorld<'_> {
         "scan,time,sensor,label,x,y,z,vx,vy,vz,existence,within_error_bound"
     }
 
+    fn estimates_due(&self, k: usize) -> bool {
+        self.snapshot(k)
+    }
+
     fn csv_scan_columns(&self, k: usize) -> String {
-        let scan = &self.scenario.scans[k];
+        let scan = self.scan(k);
         format!("{k},{},{}", scan.time, scan.sensor)
     }
 
     fn record(&mut self, k: usize, accepted: bool, posterior: &Posterior, _: &[Option<bool>]) -> Result<(), Error> {
-        let scan = &self.scenario.scans[k];
-        if accepted {
-            self.oem.record(scan.time, &self.last.map);
+        let (time, sensor) = (self.scan(k).time, self.scan(k).sensor);
+        if accepted && self.snapshot(k) {
+            self.oem.record(time, &self.last.map);
         }
         let geometry = &self.geometry;
-        let sky = |state: &[f64; 6]| {
-            geometry.in_view(scan.sensor, scan.time, state).then(|| geometry.sky_point(scan.sensor, scan.time, state))
-        };
-        if let Some(truth) = &self.scenario.truth {
-            // Sky plot truth: every object, in view or a break.
-            let series = &mut self.sky_truth[scan.sensor];
-            for t in &truth.scans[k].objects {
-                series.entry(t.id).or_default().push(sky(&t.state));
+        let sky =
+            |state: &[f64; 6]| geometry.in_view(sensor, time, state).then(|| geometry.sky_point(sensor, time, state));
+        if let Some(truth) = self.scans.truth(self.scenario, k) {
+            // Sky plot truth: each object's points in view, a break (one `None`) where it leaves the view.
+            let series = &mut self.sky_truth[sensor];
+            for t in &truth.objects {
+                match sky(&t.state) {
+                    Some(point) => series.entry(t.id).or_default().push(Some(point)),
+                    None => {
+                        if let Some(points) = series.get_mut(&t.id)
+                            && points.last().is_some_and(Option::is_some)
+                        {
+                            points.push(None);
+                        }
+                    }
+                }
             }
         }
         for t in &posterior.map {
             if let Some(point) = sky(Self::state(&t.mean)) {
-                self.sky_estimates[scan.sensor].push(Some(point));
+                self.sky_estimates[sensor].push(Some(point));
             }
         }
         Ok(())
@@ -274,7 +370,13 @@ impl World<3> for OrbitalWorld<'_> {
 
     fn finish(&mut self, records: &[ScanRecord]) -> Result<(), Error> {
         plots::write_plots(self.scenario, records, &self.sky_truth, &self.sky_estimates, &self.out)?;
-        self.oem.write(&self.out.join("tracks.oem"))
+        self.oem.write(&self.out.join("tracks.oem"))?;
+        if let Scans::Streamed { drawn, .. } = &mut self.scans {
+            // The scans as drawn, without truth: `run` replays them as a run on real data.
+            let scenario = Scenario3d { scans: std::mem::take(drawn), truth: None, ..self.scenario.clone() };
+            scenario.save(&self.out.join("scenario.json"))?;
+        }
+        Ok(())
     }
 }
 
@@ -304,6 +406,36 @@ pub fn run(
 ) -> Result<(RunSummary, bool), Error> {
     std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let profile = choose_profile(scenario, profile);
+    warn_of_birth_components(scenario, profile);
+    let mut world = OrbitalWorld::new(scenario, kind, profile, out)?;
+    crate::pipeline::replay::run(&mut world, quiet, out)
+}
+
+/// [`run`] on a catalogue drawn as the run goes ([`OrbitalWorld::streamed`]; `profile` chosen from its
+/// configuration and prior); also returns the element sets dropped, before the run and during it.
+///
+/// # Errors
+/// As [`run`], and a scan the stream cannot draw (bad input).
+pub fn run_streamed(
+    stream: CatalogueStream,
+    kind: TrackerKind,
+    profile: Option<Profile>,
+    quiet: bool,
+    out: &Path,
+) -> Result<(RunSummary, bool, CatalogueDropped), Error> {
+    std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
+    let scenario = stream.scenario().clone();
+    let profile = choose_profile(&scenario, profile);
+    warn_of_birth_components(&scenario, profile);
+    let mut world = OrbitalWorld::streamed(&scenario, stream, kind, profile, out)?;
+    let (summary, clean) = crate::pipeline::replay::run(&mut world, quiet, out)?;
+    let Scans::Streamed { stream, .. } = world.scans else { return Err(Error::internal("streamed world")) };
+    Ok((summary, clean, stream.dropped().clone()))
+}
+
+/// The warning that some measurements of `scenario` give more birth components than `profile`'s free
+/// birth cells.
+fn warn_of_birth_components(scenario: &Scenario3d, profile: Profile) {
     let components = birth_components_per_measurement(scenario);
     let pool = ORBITAL.of(profile).birth_cells.saturating_sub(scenario.birth.cells.len());
     if components > pool {
@@ -313,8 +445,6 @@ pub fn run(
             profile.name()
         );
     }
-    let mut world = OrbitalWorld::new(scenario, kind, profile, out)?;
-    crate::pipeline::replay::run(&mut world, quiet, out)
 }
 
 #[cfg(test)]
