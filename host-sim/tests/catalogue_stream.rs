@@ -134,7 +134,25 @@ fn a_catalogue_too_large_for_a_scenario_file_is_streamed() {
     assert!(streamed.scenario().scans.is_empty());
     let Err(e) = generate_screened(request) else { panic!("a held scenario this large is refused") };
     assert!(e.to_string().contains("run-catalogue draws such a run as it goes"), "{e}");
-    // A request that fits is held.
+    // A request that fits is held, its scans beyond one tracker's 32 measurements (the partitioned tracker
+    // shares them among its clusters).
     let small = Request { duration_hours: 0.01, ..request };
-    assert!(matches!(generate_or_stream(small), Ok(Generation::Held(_))));
+    let Ok(Generation::Held(held)) = generate_or_stream(small) else { panic!("not held") };
+    assert!(held.1.max_measurements > 32, "{} measurements at most", held.1.max_measurements);
+}
+
+#[test]
+fn a_catalogue_one_tracker_holds_keeps_its_scans_within_the_trackers_limit() {
+    let dir = TempDir::new("stream-cap");
+    // The 24-object fixture with 40 clutter returns a scan expected: refused, held or streamed.
+    let mut sensors: Value = serde_json::from_str(&read(Path::new(RADARS))).expect("sensors");
+    sensors["sensors"][0]["clutter_rate"] = 40.0.into();
+    let cluttered = dir.join("cluttered.json");
+    std::fs::write(&cluttered, sensors.to_string()).expect("write");
+    let request = request(Path::new(CATALOGUE), p(&cluttered), 0.1);
+    let Err(e) = generate_screened(request) else { panic!("more than 32 measurements a scan") };
+    assert!(e.to_string().contains("would carry more than 32 measurements (the tracker's limit)"), "{e}");
+    let mut streamed = stream(request).expect("stream");
+    let refused = (0..streamed.scans()).find_map(|k| streamed.scan(k).err()).expect("a scan is refused");
+    assert!(refused.to_string().contains("would carry more than 32 measurements"), "{refused}");
 }

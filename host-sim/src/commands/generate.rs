@@ -4,7 +4,7 @@
 use super::CliError;
 use crate::error::Error;
 use crate::io::catalogue::CatalogueDropped;
-use crate::scenario::from_catalogue::Generation;
+use crate::scenario::from_catalogue::{Generation, Request};
 use crate::scenario::from_simulation::{Generated, Preset3d};
 use crate::scenario::v2::Scenario3d;
 use crate::sim::planar::Preset;
@@ -104,38 +104,28 @@ impl CatalogueArgs {
     /// The scenario of `generate catalogue` (`command` names the command in messages) and the element sets
     /// it left out.
     pub(super) fn generate(self, command: &str, seed: u64) -> Result<(Scenario3d, Generated, CatalogueDropped), Error> {
-        let (catalogue_file, sensors, start, duration_hours) = self.required(command)?;
-        crate::scenario::from_catalogue::generate_screened(crate::scenario::from_catalogue::Request {
-            catalogue: &catalogue_file,
-            sensors: &sensors,
-            start: &start,
-            duration_hours,
-            seed,
-        })
+        self.with_request(command, seed, crate::scenario::from_catalogue::generate_screened)
     }
 
     /// [`Self::generate`]'s scenario when it fits a scenario file, else its scans drawn as the run goes
     /// ([`crate::scenario::from_catalogue::generate_or_stream`]).
     pub(super) fn generate_or_stream(self, command: &str, seed: u64) -> Result<Generation, Error> {
-        let (catalogue, sensors, start, duration_hours) = self.required(command)?;
-        crate::scenario::from_catalogue::generate_or_stream(crate::scenario::from_catalogue::Request {
-            catalogue: &catalogue,
-            sensors: &sensors,
-            start: &start,
-            duration_hours,
-            seed,
-        })
+        self.with_request(command, seed, crate::scenario::from_catalogue::generate_or_stream)
     }
 
-    /// The four options `command` requires.
-    fn required(self, command: &str) -> Result<(PathBuf, PathBuf, String, f64), Error> {
+    /// `work` on the request of these options (all four required by `command`) and `seed`.
+    fn with_request<T>(
+        self,
+        command: &str,
+        seed: u64,
+        work: impl FnOnce(Request<'_>) -> Result<T, Error>,
+    ) -> Result<T, Error> {
         let missing = |flag: &str| Error::input(format!("{command}: {flag} is required"));
-        Ok((
-            self.catalogue.ok_or_else(|| missing("--catalogue"))?,
-            self.sensors.ok_or_else(|| missing("--sensors"))?,
-            self.start.ok_or_else(|| missing("--start"))?,
-            self.duration_hours.ok_or_else(|| missing("--duration-hours"))?,
-        ))
+        let catalogue = self.catalogue.ok_or_else(|| missing("--catalogue"))?;
+        let sensors = self.sensors.ok_or_else(|| missing("--sensors"))?;
+        let start = self.start.ok_or_else(|| missing("--start"))?;
+        let duration_hours = self.duration_hours.ok_or_else(|| missing("--duration-hours"))?;
+        work(Request { catalogue: &catalogue, sensors: &sensors, start: &start, duration_hours, seed })
     }
 
     /// The catalogue options are refused with a preset.
