@@ -239,10 +239,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     let mut judge = Judge::new(prior.map.iter().map(|t| t.label));
     let mut residual_plots = crate::pipeline::residual_plots::ResidualPlots::default();
     for k in 0..n {
-        if let Err(e) = world.begin(k) {
-            bar.finish_and_clear();
-            return Err(e);
-        }
+        world.begin(k).inspect_err(|_| bar.finish_and_clear())?;
         let time = world.time(k);
         let associations = world.associate(k);
         let start = Instant::now();
@@ -285,10 +282,7 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
             None => vec![None; posterior.map.len()],
         };
         if world.estimates_due(k) {
-            let scan_columns = world.csv_scan_columns(k);
-            for (t, w) in posterior.map.iter().zip(&within) {
-                csv_line(&mut csv, &scan_columns, t, *w).map_err(csv_error)?;
-            }
+            csv_lines(&mut csv, &world.csv_scan_columns(k), &posterior, &within).map_err(csv_error)?;
         }
         world.record(k, info.is_some(), &posterior, &within)?;
         records.push(ScanRecord {
@@ -328,6 +322,16 @@ pub fn run<W: World<P>, const P: usize>(world: &mut W, quiet: bool, out: &Path) 
     // Refused scans are reported and the run goes on; a scan the tracker failed on is exit code 3.
     let clean = records.iter().all(|r| r.error.is_none() || r.refused);
     Ok((summary, clean))
+}
+
+/// Writes the lines of `estimates.csv` of one scan: its columns, then each MAP estimate with its bound.
+fn csv_lines(
+    csv: &mut impl Write,
+    scan_columns: &str,
+    posterior: &Posterior,
+    within: &[Option<bool>],
+) -> std::io::Result<()> {
+    posterior.map.iter().zip(within).try_for_each(|(t, w)| csv_line(csv, scan_columns, t, *w))
 }
 
 /// The summary of a run from its records.
