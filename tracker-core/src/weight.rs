@@ -93,15 +93,15 @@ impl<T: Real> WeightModel<T> {
     /// assert!(model.deaths_possible() && !model.births_possible());
     /// ```
     pub fn from_config<M, G, const S: usize, const B: usize>(config: &Config<T, M, G, S, B>) -> Self {
-        Self::new(
-            &config.sensor,
-            config.gate,
-            config.birth.probability,
-            config.birth.cells.len(),
-            config.birth.detection,
-            config.death_probability,
-        )
-        .with_birth_events(config.birth.events)
+        let sensor = &config.sensor;
+        Self::of_config(config, sensor.detection_probability, sensor.clutter_intensity())
+    }
+
+    /// The weight model of `config` with the detection probability `pd` and clutter intensity `clutter`.
+    fn of_config<M, G, const S: usize, const B: usize>(config: &Config<T, M, G, S, B>, pd: T, clutter: T) -> Self {
+        let birth = &config.birth;
+        let parts = (birth.probability, birth.cells.len(), birth.detection, config.death_probability);
+        Self::of_parts(pd, clutter, config.gate, parts).with_birth_events(birth.events)
     }
 
     /// The weight model of a scan whose sensor is `model` placed at the scan, with `detection` its p_D,
@@ -112,13 +112,10 @@ impl<T: Real> WeightModel<T> {
         model: &G,
         detection: &Sensor<T>,
     ) -> Self {
+        // The configuration's own sensor is not used: its field of view's volume (a numerical integral for a
+        // look region) would be computed at every scan for nothing.
         let volume = model.clutter_volume(&detection.field_of_view);
-        let mut weights = Self::from_config(config);
-        let pd = detection.detection_probability;
-        weights.log_detect = ln(pd);
-        weights.log_miss = ln(T::one() - pd);
-        weights.log_clutter = ln(detection.clutter_rate / volume);
-        weights
+        Self::of_config(config, detection.detection_probability, detection.clutter_rate / volume)
     }
 
     /// A weight model from its parts.
@@ -142,11 +139,17 @@ impl<T: Real> WeightModel<T> {
         birth_detection: BirthDetection,
         death_probability: T,
     ) -> Self {
-        let pd = sensor.detection_probability;
+        let births = (birth_probability, birth_cells, birth_detection, death_probability);
+        Self::of_parts(sensor.detection_probability, sensor.clutter_intensity(), gate, births)
+    }
+
+    /// [`WeightModel::new`] from p_D, λ_C, the gate and (α, birth cells, birth detection, β).
+    fn of_parts(pd: T, clutter: T, gate: Option<T>, births: (T, usize, BirthDetection, T)) -> Self {
+        let (birth_probability, birth_cells, birth_detection, death_probability) = births;
         Self {
             log_detect: ln(pd),
             log_miss: ln(T::one() - pd),
-            log_clutter: ln(sensor.clutter_intensity()),
+            log_clutter: ln(clutter),
             gate,
             birth_probability,
             birth_cells,
