@@ -1,14 +1,17 @@
 //! Links tracker-core into a `#![no_std]`, `#![no_main]` binary with no global allocator (any use of
-//! `alloc` would fail to link) and tracks two objects through a few scans. Exits 0 when the tracker finds
-//! both objects, 1 otherwise.
+//! `alloc` would fail to link) and tracks two objects through a few scans, in one tracker and in a pool of
+//! clusters. Exits 0 when both find both objects, 1 otherwise.
 #![no_std]
 #![no_main]
 
 use core::fmt::Write;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, StoreOverflow};
+use tracker_core::partition::ClusterPool;
+use tracker_core::sensor::ScanGeometry;
 use tracker_core::{
-    BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, Region, Sensor,
+    BirthModel, Config, ConstantVelocity, Gaussian, LinearTracker, PositionMeasurement, PriorObject, Region, Sensor,
+    TrackLabel,
 };
 
 #[link(name = "c")]
@@ -51,8 +54,10 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
 }
 
 type Tracker = LinearTracker<f64, 16, 4, 4, 32, 1>;
+/// A pool of at most 4 clusters of the same capacities, scans of at most 8 measurements.
+type Pool = ClusterPool<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 2, 16, 4, 4, 32, 1, 4, 8>;
 
-fn run() -> Result<f64, tracker_core::StepError> {
+fn run() -> Result<(f64, f64), tracker_core::StepError> {
     let config = Config {
         motion: ConstantVelocity { acceleration_noise: 0.01 },
         measurement: PositionMeasurement::isotropic(0.3),
@@ -76,29 +81,42 @@ fn run() -> Result<f64, tracker_core::StepError> {
         Gaussian { mean: SVector::from([0.0, 5.0, 1.0, -0.5]), covariance: SMatrix::identity() },
     ];
     let mut tracker =
-        Tracker::with_objects(config, &objects, 0.0).map_err(|_| tracker_core::StepError::NoViableChild)?;
+        Tracker::with_objects(config.clone(), &objects, 0.0).map_err(|_| tracker_core::StepError::NoViableChild)?;
+    // The same objects and scans in a pool of clusters (the partitioned tracker in fixed memory).
+    let labelled = [0, 1].map(|i| PriorObject { label: TrackLabel(i), state: objects[i as usize] });
+    let mut pool = Pool::new(config, &labelled, 0.0, 0.0).map_err(|_| tracker_core::StepError::NoViableChild)?;
     for k in 1..=6 {
         let t = k as f64;
         let zs =
             [SVector::from([t + 0.1, 0.05]), SVector::from([t - 0.05, 5.0 - 0.5 * t]), SVector::from([-20.0, 30.0])];
         tracker.step(t, &zs)?;
+        pool.step(&ScanGeometry::single(t), &zs).map_err(|_| tracker_core::StepError::NoViableChild)?;
     }
-    Ok(tracker.expected_cardinality())
+    let mut pooled = 0.0;
+    for i in 0..pool.clusters().len() {
+        if let Ok(Some(cluster)) = pool.load(i) {
+            pooled += cluster.expected_cardinality();
+        }
+    }
+    Ok((tracker.expected_cardinality(), pooled))
 }
 
 #[unsafe(no_mangle)]
 pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
     let mut out = Out { buf: [0; 256], len: 0 };
-    let size = core::mem::size_of::<Tracker>();
+    let (size, pool_size) = (core::mem::size_of::<Tracker>(), core::mem::size_of::<Pool>());
     match run() {
-        Ok(cardinality) if (cardinality - 2.0).abs() < 0.1 => {
-            let _ =
-                writeln!(out, "nostd-check: ok, expected cardinality {cardinality:.4}, size_of tracker {size} bytes");
+        Ok((cardinality, pooled)) if (cardinality - 2.0).abs() < 0.1 && (pooled - 2.0).abs() < 0.1 => {
+            let _ = writeln!(
+                out,
+                "nostd-check: ok, expected cardinality {cardinality:.4} (pool {pooled:.4}), size_of tracker {size} \
+                 bytes, pool {pool_size} bytes"
+            );
             out.flush();
             0
         }
-        Ok(cardinality) => {
-            let _ = writeln!(out, "nostd-check: FAILED, expected cardinality {cardinality:.4}");
+        Ok((cardinality, pooled)) => {
+            let _ = writeln!(out, "nostd-check: FAILED, expected cardinality {cardinality:.4} (pool {pooled:.4})");
             out.flush();
             1
         }

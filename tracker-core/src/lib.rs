@@ -65,6 +65,7 @@ pub mod hypothesis;
 mod index;
 pub mod model;
 pub mod optimal;
+pub mod partition;
 pub mod pool;
 mod random;
 pub mod real;

@@ -15,6 +15,8 @@
 
 pub mod cluster;
 pub mod cores;
+#[cfg(test)]
+mod edge_tests;
 pub mod error;
 pub mod hypotheses;
 pub mod marginal;

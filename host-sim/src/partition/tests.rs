@@ -15,7 +15,7 @@ use tracker_core::{
 };
 
 /// Clusters: H = 256, N = 4, Z = 8, K = 64, one birth cell.
-type Partitioned = PartitionedTracker<
+pub(super) type Partitioned = PartitionedTracker<
     tracker_core::ConstantVelocity<f64>,
     tracker_core::PositionMeasurement<f64>,
     4,
@@ -29,7 +29,7 @@ type Partitioned = PartitionedTracker<
 /// One tracker of every object, large enough never to prune in these scenarios.
 type Single = LinearTracker<f64, 1024, 8, 16, 1024, 1>;
 
-fn config() -> LinearConfig<f64, 1> {
+pub(super) fn config() -> LinearConfig<f64, 1> {
     let mut config = tracker_core::examples::config();
     config.sensor.field_of_view = Region::Everywhere { volume: 1e6 };
     config.gate = Some(16.0);
@@ -37,7 +37,7 @@ fn config() -> LinearConfig<f64, 1> {
     config
 }
 
-fn with_birth_cell(mut config: LinearConfig<f64, 1>) -> LinearConfig<f64, 1> {
+pub(super) fn with_birth_cell(mut config: LinearConfig<f64, 1>) -> LinearConfig<f64, 1> {
     let mut cells = heapless::Vec::new();
     let cell = Gaussian { mean: SVector::from([50.0, 0.0, 0.0, 0.0]), covariance: SMatrix::identity() * 25.0 };
     cells.push(cell).expect("one cell");
@@ -52,7 +52,7 @@ fn with_birth_cell(mut config: LinearConfig<f64, 1>) -> LinearConfig<f64, 1> {
 }
 
 /// Objects at x = `xs`, moving along +x at unit speed, labelled 0, 1, ...
-fn objects(xs: &[f64]) -> Vec<PriorObject<f64, 4>> {
+pub(super) fn objects(xs: &[f64]) -> Vec<PriorObject<f64, 4>> {
     xs.iter()
         .enumerate()
         .map(|(i, &x)| PriorObject {
@@ -62,11 +62,11 @@ fn objects(xs: &[f64]) -> Vec<PriorObject<f64, 4>> {
         .collect()
 }
 
-fn z(x: f64, y: f64) -> SVector<f64, 2> {
+pub(super) fn z(x: f64, y: f64) -> SVector<f64, 2> {
     SVector::from([x, y])
 }
 
-fn scan(time: f64) -> ScanGeometry<f64> {
+pub(super) fn scan(time: f64) -> ScanGeometry<f64> {
     ScanGeometry::single(time)
 }
 
@@ -93,7 +93,7 @@ fn assert_equal(a: &BTreeMap<u32, ObjectPosterior<4>>, b: &BTreeMap<u32, ObjectP
 }
 
 /// Runs `f` on a thread with room for the single tracker.
-fn on_large_stack(f: impl FnOnce() + Send + 'static) {
+pub(super) fn on_large_stack(f: impl FnOnce() + Send + 'static) {
     std::thread::Builder::new().stack_size(256 << 20).spawn(f).expect("thread").join().expect("no panic");
 }
 

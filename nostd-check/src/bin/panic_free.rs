@@ -10,7 +10,8 @@
 //! configuration (both child generations, both birth variants, gate on or off, both selections, both
 //! store policies, any values), any prior and any scan (any number of measurements, any time) stays
 //! possible. The proof covers the monomorphisations instantiated here: `SsaTracker<f64>`,
-//! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and the 3-D
+//! `SsaTracker<f32>`, `LinearTracker<f64, 8, 4, 4, 16, 0>` (no birth cells) and a `ClusterPool` of them (the partitioned
+//! tracker in fixed memory) and the 3-D
 //! `RadarTracker<f64>` and `RadarTracker<f32>` (a network of two ground radars and a spacecraft one, any
 //! sensor index and observer per scan), `NetworkTracker<f64>` and `NetworkTracker<f32>` (sensors of every
 //! kind, any sensor index per scan; `new`, and `reset_with` that installs a configuration in place), and
@@ -24,6 +25,7 @@ use core::hint::black_box;
 use nalgebra::{SMatrix, SVector};
 use tracker_core::config::{ChildGeneration, NumericalFailure, Selection, StoreOverflow};
 use tracker_core::model::{LightTime, ProcessNoise};
+use tracker_core::partition::ClusterPool;
 use tracker_core::sampler::SamplerConfig;
 use tracker_core::sensor::LookShape;
 use tracker_core::sensor::{EarthRotation, GroundSite, LookAxes, Platform, ScanGeometry, SiteSensor};
@@ -197,6 +199,47 @@ fn linear(argc: i32) -> u64 {
             digest ^= 1;
         }
         digest ^= tracker.digest();
+    }
+    digest
+}
+
+/// The pool of clusters (`ClusterPool`) of `LinearTracker`s without birth cells: `new`, `step` and
+/// `digest` over opaque objects and scans (merges, splits and refusals included).
+fn pool(argc: i32) -> u64 {
+    type Pool = ClusterPool<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 2, 8, 4, 4, 16, 0, 4, 8>;
+    let x = f64::from(argc);
+    let config = black_box(Config {
+        motion: ConstantVelocity { acceleration_noise: 0.01 * x },
+        measurement: PositionMeasurement::isotropic(0.3 * x),
+        sensor: Sensor {
+            detection_probability: 0.9 / x,
+            clutter_rate: x,
+            field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0 * x] },
+        },
+        birth: BirthModel::none(),
+        death_probability: 0.01 * x,
+        gate: if argc > 3 { None } else { Some(16.0 * x) },
+        children: children(argc),
+        selection: selection(argc),
+        store_overflow: store_overflow(argc),
+        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
+        track_loss: Default::default(),
+        seed: argc as u64,
+    });
+    let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };
+    let objects: [PriorObject<f64, 4>; 5] =
+        core::array::from_fn(|i| PriorObject { label: TrackLabel(i as u32), state: state(5.0 * i as f64) });
+    let objects = black_box(&objects[..argc as usize % 6]);
+    let Ok(mut pool) = Pool::new(config, objects, black_box(0.0), black_box(0.01 * x)) else { return 2 };
+    let zs: [SVector<f64, 2>; MEASUREMENTS] =
+        core::array::from_fn(|i| SVector::from([i as f64 * x, 5.0 - 0.5 * i as f64]));
+    let mut digest = 0u64;
+    for k in 1..=argc as usize {
+        let scan = black_box(&zs[..(k * argc as usize) % (MEASUREMENTS + 1)]);
+        if pool.step(&black_box(ScanGeometry::single(k as f64)), scan).is_err() {
+            digest ^= 1;
+        }
+        digest ^= pool.digest();
     }
     digest
 }
@@ -415,6 +458,7 @@ pub extern "C" fn main(argc: i32, _argv: *const *const u8) -> i32 {
     let digest = ssa::<f64>(argc)
         ^ ssa::<f32>(argc)
         ^ linear(argc)
+        ^ pool(argc)
         ^ radar::<f64>(argc)
         ^ radar::<f32>(argc)
         ^ network::<f64>(argc)
