@@ -18,34 +18,22 @@ type Edge = ClusterPool<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4,
 type Scan = (f64, Vec<SVector<f64, 2>>);
 
 /// The report fields both trackers give.
-fn common(r: &PartitionReport) -> [usize; 10] {
-    [
-        r.clusters,
-        r.largest_cluster,
-        r.merged,
-        r.merges_declined,
-        r.split,
-        r.born_clusters,
-        r.unclaimed,
-        r.quiet,
-        r.clusters_with_measurements,
-        r.hypotheses,
-    ]
-}
-
-fn edge_common(r: &PoolReport<f64>) -> [usize; 10] {
-    [
-        r.clusters,
-        r.largest_cluster,
-        r.merged,
-        r.merges_declined,
-        r.split,
-        r.born_clusters,
-        r.unclaimed,
-        r.quiet,
-        r.clusters_with_measurements,
-        r.hypotheses,
-    ]
+macro_rules! common {
+    ($r:expr) => {{
+        let r = $r;
+        [
+            r.clusters,
+            r.largest_cluster,
+            r.merged,
+            r.merges_declined,
+            r.split,
+            r.born_clusters,
+            r.unclaimed,
+            r.quiet,
+            r.clusters_with_measurements,
+            r.hypotheses,
+        ]
+    }};
 }
 
 /// Runs `scans` through both; checks the digests and reports after every scan; returns the host's reports.
@@ -62,7 +50,7 @@ fn both(
     for (k, (time, zs)) in scans.iter().enumerate() {
         let want = host.step(&scan(*time), zs).expect("host step");
         let have = edge.step(&scan(*time), zs).expect("edge step");
-        assert_eq!(edge_common(&have), common(&want), "scan {k}");
+        assert_eq!(common!(&have), common!(&want), "scan {k}");
         let masses = [have.merge_pruned_mass, have.step_pruned_mass, have.split_moved_mass];
         assert_eq!(
             masses.map(f64::to_bits),
@@ -207,7 +195,7 @@ fn orbital<G: crate::pipeline::orbital::tracker::ScenarioNetwork<D>, const D: us
         let geometry = tracker_core::sensor::ScanGeometry { sensor: scan.sensor, time: scan.time, observer: None };
         let want = host.step(&geometry, &zs).expect("host step");
         let have = edge.step(&geometry, &zs).expect("edge step");
-        assert_eq!(edge_common(&have), common(&want), "scan {k}");
+        assert_eq!(common!(&have), common!(&want), "scan {k}");
         // The whole state's digest at every scan that merged, split or gave birth, and every tenth.
         if k % 10 == 0 || want.merged + want.split + want.born_clusters > 0 || k + 1 == scenario.scans.len() {
             assert_eq!(edge.digest(), host.digest(), "scan {k}");

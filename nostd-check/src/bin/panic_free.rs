@@ -161,11 +161,10 @@ fn ssa<T: Real>(argc: i32) -> u64 {
     digest
 }
 
-/// `LinearTracker` without birth cells (`B = 0`): `new`, `step` and `digest` over opaque scans.
-fn linear(argc: i32) -> u64 {
-    type Tracker = LinearTracker<f64, 8, 4, 4, 16, 0>;
+/// A planar configuration without birth cells whose every value is opaque.
+fn linear_config(argc: i32) -> Config<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 0> {
     let x = f64::from(argc);
-    let config = black_box(Config {
+    black_box(Config {
         motion: ConstantVelocity { acceleration_noise: 0.01 * x },
         measurement: PositionMeasurement::isotropic(0.3 * x),
         sensor: Sensor {
@@ -182,7 +181,14 @@ fn linear(argc: i32) -> u64 {
         numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
         track_loss: Default::default(),
         seed: argc as u64,
-    });
+    })
+}
+
+/// `LinearTracker` without birth cells (`B = 0`): `new`, `step` and `digest` over opaque scans.
+fn linear(argc: i32) -> u64 {
+    type Tracker = LinearTracker<f64, 8, 4, 4, 16, 0>;
+    let x = f64::from(argc);
+    let config = linear_config(argc);
     let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };
     let objects = [
         PriorObject { label: TrackLabel(1), state: state(0.0) },
@@ -208,24 +214,7 @@ fn linear(argc: i32) -> u64 {
 fn pool(argc: i32) -> u64 {
     type Pool = ClusterPool<f64, ConstantVelocity<f64>, PositionMeasurement<f64>, 4, 2, 8, 4, 4, 16, 0, 4, 8>;
     let x = f64::from(argc);
-    let config = black_box(Config {
-        motion: ConstantVelocity { acceleration_noise: 0.01 * x },
-        measurement: PositionMeasurement::isotropic(0.3 * x),
-        sensor: Sensor {
-            detection_probability: 0.9 / x,
-            clutter_rate: x,
-            field_of_view: Region::Rectangle { min: [-50.0, -50.0], max: [50.0, 50.0 * x] },
-        },
-        birth: BirthModel::none(),
-        death_probability: 0.01 * x,
-        gate: if argc > 3 { None } else { Some(16.0 * x) },
-        children: children(argc),
-        selection: selection(argc),
-        store_overflow: store_overflow(argc),
-        numerical_failure: if argc > 5 { NumericalFailure::Error } else { NumericalFailure::DropTrack },
-        track_loss: Default::default(),
-        seed: argc as u64,
-    });
+    let config = linear_config(argc);
     let state = |y: f64| Gaussian { mean: SVector::from([0.0, y, 1.0, 0.0]), covariance: SMatrix::identity() * x };
     let objects: [PriorObject<f64, 4>; 5] =
         core::array::from_fn(|i| PriorObject { label: TrackLabel(i as u32), state: state(5.0 * i as f64) });
