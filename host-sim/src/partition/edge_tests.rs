@@ -6,7 +6,7 @@
 use super::tests::{config, objects, on_large_stack, scan, with_birth_cell, z};
 use super::*;
 use nalgebra::SVector;
-use tracker_core::partition::{BIRTH_CLUSTER, ClusterPool, PoolError, PoolReport};
+use tracker_core::partition::{BIRTH_CLUSTER, ClusterPool, PoolError};
 use tracker_core::{ConstantVelocity, LinearConfig, PositionMeasurement, PriorObject};
 
 /// The host's test partition (H = 256, N = 4, Z = 8, K = 64, B = 1).

@@ -121,6 +121,9 @@ pub struct ClusterPool<
     clusters: [heapless::Vec<ClusterRest<T, S, N, H, K>, P>; 2],
     /// Which of `clusters` is live (`false`: index 0).
     live: bool,
+    /// The cluster a scan just stepped, before it is stored or split (scratch, kept here rather than on
+    /// the stack).
+    stepped: ClusterRest<T, S, N, H, K>,
     next_cluster: u64,
     next_label: u32,
     time: f64,
@@ -199,6 +202,7 @@ where
             birth: false,
             clusters: [heapless::Vec::new(), heapless::Vec::new()],
             live: false,
+            stepped: ClusterRest::EMPTY,
             next_cluster: 0,
             next_label: 0,
             time: 0.0,
@@ -272,7 +276,7 @@ where
             let prior = [PriorHypothesis { weight: T::one(), objects: core::slice::from_ref(object) }];
             let id = id as u64;
             self.work.reset(&prior, time).map_err(|error| PoolError::Rebuild { cluster: id, error })?;
-            push(next, ClusterRest::of(id, &self.work)?)?;
+            push_core(next, id, &self.work)?;
         }
         self.birth = !self.birth;
         self.live = !self.live;
@@ -449,14 +453,14 @@ where
             report.merged += members.len() - 1;
         }
         let step = self.work.step_scan(geometry, &zs).map_err(|error| PoolError::Cluster { cluster: id, error })?;
-        let rest = ClusterRest::of(id, &self.work)?;
         if quiet {
             report.quiet += 1;
-            return push(&mut self.clusters[usize::from(!self.live)], rest);
+            return push_core(&mut self.clusters[usize::from(!self.live)], id, &self.work);
         }
         report.step_pruned_mass += (T::one() - step.captured_mass).max(T::zero());
         report.clusters_with_measurements += usize::from(!zs.is_empty());
-        self.settle(rest, geometry.time, counters, report)
+        self.stepped.store(id, &self.work)?;
+        self.settle(geometry.time, counters, report)
     }
 
     /// The birth cluster's hypotheses, relabelled from the next free label, as a new cluster `id` (split if
@@ -485,29 +489,24 @@ where
         let empty = [PriorHypothesis { weight: T::one(), objects: &[] }];
         spare.reset(&empty, time).map_err(|error| PoolError::Rebuild { cluster: BIRTH_CLUSTER, error })?;
         report.born_clusters += 1;
-        let rest = ClusterRest::of(id, &self.work)?;
-        self.settle(rest, time, counters, report)
+        self.stepped.store(id, &self.work)?;
+        self.settle(time, counters, report)
     }
 
-    /// Stores a stepped cluster in the next scan's half: whole, or as its groups when it factors (the first
-    /// group keeps its id, the others take fresh ids in order).
-    fn settle(
-        &mut self,
-        rest: ClusterRest<T, S, N, H, K>,
-        time: f64,
-        counters: &mut Counters,
-        report: &mut PoolReport<T>,
-    ) -> Result<(), PoolError> {
+    /// Stores the cluster just stepped (`self.stepped`) in the next scan's half: whole, or as its groups when
+    /// it factors (the first group keeps its id, the others take fresh ids in order).
+    fn settle(&mut self, time: f64, counters: &mut Counters, report: &mut PoolReport<T>) -> Result<(), PoolError> {
         let next = &mut self.clusters[usize::from(!self.live)];
-        let Some(factors) = split::factor(&rest, self.epsilon) else { return push(next, rest) };
+        let rest = &self.stepped;
+        let Some(factors) = split::factor(rest, self.epsilon) else { return push_copy(next, rest) };
         report.split += usize::from(factors.groups) - 1;
         report.split_moved_mass += factors.moved;
         for g in 0..factors.groups {
             let id = if g == 0 { rest.id() } else { counters.fresh_cluster() };
-            let entries = split::group_marginal(&rest, &factors, g);
-            let source = Group { rest: &rest, group_of_slot: &factors.group_of_slot, group: g, entries: &entries };
+            let entries = split::group_marginal(rest, &factors, g);
+            let source = Group { rest, group_of_slot: &factors.group_of_slot, group: g, entries: &entries };
             self.work.reset_from(&source, time).map_err(|error| PoolError::Rebuild { cluster: id, error })?;
-            push(next, ClusterRest::of(id, &self.work)?)?;
+            push_core(next, id, &self.work)?;
         }
         Ok(())
     }
@@ -616,15 +615,53 @@ fn distinct_tracks<T: Real, const S: usize, const N: usize, const H: usize, cons
     seen.len()
 }
 
-/// Appends `rest` to the next scan's clusters unless it holds no track (an emptied cluster is dropped).
-fn push<T: Real, const S: usize, const N: usize, const H: usize, const K: usize, const P: usize>(
+/// Appends a copy of `rest` to the next scan's clusters unless it holds no track (an emptied cluster is
+/// dropped), in place.
+fn push_copy<T: Real, const S: usize, const N: usize, const H: usize, const K: usize, const P: usize>(
     next: &mut heapless::Vec<ClusterRest<T, S, N, H, K>, P>,
-    rest: ClusterRest<T, S, N, H, K>,
+    rest: &ClusterRest<T, S, N, H, K>,
 ) -> Result<(), PoolError> {
     if rest.tracks().is_empty() {
         return Ok(());
     }
-    next.push(rest).map_err(|_| PoolError::PoolFull { capacity: P })
+    next.push(ClusterRest::EMPTY).map_err(|_| PoolError::PoolFull { capacity: P })?;
+    if let Some(slot) = next.last_mut() {
+        slot.copy_from(rest);
+    }
+    Ok(())
+}
+
+/// Appends cluster `id` as `core` holds it to the next scan's clusters unless it holds no track, in place.
+fn push_core<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+    const P: usize,
+>(
+    next: &mut heapless::Vec<ClusterRest<T, S, N, H, K>, P>,
+    id: u64,
+    core: &Tracker<T, M, G, S, D, H, N, Z, K, B>,
+) -> Result<(), PoolError>
+where
+    T: Real,
+    M: MotionModel<T, S>,
+    G: MeasurementModel<T, S, D>,
+{
+    if core.tracks().is_empty() {
+        return Ok(());
+    }
+    next.push(ClusterRest::EMPTY).map_err(|_| PoolError::PoolFull { capacity: P })?;
+    match next.last_mut() {
+        Some(slot) => slot.store(id, core),
+        None => Ok(()),
+    }
 }
 
 fn check_capacity(cluster: u64, received: usize, capacity: usize) -> Result<(), PoolError> {

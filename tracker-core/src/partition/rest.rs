@@ -23,32 +23,47 @@ pub struct ClusterRest<T: Real, const S: usize, const N: usize, const H: usize, 
 }
 
 impl<T: Real, const S: usize, const N: usize, const H: usize, const K: usize> ClusterRest<T, S, N, H, K> {
-    /// Cluster `id` as `core` holds it.
+    /// A cluster holding nothing (a slot to store one in).
+    pub(super) const EMPTY: Self = Self {
+        id: 0,
+        time: 0.0,
+        scans: 0,
+        next_label: 0,
+        tracks: heapless::Vec::new(),
+        hypotheses: heapless::Vec::new(),
+    };
+
+    /// Stores cluster `id` as `core` holds it, in place.
     ///
     /// # Errors
     /// [`PoolError::Unresumable`] when the core holds a birth pool (never for a cluster of objects, whose
-    /// configuration has no births).
-    pub(super) fn of<M, G, const D: usize, const Z: usize, const B: usize>(
+    /// configuration has no births); the slot is then unchanged.
+    pub(super) fn store<M, G, const D: usize, const Z: usize, const B: usize>(
+        &mut self,
         id: u64,
         core: &Tracker<T, M, G, S, D, H, N, Z, K, B>,
-    ) -> Result<Self, PoolError>
+    ) -> Result<(), PoolError>
     where
         M: MotionModel<T, S>,
         G: MeasurementModel<T, S, D>,
     {
         let state = core.state().ok_or(PoolError::Unresumable { cluster: id })?;
-        let mut rest = Self {
-            id,
-            time: state.time,
-            scans: state.scans,
-            next_label: state.next_label,
-            tracks: heapless::Vec::new(),
-            hypotheses: heapless::Vec::new(),
-        };
+        self.fill(id, &state);
+        Ok(())
+    }
+
+    /// Copies `other` into this slot, in place.
+    pub(super) fn copy_from(&mut self, other: &Self) {
+        self.fill(other.id, &other.view());
+    }
+
+    fn fill(&mut self, id: u64, state: &TrackerState<'_, T, S, N>) {
+        (self.id, self.time, self.scans, self.next_label) = (id, state.time, state.scans, state.next_label);
+        self.tracks.clear();
+        self.hypotheses.clear();
         // A core's state holds at most K tracks and H hypotheses: both fit.
-        let _ = rest.tracks.extend_from_slice(state.tracks);
-        let _ = rest.hypotheses.extend_from_slice(state.hypotheses);
-        Ok(rest)
+        let _ = self.tracks.extend_from_slice(state.tracks);
+        let _ = self.hypotheses.extend_from_slice(state.hypotheses);
     }
 
     /// Loads the cluster into `core` (one of the pool's configuration without births).
