@@ -19,6 +19,10 @@ pub struct Rest<const S: usize, const N: usize> {
     next_label: u32,
     tracks: Box<[Track<f64, S>]>,
     hypotheses: Box<[CoreHypothesis<f64, N>]>,
+    /// The most objects a hypothesis holds and the distinct labels, read once (every scan's routing and
+    /// report ask them of every cluster).
+    max_objects: usize,
+    label_count: usize,
 }
 
 impl<const S: usize, const N: usize> Rest<S, N> {
@@ -35,12 +39,20 @@ impl<const S: usize, const N: usize> Rest<S, N> {
         G: MeasurementModel<f64, S, D>,
     {
         let state = core.state().ok_or(PartitionError::Unresumable { cluster: id })?;
+        let tracks = state.tracks;
+        let label_count = if tracks.iter().all(|t| t.label == tracks[0].label) {
+            usize::from(!tracks.is_empty())
+        } else {
+            (0..tracks.len()).filter(|&i| tracks[..i].iter().all(|t| t.label != tracks[i].label)).count()
+        };
         Ok(Self {
             time: state.time,
             scans: state.scans,
             next_label: state.next_label,
             tracks: state.tracks.into(),
             hypotheses: state.hypotheses.into(),
+            max_objects: state.hypotheses.iter().map(|h| h.slots().len()).max().unwrap_or(0),
+            label_count,
         })
     }
 
@@ -73,7 +85,7 @@ impl<const S: usize, const N: usize> Rest<S, N> {
     /// The most objects any of its hypotheses holds: a merge's product holds at most the sum of its
     /// members' (docs/maths.md §13.3).
     pub fn max_objects(&self) -> usize {
-        self.hypotheses.iter().map(|h| h.slots().len()).max().unwrap_or(0)
+        self.max_objects
     }
 
     /// Its hypotheses, best first: each one's weight (as the core gives it) and tracks.
@@ -109,11 +121,7 @@ impl<const S: usize, const N: usize> Rest<S, N> {
 
     /// How many distinct labels it holds (as `labels().len()`, without allocating).
     pub fn label_count(&self) -> usize {
-        let tracks = &self.tracks;
-        if tracks.iter().all(|t| t.label == tracks[0].label) {
-            return usize::from(!tracks.is_empty());
-        }
-        (0..tracks.len()).filter(|&i| tracks[..i].iter().all(|t| t.label != tracks[i].label)).count()
+        self.label_count
     }
 
     /// Its distinct labels, in order.
