@@ -1,21 +1,25 @@
 #!/usr/bin/env bash
-# QEMU check (issues 7, 13 and 28): the trackers on a Cortex-M4F give bit-identical results to the host.
+# QEMU check (issues 7, 13, 28 and 30): the trackers on a Cortex-M4F give bit-identical results to the host.
 #
 # 1. builds host-sim (release) and generates three fixed scenarios: the planar preset fifty-birth-death,
 #    the 3-D radar preset radar-leo and the mixed-kind network preset ssa-network, seed 1;
 # 2. replays the first $SCANS planar scans on the host with `host-sim digest` (SsaTracker<f32>), the
 #    first $RADAR_SCANS radar scans (RadarTracker<f32>, prior restricted to the objects they detect) and
-#    the first $NETWORK_SCANS network scans (NetworkTracker<f32>; `--excerpt` writes the firmware's excerpt);
-# 3. builds firmware/qemu-m4 with the three embedded and runs it on qemu-system-arm
-#    (mps2-an386, -icount shift=0, semihosting): the planar replay, then the radar one, then the network one;
-# 4. compares each pair of digest texts byte for byte, prints the final digests, and exits non-zero unless
-#    all three are identical (or on any failure above).
+#    the first $NETWORK_SCANS network scans (NetworkTracker<f32>; `--excerpt` writes the firmware's excerpt),
+#    and the same radar scans again through the fixed pool of cluster trackers (`--pool`: ClusterPool<f32>,
+#    every prior object its own cluster);
+# 3. builds firmware/qemu-m4 with the three scenarios embedded and runs it on qemu-system-arm
+#    (mps2-an386, -icount shift=0, semihosting): the planar replay, then the radar one, then the network one,
+#    then the pool one;
+# 4. compares each of the four pairs of digest texts byte for byte, prints the final digests, and exits
+#    non-zero unless all four are identical (or on any failure above).
 #
 # Needs: cargo with rustup (the thumbv7em-none-eabihf target is added if missing), qemu-system-arm.
 # Works with the default target dirs (./target, firmware/qemu-m4/target) or CARGO_TARGET_DIR (both), and
 # QEMU_CHECK_FIRMWARE_TARGET_DIR for the firmware's.
 # QEMU_CHECK_SCANS overrides the number of planar scans (default 200), QEMU_CHECK_RADAR_SCANS the number of
-# radar scans (default 200), QEMU_CHECK_NETWORK_SCANS the number of network scans (default 200).
+# radar scans (default 200; the pool replays the same), QEMU_CHECK_NETWORK_SCANS the number of network scans
+# (default 200).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -68,6 +72,10 @@ echo "qemu-check: host digest ($SCANS scans)"
 echo "qemu-check: host radar digest ($RADAR_SCANS scans)"
 "$HOST_SIM" digest "$RADAR_SCENARIO" --scans "$RADAR_SCANS" >"$WORK/host-radar.txt" ||
   fail "host-sim digest (radar) failed"
+echo "qemu-check: host pool digest ($RADAR_SCANS radar scans)"
+"$HOST_SIM" digest "$RADAR_SCENARIO" --scans "$RADAR_SCANS" --pool >"$WORK/host-pool.txt" \
+  2>"$WORK/host-pool-totals.txt" || { cat "$WORK/host-pool-totals.txt" >&2; fail "host-sim digest --pool failed"; }
+echo "qemu-check: host $(cat "$WORK/host-pool-totals.txt")"
 echo "qemu-check: host network digest and excerpt ($NETWORK_SCANS scans)"
 "$HOST_SIM" digest "$NETWORK_SCENARIO" --scans "$NETWORK_SCANS" --excerpt "$NETWORK_EXCERPT.new" \
   >"$WORK/host-network.txt" || fail "host-sim digest (network) failed"
@@ -93,13 +101,17 @@ echo "qemu-check: QEMU wall time $(( (end - start) / 1000000 )) ms (exit status 
 [ "$status" -eq 0 ] || fail "the firmware exited with status $status (124 = timeout after ${TIMEOUT_SECONDS}s)"
 
 # The digest lines before the radar header are the planar replay's, those between it and the network header
-# the radar replay's, those after that the network replay's.
+# the radar replay's, those between that and the pool header the network replay's, those after it the pool's.
 awk -v planar="$WORK/firmware-digest.txt" -v radar="$WORK/firmware-radar-digest.txt" \
-  -v network="$WORK/firmware-network-digest.txt" '
-  BEGIN { printf "" > planar; printf "" > radar; printf "" > network }
+  -v network="$WORK/firmware-network-digest.txt" -v pool="$WORK/firmware-pool-digest.txt" '
+  BEGIN { printf "" > planar; printf "" > radar; printf "" > network; printf "" > pool }
   /^qemu-m4: radar scenario / { part = 2 }
   /^qemu-m4: network scenario / { part = 3 }
-  /^(scan|final) / { if (part == 3) print > network; else if (part == 2) print > radar; else print > planar }' \
+  /^qemu-m4: pool scenario / { part = 4 }
+  /^(scan|final) / {
+    if (part == 4) print > pool; else if (part == 3) print > network; else if (part == 2) print > radar
+    else print > planar
+  }' \
   "$WORK/firmware.txt"
 
 # compare NAME HOST FIRMWARE DIFF: prints both final digests; 0 when the texts are identical.
@@ -120,6 +132,7 @@ ok=0
 compare planar "$WORK/host.txt" "$WORK/firmware-digest.txt" "$WORK/digest.diff" || ok=1
 compare radar "$WORK/host-radar.txt" "$WORK/firmware-radar-digest.txt" "$WORK/digest-radar.diff" || ok=1
 compare network "$WORK/host-network.txt" "$WORK/firmware-network-digest.txt" "$WORK/digest-network.diff" || ok=1
+compare pool "$WORK/host-pool.txt" "$WORK/firmware-pool-digest.txt" "$WORK/digest-pool.diff" || ok=1
 [ "$ok" -eq 0 ] || fail "the firmware's digests differ from the host's (files in $WORK)"
-echo "qemu-check: PASS: planar $SCANS scans, radar $RADAR_SCANS scans and network $NETWORK_SCANS scans, every" \
-  "per-scan digest and the three final digests are identical"
+echo "qemu-check: PASS: planar $SCANS scans, radar $RADAR_SCANS scans, network $NETWORK_SCANS scans and pool" \
+  "$RADAR_SCANS scans, every per-scan digest and the four final digests are identical"

@@ -1,6 +1,7 @@
 //! QEMU replay firmware for the Cortex-M4F (`mps2-an386`): runs a recorded host-sim scenario through
-//! tracker-core's `SsaTracker<f32>` (then, when built with them, a radar scenario through `RadarTracker<f32>`
-//! and a network excerpt through `NetworkTracker<f32>`) and prints, over semihosting, the same digest text as
+//! tracker-core's `SsaTracker<f32>` (then, when built with them, a radar scenario through `RadarTracker<f32>`,
+//! a network excerpt through `NetworkTracker<f32>` and the radar scenario again through a `ClusterPool` of
+//! cluster trackers) and prints, over semihosting, the same digest text as
 //! `host-sim digest` plus SysTick counts per scan and the stack high-water mark.
 //!
 //! Lines starting with `scan ` or `final ` are the digest text, compared byte for byte with the host's by
@@ -13,6 +14,8 @@
 mod cycles;
 #[cfg(rfisst_network)]
 mod network;
+#[cfg(rfisst_radar)]
+mod pool;
 #[cfg(rfisst_radar)]
 mod radar;
 mod scenario;
@@ -28,17 +31,17 @@ const SCANS: usize = scenario::SCANS.len();
 
 /// What one scan gave.
 #[derive(Clone, Copy)]
-pub(crate) struct Record {
+pub(crate) struct Record<E = StepError> {
     /// `Tracker::digest` after the scan.
     pub(crate) digest: u64,
-    /// Hypotheses and tracks kept, or why the scan was rejected.
-    pub(crate) outcome: Result<(usize, usize), StepError>,
+    /// Hypotheses and tracks kept (the pool: clusters and their hypotheses), or why the scan was rejected.
+    pub(crate) outcome: Result<(usize, usize), E>,
     /// SysTick ticks taken by `step`.
     pub(crate) ticks: u64,
 }
 
-impl Record {
-    pub(crate) const EMPTY: Record = Record { digest: 0, outcome: Ok((0, 0)), ticks: 0 };
+impl<E> Record<E> {
+    pub(crate) const EMPTY: Record<E> = Record { digest: 0, outcome: Ok((0, 0)), ticks: 0 };
 }
 
 /// Iterations of the calibration loop (2 instructions each).
@@ -99,7 +102,7 @@ fn run() -> debug::ExitStatus {
     }
     let scan_stack = stack::high_water();
 
-    print(records);
+    print(records, TRACKER_COUNTS);
     hprintln!(
         "qemu-m4: stack ({} bytes): start-up with building the tracker {} bytes; scans {} bytes, of which step and \
          digest {} bytes",
@@ -116,19 +119,26 @@ fn run() -> debug::ExitStatus {
     if network::run() != debug::EXIT_SUCCESS {
         return debug::EXIT_FAILURE;
     }
+    #[cfg(rfisst_radar)]
+    if pool::run() != debug::EXIT_SUCCESS {
+        return debug::EXIT_FAILURE;
+    }
     debug::EXIT_SUCCESS
 }
 
-/// Prints the digest text of `records` (one line per scan, then the final digest), each scan's ticks, and
-/// the ticks' min, median, max and total. Sorts `records` by ticks.
-pub(crate) fn print(records: &mut [Record]) {
+/// The names of a tracker's two counts per scan in the digest text.
+pub(crate) const TRACKER_COUNTS: [&str; 2] = ["hypotheses", "tracks"];
+
+/// Prints the digest text of `records` (one line per scan, its two counts named `names`, then the final
+/// digest), each scan's ticks, and the ticks' min, median, max and total. Sorts `records` by ticks.
+pub(crate) fn print<E: core::fmt::Display>(records: &mut [Record<E>], names: [&str; 2]) {
     let count = records.len();
     let mut running = Fnv1a::new();
     for (index, record) in records.iter().enumerate() {
         running.write(&record.digest.to_le_bytes());
-        match record.outcome {
-            Ok((hypotheses, tracks)) => {
-                hprintln!("scan {} hypotheses {} tracks {} digest {:016x}", index, hypotheses, tracks, record.digest)
+        match &record.outcome {
+            Ok((a, b)) => {
+                hprintln!("scan {} {} {} {} {} digest {:016x}", index, names[0], a, names[1], b, record.digest)
             }
             Err(error) => hprintln!("scan {} error {} digest {:016x}", index, error, record.digest),
         }

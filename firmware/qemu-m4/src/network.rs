@@ -103,7 +103,7 @@ pub fn run() -> debug::ExitStatus {
         record.digest = tracker.digest();
     }
     let scan_stack = stack::high_water();
-    crate::print(records);
+    crate::print(records, crate::TRACKER_COUNTS);
     hprintln!(
         "qemu-m4: network stack ({} bytes): building the tracker {} bytes; scans {} bytes, of which step_scan and \
          digest {} bytes",

@@ -62,7 +62,7 @@ include!(concat!(env!("OUT_DIR"), "/radar.rs"));
 const COUNT: usize = SCANS.len();
 
 /// The configuration with a network of no sensors: the compile-time placeholder of the static tracker.
-const PLACEHOLDER: RadarConfig<f32> = Config {
+pub(crate) const PLACEHOLDER: RadarConfig<f32> = Config {
     motion: MOTION,
     measurement: RadarNetwork::unconfigured(),
     // As host-sim: the first sensor's (each scan uses its own sensor's).
@@ -81,17 +81,20 @@ const PLACEHOLDER: RadarConfig<f32> = Config {
 /// The tracker, built at compile time (in `.data`: its initial image is in flash too).
 static mut TRACKER: RadarTracker<f32> = RadarTracker::empty(PLACEHOLDER);
 
-/// Installs the configuration (the sensor network with the Earth rotation angle at the epoch computed in
-/// `f64`, rounded once) and the prior into the static tracker, in place. Not inlined, so that its frames
-/// are given back before the scans.
+/// The sensor network, with the Earth rotation angle at the epoch computed in `f64`, rounded once.
+pub(crate) fn network() -> Result<RadarNetwork<f32>, &'static str> {
+    SensorNetwork::new(EarthRotation::new(gmst_iau82(EPOCH_JD) as f32), &SENSORS)
+}
+
+/// Installs the configuration ([`network`]) and the prior into the static tracker, in place. Not inlined,
+/// so that its frames are given back before the scans.
 #[inline(never)]
 fn build() -> Result<&'static mut RadarTracker<f32>, &'static str> {
     static TAKEN: core::sync::atomic::AtomicBool = core::sync::atomic::AtomicBool::new(false);
     if TAKEN.swap(true, core::sync::atomic::Ordering::AcqRel) {
         return Err("the radar tracker was already built");
     }
-    let rotation = EarthRotation::new(gmst_iau82(EPOCH_JD) as f32);
-    let network = SensorNetwork::new(rotation, &SENSORS)?;
+    let network = network()?;
     // SAFETY: `TAKEN` hands out this one `&mut` exactly once, and the firmware is single-threaded with no
     // interrupt touching the tracker.
     let tracker = unsafe { &mut *core::ptr::addr_of_mut!(TRACKER) };
@@ -143,7 +146,7 @@ pub fn run() -> debug::ExitStatus {
         record.digest = tracker.digest();
     }
     let scan_stack = stack::high_water();
-    crate::print(records);
+    crate::print(records, crate::TRACKER_COUNTS);
     hprintln!(
         "qemu-m4: radar stack ({} bytes): building the tracker {} bytes; scans {} bytes, of which step_scan and \
          digest {} bytes",

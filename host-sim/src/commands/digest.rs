@@ -17,11 +17,24 @@ pub struct Args {
     /// only; the QEMU firmware's `RFISST_NETWORK_EXCERPT`).
     #[arg(long)]
     excerpt: Option<PathBuf>,
+    /// Replay the scans through the embedded pool of cluster trackers instead (radar scenarios only; the
+    /// QEMU firmware's pool replay); what the pool did goes to stderr.
+    #[arg(long, conflicts_with = "excerpt")]
+    pool: bool,
 }
 
 /// Runs `digest`: the digest is the output, printed as it always was.
 pub(super) fn execute(args: Args) -> Result<(), CliError> {
     let scenario = crate::scenario::load_any(&args.file)?;
+    if args.pool {
+        let AnyScenario::V2(scenario) = &scenario else {
+            return Err(ScenarioError("--pool: only radar (version 2) scenarios have a pool replay".into()).into());
+        };
+        let (text, totals) = crate::pipeline::digest::pool::run(scenario, args.scans)?;
+        println!("{text}");
+        eprintln!("pool: {totals}");
+        return Ok(());
+    }
     if let Some(path) = &args.excerpt {
         let AnyScenario::V2(scenario) = &scenario else {
             return Err(

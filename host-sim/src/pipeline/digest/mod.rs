@@ -1,16 +1,17 @@
 //! `host-sim digest`: the QEMU firmware's digest, replayed on the host with the embedded (f32) tracker of
 //! the planar world ([`planar`]), the radar network ([`orbital`]) or a network of mixed kinds
-//! ([`network`], whose firmware excerpt [`excerpt`] writes). All print the same text, written once here
-//! ([`text`]).
+//! ([`network`], whose firmware excerpt [`excerpt`] writes), and the radar excerpt through the fixed pool
+//! of cluster trackers ([`pool`]). All print the same text, written once here ([`text`], [`text_of`]).
 
 pub mod convert;
 pub mod excerpt;
 pub mod network;
 pub mod orbital;
 pub mod planar;
+pub mod pool;
 
 use crate::scenario::ScenarioError;
-use std::fmt::Write as _;
+use std::fmt::{Display, Write as _};
 use tracker_core::digest::Fnv1a;
 use tracker_core::{StepError, StepReport};
 
@@ -37,18 +38,28 @@ pub fn excerpt(scans: Option<usize>, total: usize) -> Result<usize, ScenarioErro
 ///
 /// where the final digest is a 64-bit FNV-1a over every scan's digest as 8 little-endian bytes.
 pub fn text(count: usize, mut scan: impl FnMut(usize) -> (Result<StepReport<f32>, StepError>, u64)) -> String {
+    text_of(count, ["hypotheses", "tracks"], |index| {
+        let (outcome, digest) = scan(index);
+        (outcome.map(|report| (report.hypotheses, report.tracks)), digest)
+    })
+}
+
+/// The digest text of [`text`] with another pair of counts per scan, named `names` (the pool's
+/// `scan 0 clusters 43 hypotheses 43 digest …`).
+pub fn text_of<E: Display>(
+    count: usize,
+    names: [&str; 2],
+    mut scan: impl FnMut(usize) -> (Result<(usize, usize), E>, u64),
+) -> String {
     let mut text = String::new();
     let mut running = Fnv1a::new();
+    let [first, second] = names;
     for index in 0..count {
         let (outcome, digest) = scan(index);
         running.write(&digest.to_le_bytes());
         // `write!` to a String cannot fail.
         let _ = match outcome {
-            Ok(report) => writeln!(
-                text,
-                "scan {index} hypotheses {} tracks {} digest {digest:016x}",
-                report.hypotheses, report.tracks
-            ),
+            Ok((a, b)) => writeln!(text, "scan {index} {first} {a} {second} {b} digest {digest:016x}"),
             Err(error) => writeln!(text, "scan {index} error {error} digest {digest:016x}"),
         };
     }

@@ -49,7 +49,7 @@ pub fn run(scenario: &Scenario3d, scans: Option<usize>) -> Result<String, Scenar
 /// One measurement in the tracker's units and scalar: angles from degrees to radians in `f64` (azimuth
 /// and right ascension first wrapped to (−180°, 180°], [`crate::io::angles::wrap`]), then each component
 /// rounded once.
-fn measurement(kind: Measurement3dSpec, z: &[f64]) -> SVector<f32, 3> {
+pub fn measurement(kind: Measurement3dSpec, z: &[f64]) -> SVector<f32, 3> {
     SVector::from_fn(|i, _| {
         let v = z.get(i).copied().unwrap_or(f64::NAN);
         let v = if kind.wraps(i) { crate::io::angles::wrap(v) } else { v };
@@ -80,19 +80,9 @@ pub fn detected(scenario: &Scenario3d, count: usize) -> Result<HashSet<u64>, Sce
 /// # Errors
 /// As [`run`].
 pub fn tracker(scenario: &Scenario3d, count: usize) -> Result<Box<RadarTracker<f32>>, ScenarioError> {
-    if scenario.measurement != Measurement3dSpec::Radar {
-        return Err(ScenarioError(format!(
-            "measurement: the embedded 3-D replay runs RadarTracker (range, azimuth, elevation); this scenario is \
-             {}",
-            scenario.measurement.name()
-        )));
-    }
-    let detected = detected(scenario, count)?;
+    radar_only(scenario)?;
     let config = config(scenario)?;
-    let prior: Vec<(f32, Vec<PriorObject<f32, 6>>)> = settings::prior(scenario.prior.hypotheses.iter().map(|h| {
-        let objects = h.objects.iter().filter(|o| detected.contains(&u64::from(o.label)));
-        (h.weight, objects.map(|o| (o.label, &o.mean, &o.covariance)))
-    }));
+    let prior = prior(scenario, count)?;
     let hypotheses: Vec<PriorHypothesis<'_, f32, 6>> =
         prior.iter().map(|(weight, objects)| PriorHypothesis { weight: *weight, objects }).collect();
     // Built in place on the heap: the tracker is too large for a default thread stack.
@@ -101,6 +91,36 @@ pub fn tracker(scenario: &Scenario3d, count: usize) -> Result<Box<RadarTracker<f
         .reset(&hypotheses, scenario.prior.time)
         .map_err(|e| ScenarioError(format!("tracker configuration: {e}")))?;
     Ok(tracker)
+}
+
+/// Refuses a scenario that is not a radar (range, azimuth, elevation) one.
+///
+/// # Errors
+/// A one-line message naming the scenario's measurement.
+pub fn radar_only(scenario: &Scenario3d) -> Result<(), ScenarioError> {
+    if scenario.measurement != Measurement3dSpec::Radar {
+        return Err(ScenarioError(format!(
+            "measurement: the embedded 3-D replay runs RadarTracker (range, azimuth, elevation); this scenario is \
+             {}",
+            scenario.measurement.name()
+        )));
+    }
+    Ok(())
+}
+
+/// Prior hypotheses in `f32`: each weight and its objects.
+pub type Prior = Vec<(f32, Vec<PriorObject<f32, 6>>)>;
+
+/// The prior of the first `count` scans in `f32`: each hypothesis restricted to the objects they detect.
+///
+/// # Errors
+/// As [`detected`].
+pub fn prior(scenario: &Scenario3d, count: usize) -> Result<Prior, ScenarioError> {
+    let detected = detected(scenario, count)?;
+    Ok(settings::prior(scenario.prior.hypotheses.iter().map(|h| {
+        let objects = h.objects.iter().filter(|o| detected.contains(&u64::from(o.label)));
+        (h.weight, objects.map(|o| (o.label, &o.mean, &o.covariance)))
+    })))
 }
 
 /// The configuration of the embedded radar tracker: `f64` values rounded once to `f32`.
