@@ -405,7 +405,7 @@ where
         }
         let [first, second] = &mut self.births;
         let (live, spare) = if self.birth { (&*second, first) } else { (&*first, second) };
-        spare.clone_from(live);
+        spare.copy_state_from(live);
         let step = spare
             .step_scan(geometry, &unclaimed)
             .map_err(|error| PoolError::Cluster { cluster: BIRTH_CLUSTER, error })?;

@@ -117,6 +117,64 @@ where
     }
 }
 
+impl<
+    T,
+    M,
+    G,
+    const S: usize,
+    const D: usize,
+    const H: usize,
+    const N: usize,
+    const Z: usize,
+    const K: usize,
+    const B: usize,
+> Tracker<T, M, G, S, D, H, N, Z, K, B>
+where
+    T: Real,
+    M: MotionModel<T, S> + Clone,
+    G: MeasurementModel<T, S, D> + Clone,
+{
+    /// Makes this tracker step exactly as `other` would from here: the configuration, the live track store
+    /// and hypotheses, the time, scan count and next label and the birth pool copied in place; the rest is
+    /// scratch that each scan rewrites before reading it. A host that steps a spare copy of a tracker (the
+    /// pool of clusters' birth cluster, [`crate::partition`]) copies it this way instead of with
+    /// `clone_from`, which builds a whole tracker on the stack.
+    ///
+    /// # Examples
+    /// ```
+    /// # use nalgebra::SVector;
+    /// # use tracker_core::LinearTracker;
+    /// # let (config, object) = (tracker_core::examples::config(), tracker_core::examples::object());
+    /// let mut a = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config.clone(), &[object], 0.0)?;
+    /// a.step(1.0, &[SVector::from([1.1, 0.05])])?;
+    /// let mut b = LinearTracker::<f64, 8, 4, 4, 16, 1>::with_objects(config, &[object, object], 5.0)?;
+    /// b.copy_state_from(&a);
+    /// a.step(2.0, &[SVector::from([2.0, 0.1])])?;
+    /// b.step(2.0, &[SVector::from([2.0, 0.1])])?;
+    /// assert_eq!(b.digest(), a.digest());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn copy_state_from(&mut self, other: &Self) {
+        self.config.clone_from(&other.config);
+        let live = other.live();
+        let (store, set) = (self.stores.at_mut(live), self.hypotheses.at_mut(live));
+        store.clear();
+        set.clear();
+        // The same capacities: everything fits.
+        for track in other.stores.at(live).as_slice() {
+            let _ = store.push(*track);
+        }
+        for hypothesis in other.hypotheses.at(live).as_slice() {
+            let _ = set.push(*hypothesis);
+        }
+        self.active = other.active;
+        (self.time, self.scans, self.next_label) = (other.time, other.scans, other.next_label);
+        self.initialised = other.initialised;
+        self.pool.clone_from(&other.pool);
+        self.generation.reset(self.config.children);
+    }
+}
+
 /// The checks of [`Tracker::resume`] against capacities `h` and `k`.
 fn check<T: Real, const S: usize, const N: usize>(
     state: &TrackerState<'_, T, S, N>,
