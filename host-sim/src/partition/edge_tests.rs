@@ -227,13 +227,18 @@ fn the_edge_pool_tracks_a_catalogue_as_the_host_partition() {
     });
 }
 
-/// `radar-leo` with a third of its objects unknown to the prior and a break-up of six fragments: births
-/// from the measurements, and fragments close enough to share gates.
+/// A smaller `radar-leo` (20 single objects and 8 crossing pairs over an hour) with a third of its
+/// objects unknown to the prior and a break-up of six fragments: births from the measurements, and crossing
+/// objects and fragments close enough to share gates. (`cargo run --release -p benches --example edge_pool`
+/// runs the whole preset, 2,161 scans, and compares the final digests.)
 #[test]
 fn the_edge_pool_starts_and_merges_tracks_as_the_host_partition() {
-    use crate::scenario::from_simulation::{Preset3d, to_scenario};
+    use crate::scenario::from_simulation::to_scenario;
+    use crate::sim::presets::{RadarLeoConfig, radar_leo_with};
     let unknowns = crate::sim::truth::Unknowns { missing_fraction: 0.3, breakup: 6 };
-    let sim = Preset3d::RadarLeo.simulate_with(3, &unknowns).expect("simulation");
+    let config =
+        RadarLeoConfig { singles: 20, pairs: 8, duration: 3600.0, min_passes: 1, unknowns, ..RadarLeoConfig::PRESET };
+    let sim = radar_leo_with(3, &config).expect("simulation");
     let (scenario, _) = to_scenario(&sim).expect("scenario");
     on_large_stack(move || {
         let [scans, merged, born, split] = crate::with_measurement!(scenario.measurement, orbital, (&scenario));
