@@ -172,6 +172,8 @@ struct Input {
     gate: Option<Num>,
     generation: Generation,
     sampled_selection: bool,
+    /// A floor under the children's weights (`Selection::TopWeightWithin`) when not sampled.
+    floor_decades: Option<u8>,
     store_error: bool,
     numerical_error: bool,
     seed: u64,
@@ -224,7 +226,11 @@ fn config<T: Real, M>(input: &Input, motion: M) -> Config<T, M, PositionMeasurem
                 })
             }
         },
-        selection: if input.sampled_selection { Selection::SampledByWeight } else { Selection::TopWeight },
+        selection: match (input.sampled_selection, input.floor_decades) {
+            (true, _) => Selection::SampledByWeight,
+            (false, Some(decades)) => Selection::TopWeightWithin { decades },
+            (false, None) => Selection::TopWeight,
+        },
         store_overflow: if input.store_error { StoreOverflow::Error } else { StoreOverflow::PruneChildren },
         numerical_failure: if input.numerical_error {
             tracker_core::NumericalFailure::Error

@@ -253,6 +253,35 @@ fn selection_by_sampling_keeps_children_in_proportion_to_weight() {
     assert!((frequency - p_detected).abs() < 0.03, "kept {frequency}, weight {p_detected}");
 }
 
+/// A floor under the weights (`Selection::TopWeightWithin`) drops exactly the children lighter than
+/// 10^−decades of the heaviest, the dropped mass shows in the captured mass, and a floor below every child
+/// changes nothing.
+#[test]
+fn a_floor_under_the_weights_drops_only_the_children_below_it() {
+    let object = [gaussian([0.0, 0.0, 1.0, 0.0], 0.5)];
+    let z = [V2::new(1.0, 0.0)];
+    let step = |selection: Selection| {
+        let mut c = linear_config::<1>(0.5, 1.0, 400.0);
+        c.selection = selection;
+        let mut t = LinearTracker::<f64, 4, 2, 2, 8, 1>::with_objects(c, &object, 0.0).unwrap();
+        let report = t.step(1.0, &z).unwrap();
+        let weights: Vec<f64> = t.hypotheses().map(|h| h.weight()).collect();
+        (weights, report.captured_mass, t.digest())
+    };
+    let (exact, captured, digest) = step(Selection::TopWeight);
+    assert_eq!(exact.len(), 2, "detected and missed");
+    assert_eq!(captured, 1.0);
+    let ratio = exact[1] / exact[0];
+    let decades = (-ratio.log10()).floor();
+    assert!((1.0..20.0).contains(&decades), "the missed child is {ratio} of the detected one");
+    // Floors above and below the lighter child.
+    let (above, captured_above, _) = step(Selection::TopWeightWithin { decades: (decades - 1.0) as u8 });
+    assert_eq!(above, vec![1.0], "only the heaviest child is left, renormalised");
+    assert!((captured_above - exact[0]).abs() < 1e-12, "captured {captured_above}, heaviest {}", exact[0]);
+    let (below, captured_below, digest_below) = step(Selection::TopWeightWithin { decades: (decades + 1.0) as u8 });
+    assert_eq!((below, captured_below, digest_below), (exact, 1.0, digest));
+}
+
 /// The caller's move budget per scan is never exceeded, whatever its size, with clusters or one chain per
 /// matrix; no budget (`u64::MAX`) is exactly `step`; a budget of 0 still gives every parent's best children
 /// (the exact starts).

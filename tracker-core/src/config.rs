@@ -284,6 +284,36 @@ pub enum Selection {
     /// Gumbel-top-k trick: the H∞ largest ln w + G, G standard Gumbel, seeded by the configuration seed
     /// and the scan index).
     SampledByWeight,
+    /// The H∞ children of largest weight, less those lighter than 10^−`decades` times the heaviest
+    /// (docs/maths.md §8.1): a floor on the relative weight, as GLMB implementations prune. The mass it
+    /// drops is at most (H∞ − 1) · 10^−`decades` of the kept mass per scan and shows in
+    /// [`crate::StepReport::captured_mass`]. A long-lived object's hypotheses otherwise fill H∞ with
+    /// versions of it that missed one scan (weights near (1 − p_D) λ_c c(z) / (p_D g(z)), 10⁻¹⁰ for a
+    /// precise radar), each a track to predict at every scan. `decades: 0` keeps only the heaviest child
+    /// and its ties.
+    TopWeightWithin {
+        /// The floor as a power of ten below the heaviest child's weight.
+        decades: u8,
+    },
+}
+
+impl Selection {
+    /// The natural logarithm of the floor relative to the heaviest child, −decades · ln 10; `None`
+    /// without a floor.
+    ///
+    /// # Examples
+    /// ```
+    /// use tracker_core::config::Selection;
+    /// assert_eq!(Selection::TopWeight.log_floor::<f64>(), None);
+    /// let floor = Selection::TopWeightWithin { decades: 9 }.log_floor::<f64>().unwrap();
+    /// assert!((floor.exp() - 1e-9).abs() < 1e-21);
+    /// ```
+    pub fn log_floor<T: Real>(self) -> Option<T> {
+        match self {
+            Selection::TopWeight | Selection::SampledByWeight => None,
+            Selection::TopWeightWithin { decades } => Some(T::of_f64(-f64::from(decades) * core::f64::consts::LN_10)),
+        }
+    }
 }
 
 /// The complete configuration of a tracker.

@@ -354,6 +354,11 @@ fn common<M, G, const S: usize>(
     c.selection = match core.selection {
         Selection::TopWeight => choice::RFISST_SELECTION_TOP_WEIGHT,
         Selection::SampledByWeight => choice::RFISST_SELECTION_SAMPLED_BY_WEIGHT,
+        Selection::TopWeightWithin { .. } => {
+            return Err(
+                "tracker.selection: a floor under the weights (top-weight-within) is not in the C configuration".into(),
+            );
+        }
     };
     c.store_overflow = match core.store_overflow {
         StoreOverflow::PruneChildren => choice::RFISST_STORE_OVERFLOW_PRUNE_CHILDREN,

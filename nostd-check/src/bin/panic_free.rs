@@ -74,7 +74,12 @@ fn children(argc: i32) -> ChildGeneration {
 }
 
 fn selection(argc: i32) -> Selection {
-    if argc > 4 { Selection::SampledByWeight } else { Selection::TopWeight }
+    match argc {
+        5 => Selection::SampledByWeight,
+        // The floor's code too (the number of decades from the input, so not folded away).
+        6.. => Selection::TopWeightWithin { decades: argc as u8 },
+        _ => Selection::TopWeight,
+    }
 }
 
 fn store_overflow(argc: i32) -> StoreOverflow {

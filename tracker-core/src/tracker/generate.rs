@@ -274,7 +274,7 @@ impl<T: Real, const H: usize, const N: usize, const Z: usize> Generation<T, H, N
             && !weight_model.detection_required();
         let birth_cell_count = if weight_model.births_possible() { birth_cells.count } else { 0 };
         match config.selection {
-            Selection::TopWeight => top.clear(),
+            Selection::TopWeight | Selection::TopWeightWithin { .. } => top.clear(),
             Selection::SampledByWeight => top.clear_sampling(selection_seed(scan_seed)),
         }
         let scan = ScanInputs { weight_model, birth_cells, scores, rows, scan_seed, derive_deaths, birth_cell_count };

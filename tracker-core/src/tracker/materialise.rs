@@ -131,10 +131,18 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         let mut outcome = Materialised { kept_total: LogSumExp::new(), next_label, dropped_for_store: 0, merged: 0 };
         let top = &inputs.generation.top;
         let kept = top.best_first(&mut self.order);
+        // The floor under the children's weights, relative to the heaviest (§8.1); children are best first.
+        let floor = inputs.config.selection.log_floor::<T>().and_then(|log_floor| {
+            let heaviest = top.kept().get(usize::from(*self.order.first()?))?;
+            Some(heaviest.log_weight + log_floor)
+        });
         for rank in 0..kept {
             // A candidate naming a parent or a birth cell that does not exist cannot occur; it would be
             // skipped like a child that does not fit.
             let Some(candidate) = top.kept().get(usize::from(*self.order.at(rank))) else { continue };
+            if floor.is_some_and(|floor| candidate.log_weight < floor) {
+                break;
+            }
             let Some(parent) = inputs.parents.as_slice().get(usize::from(candidate.parent)) else { continue };
             let Some(layout) = inputs.generation.layout(candidate.parent, candidate.event, inputs.birth_cells) else {
                 continue;
