@@ -34,9 +34,25 @@ pub struct Args {
     /// catalogue-scale: step every cluster at every scan, not only those a sensor may see (for comparison).
     #[arg(long)]
     step_every_cluster: bool,
+    /// catalogue-scale: the clusters keep the hypotheses within this many decades of the heaviest
+    /// (docs/maths.md §8.1), or `none` for every one up to H (slower: each observed object's cluster then
+    /// holds up to H versions of it).
+    #[arg(long, default_value = "9", value_parser = parse_floor)]
+    weight_floor: Floor,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+/// `--weight-floor`: decades, or none.
+#[derive(Debug, Clone, Copy)]
+struct Floor(Option<u8>);
+
+fn parse_floor(text: &str) -> Result<Floor, String> {
+    match text {
+        "none" => Ok(Floor(None)),
+        _ => text.parse().map(|d| Floor(Some(d))).map_err(|_| format!("{text:?}: a number of decades 0-255, or none")),
+    }
 }
 
 /// Runs `experiment`.
@@ -56,6 +72,7 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
             threads: args.threads,
             quiet: args.quiet,
             step_every_cluster: args.step_every_cluster,
+            weight_floor_decades: args.weight_floor.0,
         };
         let report = catalogue_scale::run(&args.out, &settings)?;
         eprintln!(

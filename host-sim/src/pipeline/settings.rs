@@ -108,6 +108,7 @@ pub fn policies(tracker: &TrackerSpec) -> (Selection, StoreOverflow, NumericalFa
         match tracker.selection {
             SelectionSpec::TopWeight => Selection::TopWeight,
             SelectionSpec::SampledByWeight => Selection::SampledByWeight,
+            SelectionSpec::TopWeightWithin { decades } => Selection::TopWeightWithin { decades },
         },
         match tracker.store_overflow {
             StoreOverflowSpec::PruneChildren => StoreOverflow::PruneChildren,

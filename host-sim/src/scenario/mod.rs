@@ -290,6 +290,11 @@ pub enum SelectionSpec {
     TopWeight,
     /// H∞ drawn by weight without replacement.
     SampledByWeight,
+    /// The H∞ largest weights, less those below 10^−decades of the heaviest (docs/maths.md §8.1).
+    TopWeightWithin {
+        /// The floor in powers of ten below the heaviest child.
+        decades: u8,
+    },
 }
 
 /// Tracker settings.

@@ -26,6 +26,7 @@ use crate::pipeline::TrackerKind;
 use crate::pipeline::orbital::config3d;
 use crate::pipeline::output::{cpu_time_ns, peak_resident_kib, resident_kib, write_json};
 use crate::plots::{self, Series};
+use crate::scenario::SelectionSpec;
 use score::Score;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -55,6 +56,10 @@ pub struct Settings {
     /// Step every cluster at every scan (`--step-every-cluster`) instead of leaving the clusters beyond a
     /// sensor's range window out of its scans (docs/maths.md §13.2, the default).
     pub step_every_cluster: bool,
+    /// The clusters keep the children within this many decades of the heaviest (`--weight-floor`,
+    /// docs/maths.md §8.1; the default [`crate::scenario::from_simulation::CATALOGUE_SELECTION`]'s 9);
+    /// `None`: every child up to H.
+    pub weight_floor_decades: Option<u8>,
 }
 
 /// One scan's figures.
@@ -112,7 +117,11 @@ pub(crate) fn run_on(
     started: Instant,
 ) -> Result<ScaleReport, Error> {
     let mut world = world::World::new(entries, settings.hours, settings.seed)?;
-    let scenario = world.scenario()?;
+    let mut scenario = world.scenario()?;
+    scenario.tracker.selection = match settings.weight_floor_decades {
+        Some(decades) => SelectionSpec::TopWeightWithin { decades },
+        None => SelectionSpec::TopWeight,
+    };
     let (config, prior) = config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst)?;
     let objects = prior.first().map(|(_, o)| o.as_slice()).unwrap_or(&[]);
     let mut tracker = Partitioned::<Radars, 3>::new(config, objects, scenario.prior.time, 0.0)
@@ -262,6 +271,7 @@ fn report(
         profile: format!("{}/{}/{}/{}/{}", c.hypotheses, c.objects, c.measurements, c.tracks, c.birth_cells),
         seed: settings.seed,
         view_skip: !settings.step_every_cluster,
+        weight_floor_decades: settings.weight_floor_decades,
         clusters_stepped_mean: crate::experiments::common::mean(
             &f.iter().map(|s| s.stepped as f64).collect::<Vec<_>>(),
         ),

@@ -85,6 +85,9 @@ pub struct ScaleReport {
     /// Whether clusters beyond a sensor's range window were left out of its scans (docs/maths.md §13.2;
     /// `false` with `--step-every-cluster`).
     pub view_skip: bool,
+    /// The floor under the clusters' hypothesis weights in decades below the heaviest (docs/maths.md §8.1);
+    /// `null`: none, every child up to H kept.
+    pub weight_floor_decades: Option<u8>,
     /// Clusters stepped per scan (in place or on a copy), mean over the scans: with the view skip, those
     /// near the scanning sensor; without it, every cluster.
     pub clusters_stepped_mean: f64,
