@@ -124,6 +124,9 @@
 // Sample hypotheses by weight.
 #define RFISST_SELECTION_SAMPLED_BY_WEIGHT 1
 
+// Keep the heaviest hypotheses within `selection_floor_decades` decades of the heaviest.
+#define RFISST_SELECTION_TOP_WEIGHT_WITHIN 2
+
 // Drop children that do not fit the track store.
 #define RFISST_STORE_OVERFLOW_PRUNE_CHILDREN 0
 
@@ -421,8 +424,12 @@ typedef struct RfisstConfig {
   uint64_t max_children_per_scan;
   // The sampler of sampled children.
   struct RfisstSampler sampler;
-  // `RFISST_SELECTION_TOP_WEIGHT` or `RFISST_SELECTION_SAMPLED_BY_WEIGHT`.
+  // `RFISST_SELECTION_TOP_WEIGHT`, `RFISST_SELECTION_SAMPLED_BY_WEIGHT` or
+  // `RFISST_SELECTION_TOP_WEIGHT_WITHIN` (reads `selection_floor_decades`).
   uint32_t selection;
+  // With `RFISST_SELECTION_TOP_WEIGHT_WITHIN`: the children lighter than 10^-decades times the heaviest
+  // are dropped (0..=255; docs/maths.md §8.1). Not read otherwise.
+  uint32_t selection_floor_decades;
   // `RFISST_STORE_OVERFLOW_PRUNE_CHILDREN` or `RFISST_STORE_OVERFLOW_ERROR`.
   uint32_t store_overflow;
   // `RFISST_NUMERICAL_FAILURE_DROP_TRACK` or `RFISST_NUMERICAL_FAILURE_ERROR`.

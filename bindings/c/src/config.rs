@@ -260,8 +260,12 @@ pub struct RfisstConfig {
     pub max_children_per_scan: u64,
     /// The sampler of sampled children.
     pub sampler: RfisstSampler,
-    /// `RFISST_SELECTION_TOP_WEIGHT` or `RFISST_SELECTION_SAMPLED_BY_WEIGHT`.
+    /// `RFISST_SELECTION_TOP_WEIGHT`, `RFISST_SELECTION_SAMPLED_BY_WEIGHT` or
+    /// `RFISST_SELECTION_TOP_WEIGHT_WITHIN` (reads `selection_floor_decades`).
     pub selection: u32,
+    /// With `RFISST_SELECTION_TOP_WEIGHT_WITHIN`: the children lighter than 10^-decades times the heaviest
+    /// are dropped (0..=255; docs/maths.md §8.1). Not read otherwise.
+    pub selection_floor_decades: u32,
     /// `RFISST_STORE_OVERFLOW_PRUNE_CHILDREN` or `RFISST_STORE_OVERFLOW_ERROR`.
     pub store_overflow: u32,
     /// `RFISST_NUMERICAL_FAILURE_DROP_TRACK` or `RFISST_NUMERICAL_FAILURE_ERROR`.
@@ -402,6 +406,8 @@ pub mod choice {
     pub const RFISST_SELECTION_TOP_WEIGHT: u32 = 0;
     /// Sample hypotheses by weight.
     pub const RFISST_SELECTION_SAMPLED_BY_WEIGHT: u32 = 1;
+    /// Keep the heaviest hypotheses within `selection_floor_decades` decades of the heaviest.
+    pub const RFISST_SELECTION_TOP_WEIGHT_WITHIN: u32 = 2;
     /// Drop children that do not fit the track store.
     pub const RFISST_STORE_OVERFLOW_PRUNE_CHILDREN: u32 = 0;
     /// Fail the scan when the store overflows.
@@ -538,6 +544,7 @@ impl RfisstConfig {
                 exact_start: u32::from(sampler.exact_start),
             },
             selection: choice::RFISST_SELECTION_TOP_WEIGHT,
+            selection_floor_decades: 0,
             store_overflow: choice::RFISST_STORE_OVERFLOW_PRUNE_CHILDREN,
             numerical_failure: choice::RFISST_NUMERICAL_FAILURE_DROP_TRACK,
             lost_after_unseen_scans: 0,

@@ -303,6 +303,10 @@ fn common_into<T: Real, M, G, const S: usize>(
     out.selection = match c.selection {
         choice::RFISST_SELECTION_TOP_WEIGHT => Selection::TopWeight,
         choice::RFISST_SELECTION_SAMPLED_BY_WEIGHT => Selection::SampledByWeight,
+        choice::RFISST_SELECTION_TOP_WEIGHT_WITHIN => Selection::TopWeightWithin {
+            decades: u8::try_from(c.selection_floor_decades)
+                .map_err(|_| Failure::invalid("selection_floor_decades: must be 0..=255"))?,
+        },
         _ => return Err(Failure::invalid("selection: unknown RFISST_SELECTION_* code")),
     };
     out.store_overflow = match c.store_overflow {

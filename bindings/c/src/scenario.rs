@@ -354,10 +354,9 @@ fn common<M, G, const S: usize>(
     c.selection = match core.selection {
         Selection::TopWeight => choice::RFISST_SELECTION_TOP_WEIGHT,
         Selection::SampledByWeight => choice::RFISST_SELECTION_SAMPLED_BY_WEIGHT,
-        Selection::TopWeightWithin { .. } => {
-            return Err(
-                "tracker.selection: a floor under the weights (top-weight-within) is not in the C configuration".into(),
-            );
+        Selection::TopWeightWithin { decades } => {
+            c.selection_floor_decades = u32::from(decades);
+            choice::RFISST_SELECTION_TOP_WEIGHT_WITHIN
         }
     };
     c.store_overflow = match core.store_overflow {
@@ -642,8 +641,8 @@ fn c_config(c: &RfisstConfig) -> String {
             s.burn_in, s.steps, s.proposal, s.clusters, s.exhaustive_limit, s.exact_start
         ),
         format!(
-            "    .selection = {}u, .store_overflow = {}u, .numerical_failure = {}u,",
-            c.selection, c.store_overflow, c.numerical_failure
+            "    .selection = {}u, .selection_floor_decades = {}u, .store_overflow = {}u, .numerical_failure = {}u,",
+            c.selection, c.selection_floor_decades, c.store_overflow, c.numerical_failure
         ),
         format!("    .lost_after_unseen_scans = {}u,", c.lost_after_unseen_scans),
         format!("    .seed = {}ull,", c.seed),

@@ -197,6 +197,48 @@ fn the_lost_track_rule_is_configured_from_c_and_json_as_on_the_host() {
 }
 
 #[test]
+fn a_floor_under_the_weights_is_configured_from_c_and_json_as_on_the_host() {
+    with_big_stack(|| {
+        let (mut parsed, _) = radar_scenario();
+        let count = parsed.scans.len();
+        let plain = host_sim::pipeline::digest::orbital::run(&parsed, Some(count)).expect("host digest");
+        // One decade: every child under a tenth of the heaviest is dropped, which this run has.
+        parsed.tracker.selection = host_sim::scenario::SelectionSpec::TopWeightWithin { decades: 1 };
+        let json = serde_json::to_string(&parsed).expect("JSON");
+        let host = host_sim::pipeline::digest::orbital::run(&parsed, Some(count)).expect("host digest");
+        assert_ne!(host, plain, "the floor changes this run");
+        let scenario = from_json(&json, RfisstKind::RfisstRadarF32, Some(count)).expect("radar");
+        assert_eq!(
+            (scenario.config.selection, scenario.config.selection_floor_decades),
+            (choice::RFISST_SELECTION_TOP_WEIGHT_WITHIN, 1)
+        );
+        let mut storage = Storage::new();
+        let tracker = init(&mut storage, RfisstKind::RfisstRadarF32, &scenario);
+        assert_eq!(digest_text(tracker, &scenario, count), host);
+        // A floor beyond 255 decades is refused with its field named.
+        let config = RfisstConfig { selection_floor_decades: 256, ..scenario.config };
+        let hypotheses = scenario.hypotheses();
+        let mut handle = core::ptr::null_mut();
+        // SAFETY: valid storage, configuration and prior.
+        let status = unsafe {
+            rfisst_tracker_init(
+                storage.ptr(),
+                storage.size(),
+                RfisstKind::RfisstRadarF32 as u32,
+                &config,
+                hypotheses.as_ptr(),
+                hypotheses.len(),
+                scenario.prior_time,
+                &mut handle,
+            )
+        };
+        assert_eq!(status, RfisstStatus::RfisstInvalidConfig);
+        assert!(handle.is_null());
+        assert!(last_error(storage.ptr().cast()).contains("selection_floor_decades"));
+    });
+}
+
+#[test]
 fn every_kind_initialises_steps_and_reports() {
     with_big_stack(|| {
         let planar = planar_scenario(3);
