@@ -57,6 +57,18 @@ fn radar_scenario() -> (Scenario3d, String) {
 
 /// Initialises `kind` from `scenario` in `storage`.
 fn init(storage: &mut Storage, kind: RfisstKind, scenario: &CScenario) -> *mut RfisstTracker {
+    let (status, tracker) = try_init(storage, kind, &scenario.config, scenario);
+    assert_eq!(status, RfisstStatus::RfisstOk, "{}", last_error(storage.ptr().cast()));
+    tracker
+}
+
+/// `rfisst_tracker_init` of `kind` with `config` and `scenario`'s prior in `storage`: its status and handle.
+fn try_init(
+    storage: &mut Storage,
+    kind: RfisstKind,
+    config: &RfisstConfig,
+    scenario: &CScenario,
+) -> (RfisstStatus, *mut RfisstTracker) {
     let hypotheses = scenario.hypotheses();
     let mut tracker = core::ptr::null_mut();
     // SAFETY: valid storage, configuration and prior.
@@ -65,15 +77,14 @@ fn init(storage: &mut Storage, kind: RfisstKind, scenario: &CScenario) -> *mut R
             storage.ptr(),
             storage.size(),
             kind as u32,
-            &scenario.config,
+            config,
             hypotheses.as_ptr(),
             hypotheses.len(),
             scenario.prior_time,
             &mut tracker,
         )
     };
-    assert_eq!(status, RfisstStatus::RfisstOk, "{}", last_error(storage.ptr().cast()));
-    tracker
+    (status, tracker)
 }
 
 /// The digest text of `host-sim digest`, through the C interface.
@@ -171,21 +182,7 @@ fn the_lost_track_rule_is_configured_from_c_and_json_as_on_the_host() {
         let mut config = RfisstConfig::default_for(false);
         assert_eq!(config.lost_after_unseen_scans, 0);
         config = RfisstConfig { lost_after_unseen_scans: 70_000, ..scenario.config };
-        let hypotheses = scenario.hypotheses();
-        let mut handle = core::ptr::null_mut();
-        // SAFETY: valid storage, configuration and prior.
-        let status = unsafe {
-            rfisst_tracker_init(
-                storage.ptr(),
-                storage.size(),
-                RfisstKind::RfisstRadarF32 as u32,
-                &config,
-                hypotheses.as_ptr(),
-                hypotheses.len(),
-                scenario.prior_time,
-                &mut handle,
-            )
-        };
+        let (status, handle) = try_init(&mut storage, RfisstKind::RfisstRadarF32, &config, &scenario);
         assert_eq!(status, RfisstStatus::RfisstInvalidConfig);
         assert!(handle.is_null());
         assert!(
@@ -217,21 +214,7 @@ fn a_floor_under_the_weights_is_configured_from_c_and_json_as_on_the_host() {
         assert_eq!(digest_text(tracker, &scenario, count), host);
         // A floor beyond 255 decades is refused with its field named.
         let config = RfisstConfig { selection_floor_decades: 256, ..scenario.config };
-        let hypotheses = scenario.hypotheses();
-        let mut handle = core::ptr::null_mut();
-        // SAFETY: valid storage, configuration and prior.
-        let status = unsafe {
-            rfisst_tracker_init(
-                storage.ptr(),
-                storage.size(),
-                RfisstKind::RfisstRadarF32 as u32,
-                &config,
-                hypotheses.as_ptr(),
-                hypotheses.len(),
-                scenario.prior_time,
-                &mut handle,
-            )
-        };
+        let (status, handle) = try_init(&mut storage, RfisstKind::RfisstRadarF32, &config, &scenario);
         assert_eq!(status, RfisstStatus::RfisstInvalidConfig);
         assert!(handle.is_null());
         assert!(last_error(storage.ptr().cast()).contains("selection_floor_decades"));
