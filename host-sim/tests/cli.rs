@@ -156,6 +156,9 @@ fn bad_arguments_exit_2() {
         with(&["--objects", "10", "--hours", "1", "--threads", "0"]),
         with(&["--objects", "10", "--hours", "1", "--runs", "2"]),
         vec!["experiment", "fifty", "--out", "/nonexistent-rfisst/fifty", "--objects", "10"],
+        with(&["--objects", "10", "--hours", "1", "--weight-floor", "256"]),
+        with(&["--objects", "10", "--hours", "1", "--weight-floor", "all"]),
+        vec!["experiment", "fifty", "--out", "/nonexistent-rfisst/fifty", "--weight-floor", "9"],
     ];
     let plain = [&[][..], &["frobnicate"], &["generate", "linear-small"], &["run", FIXTURE], &["run", "--bogus"]];
     for args in plain.into_iter().chain(scale_cases.iter().map(Vec::as_slice)) {

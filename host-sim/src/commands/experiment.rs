@@ -5,6 +5,8 @@ use super::CliError;
 use crate::error::Error;
 use crate::experiments::Experiment;
 use crate::experiments::catalogue_scale::{self, Settings};
+use crate::scenario::SelectionSpec;
+use crate::scenario::from_simulation::CATALOGUE_SELECTION;
 use std::path::PathBuf;
 
 /// The arguments of `experiment`.
@@ -36,9 +38,9 @@ pub struct Args {
     step_every_cluster: bool,
     /// catalogue-scale: the clusters keep the hypotheses within this many decades of the heaviest
     /// (docs/maths.md §8.1), or `none` for every one up to H (slower: each observed object's cluster then
-    /// holds up to H versions of it).
-    #[arg(long, default_value = "9", value_parser = parse_floor)]
-    weight_floor: Floor,
+    /// holds up to H versions of it) [default: 9, the catalogue scenarios']
+    #[arg(long, value_parser = parse_floor)]
+    weight_floor: Option<Floor>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -47,6 +49,14 @@ pub struct Args {
 /// `--weight-floor`: decades, or none.
 #[derive(Debug, Clone, Copy)]
 struct Floor(Option<u8>);
+
+/// The catalogue scenarios' floor ([`CATALOGUE_SELECTION`]).
+fn catalogue_floor() -> Option<u8> {
+    match CATALOGUE_SELECTION {
+        SelectionSpec::TopWeightWithin { decades } => Some(decades),
+        SelectionSpec::TopWeight | SelectionSpec::SampledByWeight => None,
+    }
+}
 
 fn parse_floor(text: &str) -> Result<Floor, String> {
     match text {
@@ -72,7 +82,7 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
             threads: args.threads,
             quiet: args.quiet,
             step_every_cluster: args.step_every_cluster,
-            weight_floor_decades: args.weight_floor.0,
+            weight_floor_decades: args.weight_floor.map_or_else(catalogue_floor, |f| f.0),
         };
         let report = catalogue_scale::run(&args.out, &settings)?;
         eprintln!(
@@ -80,9 +90,11 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
             report.objects, report.scans, report.wall_s, report.realtime_factor, report.rejected_scans
         );
     } else {
-        if args.objects.is_some() || args.hours.is_some() || args.threads.is_some() || args.step_every_cluster {
+        let own = args.objects.is_some() || args.hours.is_some() || args.threads.is_some();
+        if own || args.step_every_cluster || args.weight_floor.is_some() {
             return Err(Error::input(format!(
-                "experiment {name}: --objects, --hours, --threads and --step-every-cluster are catalogue-scale's"
+                "experiment {name}: --objects, --hours, --threads, --step-every-cluster and --weight-floor are \
+                 catalogue-scale's"
             ))
             .into());
         }
