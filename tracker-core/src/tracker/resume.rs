@@ -115,25 +115,7 @@ where
         self.generation.reset(self.config.children);
         Ok(())
     }
-}
 
-impl<
-    T,
-    M,
-    G,
-    const S: usize,
-    const D: usize,
-    const H: usize,
-    const N: usize,
-    const Z: usize,
-    const K: usize,
-    const B: usize,
-> Tracker<T, M, G, S, D, H, N, Z, K, B>
-where
-    T: Real,
-    M: MotionModel<T, S> + Clone,
-    G: MeasurementModel<T, S, D> + Clone,
-{
     /// Makes this tracker step exactly as `other` would from here: the configuration, the live track store
     /// and hypotheses, the time, scan count and next label and the birth pool copied in place; the rest is
     /// scratch that each scan rewrites before reading it. A host that steps a spare copy of a tracker (the
@@ -154,7 +136,11 @@ where
     /// assert_eq!(b.digest(), a.digest());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn copy_state_from(&mut self, other: &Self) {
+    pub fn copy_state_from(&mut self, other: &Self)
+    where
+        M: Clone,
+        G: Clone,
+    {
         self.config.clone_from(&other.config);
         let live = other.live();
         let (store, set) = (self.stores.at_mut(live), self.hypotheses.at_mut(live));
