@@ -288,8 +288,8 @@ pub enum Selection {
     /// (docs/maths.md §8.1): a floor on the relative weight, as GLMB implementations prune. The mass it
     /// drops is at most (H∞ − 1) · 10^−`decades` of the kept mass per scan and shows in
     /// [`crate::StepReport::captured_mass`]. A long-lived object's hypotheses otherwise fill H∞ with
-    /// versions of it that missed one scan (weights near (1 − p_D) λ_c c(z) / (p_D g(z)), 10⁻¹⁰ for a
-    /// precise radar), each a track to predict at every scan. `decades: 0` keeps only the heaviest child
+    /// versions of it that missed one scan (relative weights near (1 − p_D) λ_c c(z) / (p_D g(z)), tiny for
+    /// a precise radar), each a track to predict at every scan. `decades: 0` keeps only the heaviest child
     /// and its ties.
     TopWeightWithin {
         /// The floor as a power of ten below the heaviest child's weight.

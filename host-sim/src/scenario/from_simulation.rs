@@ -336,8 +336,9 @@ pub const MAX_SUBSTEPS: u32 = 8640;
 
 /// How a catalogue's trackers keep their hypotheses (`run-catalogue`, `generate catalogue`, the catalogue
 /// at scale): the H∞ heaviest children within nine decades of the heaviest (docs/maths.md §8.1). Without
-/// the floor each observed object's cluster fills H∞ with versions of it that missed one scan (relative
-/// weights near 10⁻¹⁰ under a precise radar), and every version is a track predicted at every scan
+/// the floor each observed object's cluster fills H∞ with versions of it that missed one scan (in the
+/// catalogue experiment most of them between 10⁻¹² and 10⁻⁹ of the heaviest), and every version is a track
+/// predicted at every scan
 /// (docs/performance.md, "A floor under the hypotheses' weights").
 pub const CATALOGUE_SELECTION: SelectionSpec = SelectionSpec::TopWeightWithin { decades: 9 };
 
