@@ -159,6 +159,9 @@ fn bad_arguments_exit_2() {
         with(&["--objects", "10", "--hours", "1", "--weight-floor", "256"]),
         with(&["--objects", "10", "--hours", "1", "--weight-floor", "all"]),
         vec!["experiment", "fifty", "--out", "/nonexistent-rfisst/fifty", "--weight-floor", "9"],
+        with(&["--objects", "10", "--hours", "1", "--lost-after", "0"]),
+        with(&["--objects", "10", "--hours", "1", "--lost-after", "never"]),
+        vec!["experiment", "fifty", "--out", "/nonexistent-rfisst/fifty", "--lost-after", "8"],
     ];
     let plain = [&[][..], &["frobnicate"], &["generate", "linear-small"], &["run", FIXTURE], &["run", "--bogus"]];
     for args in plain.into_iter().chain(scale_cases.iter().map(Vec::as_slice)) {

@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::experiments::Experiment;
 use crate::experiments::catalogue_scale::{self, Settings};
 use crate::scenario::SelectionSpec;
-use crate::scenario::from_simulation::CATALOGUE_SELECTION;
+use crate::scenario::from_simulation::{CATALOGUE_SELECTION, CATALOGUE_TRACK_LOSS};
 use std::path::PathBuf;
 
 /// The arguments of `experiment`.
@@ -40,15 +40,19 @@ pub struct Args {
     /// (docs/maths.md §8.1), or `none` for every one up to H (slower: each observed object's cluster then
     /// holds up to H versions of it) [default: 9, the catalogue scenarios']
     #[arg(long, value_parser = parse_floor)]
-    weight_floor: Option<Floor>,
+    weight_floor: Option<OrNone<u8>>,
+    /// catalogue-scale: a track in view of this many scans in a row with no measurement in its gate is
+    /// dropped (docs/maths.md §5.9), or `none` to keep every track [default: 8, the catalogue scenarios']
+    #[arg(long, value_parser = parse_lost_after)]
+    lost_after: Option<OrNone<u16>>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
 }
 
-/// `--weight-floor`: decades, or none.
+/// `--weight-floor` and `--lost-after`: a number, or none.
 #[derive(Debug, Clone, Copy)]
-struct Floor(Option<u8>);
+struct OrNone<T>(Option<T>);
 
 /// The catalogue scenarios' floor ([`CATALOGUE_SELECTION`]).
 fn catalogue_floor() -> Option<u8> {
@@ -58,10 +62,21 @@ fn catalogue_floor() -> Option<u8> {
     }
 }
 
-fn parse_floor(text: &str) -> Result<Floor, String> {
+fn parse_or_none<T: std::str::FromStr>(text: &str, what: &str) -> Result<OrNone<T>, String> {
     match text {
-        "none" => Ok(Floor(None)),
-        _ => text.parse().map(|d| Floor(Some(d))).map_err(|_| format!("{text:?}: a number of decades 0-255, or none")),
+        "none" => Ok(OrNone(None)),
+        _ => text.parse().map(|n| OrNone(Some(n))).map_err(|_| format!("{text:?}: {what}, or none")),
+    }
+}
+
+fn parse_floor(text: &str) -> Result<OrNone<u8>, String> {
+    parse_or_none(text, "a number of decades 0-255")
+}
+
+fn parse_lost_after(text: &str) -> Result<OrNone<u16>, String> {
+    match parse_or_none(text, "a number of scans 1-65535")? {
+        OrNone(Some(0)) => Err(format!("{text:?}: a number of scans 1-65535, or none")),
+        n => Ok(n),
     }
 }
 
@@ -83,6 +98,7 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
             quiet: args.quiet,
             step_every_cluster: args.step_every_cluster,
             weight_floor_decades: args.weight_floor.map_or_else(catalogue_floor, |f| f.0),
+            lost_after_unseen_scans: args.lost_after.map_or(CATALOGUE_TRACK_LOSS.map(|n| n.get()), |n| n.0),
         };
         let report = catalogue_scale::run(&args.out, &settings)?;
         eprintln!(
@@ -91,10 +107,10 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
         );
     } else {
         let own = args.objects.is_some() || args.hours.is_some() || args.threads.is_some();
-        if own || args.step_every_cluster || args.weight_floor.is_some() {
+        if own || args.step_every_cluster || args.weight_floor.is_some() || args.lost_after.is_some() {
             return Err(Error::input(format!(
-                "experiment {name}: --objects, --hours, --threads, --step-every-cluster and --weight-floor are \
-                 catalogue-scale's"
+                "experiment {name}: --objects, --hours, --threads, --step-every-cluster, --weight-floor and \
+                 --lost-after are catalogue-scale's"
             ))
             .into());
         }

@@ -60,6 +60,10 @@ pub struct Settings {
     /// docs/maths.md §8.1; the default [`crate::scenario::from_simulation::CATALOGUE_SELECTION`]'s 9);
     /// `None`: every child up to H.
     pub weight_floor_decades: Option<u8>,
+    /// A track in view of this many scans in a row with no measurement in its gate is dropped
+    /// (`--lost-after`, docs/maths.md §5.9; the default
+    /// [`crate::scenario::from_simulation::CATALOGUE_TRACK_LOSS`]'s 8); `None`: tracks are never dropped.
+    pub lost_after_unseen_scans: Option<u16>,
 }
 
 /// One scan's figures.
@@ -122,6 +126,7 @@ pub(crate) fn run_on(
         Some(decades) => SelectionSpec::TopWeightWithin { decades },
         None => SelectionSpec::TopWeight,
     };
+    scenario.tracker.lost_after_unseen_scans = settings.lost_after_unseen_scans.and_then(core::num::NonZeroU16::new);
     let (config, prior) = config3d::<Radars, 3, { CLUSTER.birth_cells }>(&scenario, TrackerKind::Rfisst)?;
     let objects = prior.first().map(|(_, o)| o.as_slice()).unwrap_or(&[]);
     let mut tracker = Partitioned::<Radars, 3>::new(config, objects, scenario.prior.time, 0.0)
@@ -272,6 +277,7 @@ fn report(
         seed: settings.seed,
         view_skip: !settings.step_every_cluster,
         weight_floor_decades: settings.weight_floor_decades,
+        lost_after_unseen_scans: settings.lost_after_unseen_scans,
         clusters_stepped_mean: crate::experiments::common::mean(
             &f.iter().map(|s| s.stepped as f64).collect::<Vec<_>>(),
         ),

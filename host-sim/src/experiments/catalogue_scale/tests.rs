@@ -38,6 +38,7 @@ fn run_skip(
         quiet: true,
         step_every_cluster: every,
         weight_floor_decades: Some(9),
+        lost_after_unseen_scans: Some(8),
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).stack_size(256 << 20).build().expect("pool");
     let report = pool.install(|| run_on(&dir, &settings, threads, entries, Instant::now())).expect("run");

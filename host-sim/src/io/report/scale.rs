@@ -88,6 +88,9 @@ pub struct ScaleReport {
     /// The floor under the clusters' hypothesis weights in decades below the heaviest (docs/maths.md §8.1);
     /// `null`: none, every child up to H kept.
     pub weight_floor_decades: Option<u8>,
+    /// Scans in view without a measurement in a track's gate after which the track is dropped
+    /// (docs/maths.md §5.9); `null`: never.
+    pub lost_after_unseen_scans: Option<u16>,
     /// Clusters stepped per scan (in place or on a copy), mean over the scans: with the view skip, those
     /// near the scanning sensor; without it, every cluster.
     pub clusters_stepped_mean: f64,
