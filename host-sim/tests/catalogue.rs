@@ -347,6 +347,12 @@ fn generate_catalogue_truth_is_sgp4_and_deterministic() {
     assert_ne!(bytes(&a), bytes(&c), "another seed, the same file");
     let scenario = Scenario3d::load(&a).expect("the generated file loads");
     assert!(scenario.description.contains("SGP4"), "{}", scenario.description);
+    // A catalogue's trackers: the floor under the weights, and tracks lost after 8 unseen scans in view
+    // (the radars' preset sets no track loss of its own).
+    use host_sim::scenario::from_simulation::{CATALOGUE_SELECTION, CATALOGUE_TRACK_LOSS};
+    assert_eq!(scenario.tracker.selection, CATALOGUE_SELECTION);
+    assert_eq!(scenario.tracker.lost_after_unseen_scans, CATALOGUE_TRACK_LOSS);
+    assert_eq!(CATALOGUE_TRACK_LOSS.map(|n| n.get()), Some(8));
     // 2 h, a scan every 10 s (two radars every 20 s, in turn).
     assert_eq!(scenario.scans.len(), 721);
     let measurements: usize = scenario.scans.iter().map(|s| s.measurements.len()).sum();
@@ -377,7 +383,9 @@ fn generate_catalogue_telescope_sees_sunlit_objects_from_a_dark_site() {
     let out = dir.join("t.json");
     let output = generate(CATALOGUE, TELESCOPE, START, "24", "3", &out);
     assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+    // No track loss for a telescope alone: it misses the objects in the Earth's shadow.
     let scenario = Scenario3d::load(&out).expect("the generated file loads");
+    assert_eq!(scenario.tracker.lost_after_unseen_scans, None);
     let jd0 = scenario.epoch_jd();
     let s = &scenario.sensors[0].site;
     let site =
@@ -436,6 +444,8 @@ fn generate_catalogue_takes_a_network_of_mixed_kinds() {
     assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
     let scenario = Scenario3d::load(&out).expect("the generated file loads");
     assert_eq!(scenario.measurement, Measurement3dSpec::Network);
+    // The network's own track loss (5 scans) stands; the catalogue's (8) fills in only where none is set.
+    assert_eq!(scenario.tracker.lost_after_unseen_scans.map(|n| n.get()), Some(5));
     let kinds: Vec<Measurement3dSpec> = (0..3).map(|i| scenario.kind(i)).collect();
     assert_eq!(kinds, [Measurement3dSpec::Radar, Measurement3dSpec::Radar, Measurement3dSpec::Optical]);
     // The file's birth region is the scenario's, not the default.

@@ -16,7 +16,7 @@ use crate::pipeline::orbital::{FieldOfViewCheck, measurements_in_radians};
 use crate::scenario::from_simulation::{
     CATALOGUE_SELECTION, CATALOGUE_TRACK_LOSS, KnownTruth, description, to_scenario_with,
 };
-use crate::scenario::v2::{Scan3dSpec, Scenario3d, TruthScan3dSpec, TruthState3dSpec};
+use crate::scenario::v2::{Measurement3dSpec, Scan3dSpec, Scenario3d, TruthScan3dSpec, TruthState3dSpec};
 use crate::sim::rng::{Random, Stream};
 use crate::sim::sensor::SensorSpec;
 use crate::sim::ssa::{SsaScenario, draw_scan_any_size};
@@ -113,7 +113,12 @@ impl CatalogueStream {
         let known = KnownTruth { state: &state, source: TRUTH_SOURCE };
         let (mut scenario, _) = to_scenario_with(&simulation, Some(known))?;
         scenario.tracker.selection = CATALOGUE_SELECTION;
-        scenario.tracker.lost_after_unseen_scans = scenario.tracker.lost_after_unseen_scans.or(CATALOGUE_TRACK_LOSS);
+        // Not for a telescope alone: it misses every object in the Earth's shadow, which the field of view
+        // counts as in view.
+        if !matches!(scenario.measurement, Measurement3dSpec::Optical | Measurement3dSpec::AzEl) {
+            scenario.tracker.lost_after_unseen_scans =
+                scenario.tracker.lost_after_unseen_scans.or(CATALOGUE_TRACK_LOSS);
+        }
         for (spec, own) in scenario.sensors.iter_mut().zip(&parts.birth_regions) {
             spec.birth_region = own.or(spec.birth_region);
         }
