@@ -344,11 +344,11 @@ pub const CATALOGUE_SELECTION: SelectionSpec = SelectionSpec::TopWeightWithin { 
 
 /// The catalogue scenarios' track loss (`tracker.lost_after_unseen_scans`, docs/maths.md §5.9) where the
 /// sensors' own preset sets none, but for a telescope alone (it misses the objects in the Earth's shadow,
-/// which its field of view counts as in view): a track in view of 8 scans in a row with no measurement in its gate has
-/// left its object (p_D 0.9: a track on its object misses 8 in a row with probability 10⁻⁸). Without it
-/// a track that a long prediction between passes has carried away from its object stays in every
-/// hypothesis while the object is born again under a second label, and the scoring alternates between
-/// the two (docs/performance.md, "Tracks lost between passes").
+/// which its field of view counts as in view): a track in view of 8 scans in a row with no measurement in
+/// its gate has left its object (p_D 0.9: a track on its object misses 8 in a row with probability 10⁻⁸).
+/// Without it a track that a long prediction between passes has carried away from its object stays in
+/// every hypothesis while the object is born again under a second label, and the scoring alternates
+/// between the two (docs/performance.md, "Tracks lost between passes").
 pub const CATALOGUE_TRACK_LOSS: Option<core::num::NonZeroU16> = core::num::NonZeroU16::new(8);
 
 /// The version 2 scenario of a simulation.
