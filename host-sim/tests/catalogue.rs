@@ -519,14 +519,17 @@ fn generate_catalogue_rejects_bad_input_with_one_line_and_no_file() {
 fn run_catalogue_tracks_a_catalogue_in_one_command() {
     let dir = TempDir::new("run-catalogue");
     let out = dir.join("out");
-    let run = |out: &Path, hours: &str| {
+    let run_with = |out: &Path, hours: &str, extra: &[&str]| {
         Command::new(BIN)
             .args(["run-catalogue", "--catalogue", CATALOGUE, "--sensors", RADARS, "--start", START])
-            .args(["--duration-hours", hours, "--quiet", "--out"])
+            .args(["--duration-hours", hours, "--quiet"])
+            .args(extra)
+            .arg("--out")
             .arg(out)
             .output()
             .expect("run host-sim")
     };
+    let run = |out: &Path, hours: &str| run_with(out, hours, &[]);
     let output = run(&out, "0.25");
     assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
     for file in ["scenario.json", "summary.json", "estimates.csv", "tracks.oem"] {
@@ -541,6 +544,18 @@ fn run_catalogue_tracks_a_catalogue_in_one_command() {
     // A bad argument: one line, exit 2, nothing written.
     let bad = dir.join("bad");
     let output = run(&bad, "0");
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(!bad.exists());
+    // Track loss: the catalogue's 8 scans by default, as asked with --lost-after, 0 refused.
+    let lost_after = |out: &Path| read_json(&out.join("scenario.json"))["tracker"]["lost_after_unseen_scans"].clone();
+    assert_eq!(lost_after(&out), 8);
+    for (value, expect) in [("none", Value::Null), ("3", Value::from(3))] {
+        let out = dir.join(&format!("lost-{value}"));
+        let output = run_with(&out, "0.05", &["--lost-after", value]);
+        assert_eq!(output.status.code(), Some(0), "{}", describe(&output));
+        assert_eq!(lost_after(&out), expect, "--lost-after {value}");
+    }
+    let output = run_with(&bad, "0.05", &["--lost-after", "0"]);
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
     assert!(!bad.exists());
 }

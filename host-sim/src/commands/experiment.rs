@@ -1,7 +1,7 @@
 //! `host-sim experiment`: a paper experiment, the ablation, the 24-hour catalogue
 //! ([`crate::experiments::run`]) or the catalogue at scale ([`crate::experiments::catalogue_scale`]).
 
-use super::CliError;
+use super::{CliError, OrNone, parse_lost_after, parse_or_none};
 use crate::error::Error;
 use crate::experiments::Experiment;
 use crate::experiments::catalogue_scale::{self, Settings};
@@ -44,15 +44,11 @@ pub struct Args {
     /// catalogue-scale: a track in view of this many scans in a row with no measurement in its gate is
     /// dropped (docs/maths.md §5.9), or `none` to keep every track [default: 8, the catalogue scenarios']
     #[arg(long, value_parser = parse_lost_after)]
-    lost_after: Option<OrNone<u16>>,
+    lost_after: Option<OrNone<core::num::NonZeroU16>>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
 }
-
-/// `--weight-floor` and `--lost-after`: a number, or none.
-#[derive(Debug, Clone, Copy)]
-struct OrNone<T>(Option<T>);
 
 /// The catalogue scenarios' floor ([`CATALOGUE_SELECTION`]).
 fn catalogue_floor() -> Option<u8> {
@@ -62,22 +58,8 @@ fn catalogue_floor() -> Option<u8> {
     }
 }
 
-fn parse_or_none<T: std::str::FromStr>(text: &str, what: &str) -> Result<OrNone<T>, String> {
-    match text {
-        "none" => Ok(OrNone(None)),
-        _ => text.parse().map(|n| OrNone(Some(n))).map_err(|_| format!("{text:?}: {what}, or none")),
-    }
-}
-
 fn parse_floor(text: &str) -> Result<OrNone<u8>, String> {
     parse_or_none(text, "a number of decades 0-255")
-}
-
-fn parse_lost_after(text: &str) -> Result<OrNone<u16>, String> {
-    match parse_or_none(text, "a number of scans 1-65535")? {
-        OrNone(Some(0)) => Err(format!("{text:?}: a number of scans 1-65535, or none")),
-        n => Ok(n),
-    }
 }
 
 /// Runs `experiment`.
@@ -98,7 +80,7 @@ pub(super) fn execute(args: Args) -> Result<(), CliError> {
             quiet: args.quiet,
             step_every_cluster: args.step_every_cluster,
             weight_floor_decades: args.weight_floor.map_or_else(catalogue_floor, |f| f.0),
-            lost_after_unseen_scans: args.lost_after.map_or(CATALOGUE_TRACK_LOSS.map(|n| n.get()), |n| n.0),
+            lost_after_unseen_scans: args.lost_after.map_or(CATALOGUE_TRACK_LOSS, |n| n.0).map(|n| n.get()),
         };
         let report = catalogue_scale::run(&args.out, &settings)?;
         eprintln!(

@@ -38,6 +38,23 @@ pub struct Cli {
     json: bool,
 }
 
+/// An option's value that may be `none` (`--weight-floor`, `--lost-after`).
+#[derive(Debug, Clone, Copy)]
+struct OrNone<T>(Option<T>);
+
+/// `text` as a `T`, or `none`; `what` says what was expected.
+fn parse_or_none<T: std::str::FromStr>(text: &str, what: &str) -> Result<OrNone<T>, String> {
+    match text {
+        "none" => Ok(OrNone(None)),
+        _ => text.parse().map(|n| OrNone(Some(n))).map_err(|_| format!("{text:?}: {what}, or none")),
+    }
+}
+
+/// `--lost-after N|none` (docs/maths.md §5.9).
+fn parse_lost_after(text: &str) -> Result<OrNone<core::num::NonZeroU16>, String> {
+    parse_or_none(text, "a number of scans 1-65535")
+}
+
 /// The options of the commands that run a tracker on a scenario.
 #[derive(clap::Args, Clone, Copy)]
 pub struct Common {

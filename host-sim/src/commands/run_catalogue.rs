@@ -1,7 +1,7 @@
 //! `host-sim run-catalogue`: `generate catalogue` and `run` in one command.
 
 use super::generate::CatalogueArgs;
-use super::{CliError, Common};
+use super::{CliError, Common, OrNone, parse_lost_after};
 use crate::pipeline::TrackerKind;
 use crate::scenario::AnyScenario;
 use crate::scenario::from_catalogue::Generation;
@@ -21,6 +21,11 @@ pub struct Args {
     /// Output directory.
     #[arg(long)]
     out: PathBuf,
+    /// A track in view of this many scans in a row with no measurement in its gate is dropped
+    /// (docs/maths.md §5.9), or `none` to keep every track [default: the sensors' preset's, else 8 (not for a
+    /// telescope alone)]
+    #[arg(long, value_parser = parse_lost_after)]
+    lost_after: Option<OrNone<core::num::NonZeroU16>>,
     #[command(flatten)]
     common: Common,
 }
@@ -30,12 +35,18 @@ pub(super) fn execute(args: Args, json: bool) -> Result<(), CliError> {
     let options = args.common.run_options(args.tracker)?;
     let (mut summary, clean, dropped) = match args.catalogue.generate_or_stream("run-catalogue", args.seed)? {
         Generation::Held(held) => {
-            let (scenario, _, dropped) = *held;
+            let (mut scenario, _, dropped) = *held;
+            if let Some(OrNone(n)) = args.lost_after {
+                scenario.tracker.lost_after_unseen_scans = n;
+            }
             let scenario = AnyScenario::V2(Box::new(scenario));
             let (summary, clean) = crate::pipeline::run_with_scenario_file(&scenario, &options, &args.out)?;
             (summary, clean, dropped)
         }
-        Generation::Streamed(stream) => {
+        Generation::Streamed(mut stream) => {
+            if let Some(OrNone(n)) = args.lost_after {
+                stream.set_lost_after_unseen_scans(n);
+            }
             eprintln!(
                 "note: {} objects x {} scans: more than a scenario file holds; the scans are drawn as the run goes \
                  (estimates.csv and tracks.oem: the tracks once a simulated hour and at the end; scenario.json \

@@ -133,6 +133,11 @@ impl CatalogueStream {
         &self.scenario
     }
 
+    /// Sets the trackers' track loss (`tracker.lost_after_unseen_scans`, docs/maths.md §5.9; `None`: never).
+    pub fn set_lost_after_unseen_scans(&mut self, scans: Option<core::num::NonZeroU16>) {
+        self.scenario.tracker.lost_after_unseen_scans = scans;
+    }
+
     /// Scans in the run.
     pub fn scans(&self) -> usize {
         self.parts.schedule.len()
