@@ -32,6 +32,7 @@ macro_rules! common {
             r.quiet,
             r.clusters_with_measurements,
             r.hypotheses,
+            r.lost_tracks,
         ]
     }};
 }
@@ -244,5 +245,19 @@ fn the_edge_pool_starts_and_merges_tracks_as_the_host_partition() {
         let [scans, merged, born, split] = crate::with_measurement!(scenario.measurement, orbital, (&scenario));
         eprintln!("radar-leo: {scans} scans, {merged} merges, {born} births, {split} splits");
         assert!(born > 0 && merged > 0, "{scans} scans, {merged} merges, {born} births, {split} splits");
+    });
+}
+
+/// Two objects 100 apart, the second never detected: with track loss after 3 scans in view unseen, its
+/// track is dropped at the third scan, and both trackers count it.
+#[test]
+fn a_lost_track_is_dropped_and_counted_as_in_the_edge_pool() {
+    on_large_stack(|| {
+        let mut config = config();
+        config.track_loss = tracker_core::TrackLoss::AfterUnseenScans(core::num::NonZeroU16::new(3).expect("3"));
+        let scans: Vec<Scan> = (1..=5).map(|k| (k as f64, vec![z(k as f64, 0.0)])).collect();
+        let lost: Vec<usize> =
+            both(config, &objects(&[0.0, 100.0]), 0.0, &scans).iter().map(|r| r.lost_tracks).collect();
+        assert_eq!(lost, [0, 0, 1, 0, 0]);
     });
 }

@@ -96,7 +96,7 @@ fn info(report: &super::PartitionReport) -> StepInfo {
         captured_mass: 1.0 - report.step_pruned_mass - report.merge_pruned_mass,
         budget_reached: false,
         numerical_drops: NumericalDrops::default(),
-        lost_tracks: 0,
+        lost_tracks: report.lost_tracks,
         tracklets_formed: report.tracklets_formed,
     }
 }

@@ -63,6 +63,8 @@ pub struct PartitionReport {
     pub unclaimed: usize,
     /// Tracklets the birth cluster's pool formed from them (docs/maths.md §5.10).
     pub tracklets_formed: usize,
+    /// Tracks the clusters' cores declared lost and dropped (`lost_after_unseen_scans`, docs/maths.md §5.9).
+    pub lost_tracks: usize,
     /// Clusters with no measurement and no track in view, stepped last with an empty scan, or with a view
     /// skip given their tracks' predictions (§13.2).
     pub quiet: usize,
@@ -427,11 +429,13 @@ where
         for ((id, _, _), result) in work.iter().zip(results) {
             let result = result?;
             report.step_pruned_mass += (1.0 - result.0.captured_mass).max(0.0);
+            report.lost_tracks += result.0.lost_tracks;
             stepped.push((*id, result));
         }
         let step = birth_step.map_err(|error| PartitionError::Cluster { cluster: ClusterId::BIRTH, error })?;
         report.step_pruned_mass += (1.0 - step.captured_mass).max(0.0);
         report.tracklets_formed = step.birth_pool.tracklets;
+        report.lost_tracks += step.lost_tracks;
         report.clusters_with_measurements =
             work.iter().filter(|w| !w.2.is_empty()).count() + usize::from(!unclaimed.is_empty());
         Ok((stepped, birth))

@@ -61,6 +61,8 @@ pub struct PoolReport<T> {
     pub unclaimed: usize,
     /// Tracklets the birth cluster's pool formed.
     pub tracklets_formed: usize,
+    /// Tracks the clusters declared lost and dropped (`Config::track_loss`, docs/maths.md §5.9).
+    pub lost_tracks: usize,
     /// Clusters with no measurement and no track in view, stepped with an empty scan.
     pub quiet: usize,
     /// Clusters stepped with at least one measurement (the birth cluster included).
@@ -411,6 +413,7 @@ where
             .map_err(|error| PoolError::Cluster { cluster: BIRTH_CLUSTER, error })?;
         report.step_pruned_mass += (T::one() - step.captured_mass).max(T::zero());
         report.tracklets_formed = step.birth_pool.tracklets;
+        report.lost_tracks += step.lost_tracks;
         report.clusters_with_measurements += usize::from(!unclaimed.is_empty());
         // The birth cluster's id comes before any split's, as on the host.
         Ok((!spare.tracks().is_empty()).then(|| counters.fresh_cluster()))
@@ -458,6 +461,7 @@ where
             return push_core(&mut self.clusters[usize::from(!self.live)], id, &self.work);
         }
         report.step_pruned_mass += (T::one() - step.captured_mass).max(T::zero());
+        report.lost_tracks += step.lost_tracks;
         report.clusters_with_measurements += usize::from(!zs.is_empty());
         self.stepped.store(id, &self.work)?;
         self.settle(geometry.time, counters, report)

@@ -143,7 +143,7 @@ pub(crate) fn run_on(
     let prior_labels = objects.iter().map(|o| o.label.0).collect();
     let mut score = Score::new(scenario.evaluation, births, prior_labels);
     let (mut figures, mut rejected, mut clusters_max, mut largest) = (vec![], 0usize, 0usize, 0usize);
-    let mut merges_declined = 0;
+    let (mut merges_declined, mut lost_tracks) = (0, 0);
     let mut rss_by_hour = vec![];
     let last = world.scans() - 1;
     for k in 0..=last {
@@ -160,6 +160,7 @@ pub(crate) fn run_on(
                 clusters_max = clusters_max.max(report.clusters);
                 largest = largest.max(report.largest_cluster);
                 merges_declined += report.merges_declined;
+                lost_tracks += report.lost_tracks;
                 stepped_clusters = report.clusters.saturating_sub(report.skipped);
                 coasted = report.coasted;
             }
@@ -193,6 +194,7 @@ pub(crate) fn run_on(
         figures,
         rejected,
         merges_declined,
+        lost_tracks,
         clusters_max,
         largest,
         digest: tracker.digest(),
@@ -209,6 +211,7 @@ struct Outcome {
     figures: Vec<ScanFigures>,
     rejected: usize,
     merges_declined: usize,
+    lost_tracks: usize,
     clusters_max: usize,
     largest: usize,
     digest: u64,
@@ -270,6 +273,7 @@ fn report(
         observations_max: f.iter().map(|s| s.measurements).max().unwrap_or(0),
         rejected_scans: outcome.rejected,
         merges_declined: outcome.merges_declined,
+        lost_tracks: outcome.lost_tracks,
         scored_scans: scored.scored_scans,
         total_wall_s: started.elapsed().as_secs_f64(),
         digest: format!("{:016x}", outcome.digest),

@@ -72,6 +72,9 @@ pub struct ScaleReport {
     /// merged, each measurement kept by the cluster that gated it first (docs/maths.md §13.3).
     #[serde(default)]
     pub merges_declined: usize,
+    /// Tracks dropped as lost (`lost_after_unseen_scans`, docs/maths.md §5.9), over the run.
+    #[serde(default)]
+    pub lost_tracks: usize,
     /// Scans scored (one a simulated minute, and the last).
     pub scored_scans: usize,
     /// Wall-clock seconds of the whole command (catalogue, simulation, tracking, scoring, files).
