@@ -340,3 +340,58 @@ fn small_optical_tracklet_check() {
             .expect("run");
     assert!(summary.tracklets_formed > 0, "no tracklet formed");
 }
+
+/// docs/maths.md §5.8, "One label per candidate": one object, its candidate made from the first scan's
+/// measurement, born at the second scan in some hypotheses and at the third in others. The core and the
+/// reference give every hypothesis (not only the MAP) the same labels, and the candidate's label is reused.
+#[test]
+fn a_candidates_label_is_the_same_in_the_core_and_the_reference() {
+    // The core is built on the stack in debug builds: a large one.
+    let worker = std::thread::Builder::new().stack_size(256 << 20).spawn(candidate_label_check).expect("thread");
+    worker.join().expect("the check passes");
+}
+
+fn candidate_label_check() {
+    use host_sim::peers::reference::ReferenceTracker;
+    let mut config = measured_config::<4>(ChildGeneration::Exhaustive { max_children_per_scan: 1_000_000 });
+    if let Some(measured) = config.birth.measured.as_mut() {
+        measured.lifetime = 10.0;
+    }
+    let mut core = Box::new(
+        tracker_core::Tracker::<f64, _, _, 4, 2, 256, 12, 16, 1024, 4>::new(
+            config.clone(),
+            &[tracker_core::PriorHypothesis { weight: 1.0, objects: &[] }],
+            0.0,
+        )
+        .unwrap(),
+    );
+    let mut reference = ReferenceTracker::new(&config, &[(1.0, vec![])], 0.0, 1 << 28).unwrap();
+    let by_state = |tracks: Vec<(TrackLabel, Vec<u64>)>| {
+        let mut tracks = tracks;
+        tracks.sort();
+        tracks
+    };
+    let bits = |g: &Gaussian<f64, 4>| g.mean.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+    let mut reused = false;
+    for k in 1..=4 {
+        let z = SVector::<f64, 2>::new(-8.0 + 1.5 * f64::from(k), 3.0);
+        let geometry = ScanGeometry::single(f64::from(k));
+        core.step_scan(&geometry, &[z]).unwrap();
+        reference.step_scan(&geometry, &[z]).unwrap();
+        let mut ours: Vec<_> =
+            core.hypotheses().map(|h| by_state(h.tracks().map(|t| (t.label, bits(&t.state))).collect())).collect();
+        let mut theirs: Vec<_> = reference
+            .posterior()
+            .into_iter()
+            .map(|(_, tracks)| by_state(tracks.iter().map(|(label, g)| (*label, bits(g))).collect()))
+            .collect();
+        ours.sort();
+        theirs.sort();
+        assert_eq!(ours, theirs, "scan {k}");
+        // Label 0 on tracks of different states in different hypotheses: born at different scans.
+        let zero: std::collections::BTreeSet<_> =
+            ours.iter().flatten().filter(|(label, _)| *label == TrackLabel(0)).map(|(_, b)| b.clone()).collect();
+        reused |= zero.len() > 1 && ours.iter().all(|h| h.len() != 1 || h[0].0 == TrackLabel(0));
+    }
+    assert!(reused, "the candidate's label was reused");
+}

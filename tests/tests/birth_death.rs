@@ -228,6 +228,40 @@ fn measured_births_confirm_new_objects_anywhere_within_three_detections() {
 }
 
 #[test]
+fn an_object_born_from_one_candidate_at_different_scans_keeps_one_label() {
+    // docs/maths.md §5.8, "One label per candidate": the candidate made from scan 1's measurement gives birth
+    // at scan 2 in the hypotheses that take scan 2's measurement, and at scan 3 in those that called it
+    // clutter. Both births are one object: one label, however different their states.
+    use tracker_core::model::AdmissibleRegion;
+    use tracker_core::pool::MeasuredBirths;
+    let mut config = config_with_births(0.0, 0.0, &[], BirthDetection::AllDetected);
+    config.birth.events = tracker_core::BirthEvents::Independent;
+    config.birth.measured = Some(MeasuredBirths {
+        expected_births: 0.2,
+        max_probability: 0.2,
+        ..MeasuredBirths::new(AdmissibleRegion::planar(2.0))
+    });
+    let mut t = Tracker::with_objects(config, &[], 0.0).unwrap();
+    let truth = |k: f64| V2::new(-8.0 + 1.5 * k, 3.0);
+    for k in 1..=3 {
+        t.step(f64::from(k), &[truth(f64::from(k))]).unwrap();
+    }
+    // Born at scan 2 (updated twice, or missed at scan 3) or at scan 3: every hypothesis of one object
+    // holds it under label 0.
+    let single: Vec<_> =
+        t.hypotheses().filter(|h| h.len() == 1).flat_map(|h| h.tracks().copied().collect::<Vec<_>>()).collect();
+    assert!(single.len() >= 3, "born at scan 2 and seen, born at scan 2 and missed, born at scan 3");
+    assert!(single.iter().all(|track| track.label == TrackLabel(0)), "{single:?}");
+    let means: Vec<f64> = single.iter().map(|track| track.state.mean[0]).collect();
+    assert!(means.iter().any(|&x| x != means[0]), "born at different scans: different states");
+    // A hypothesis that holds the object and takes scan 3's measurement as a second birth from the same
+    // candidate: the second object gets a fresh label.
+    let double = t.hypotheses().find(|h| h.len() == 2).expect("a second birth from the candidate");
+    let labels: Vec<_> = double.tracks().map(|track| track.label).collect();
+    assert_eq!(labels, [TrackLabel(0), TrackLabel(1)]);
+}
+
+#[test]
 fn measured_birth_settings_are_checked_and_a_full_pool_loses_nothing_else() {
     use tracker_core::model::AdmissibleRegion;
     use tracker_core::pool::MeasuredBirths;

@@ -25,6 +25,7 @@ use crate::ekf;
 use crate::gaussian::Gaussian;
 use crate::model::{AdmissibleRegion, BirthComponent, MeasurementModel, MotionModel};
 use crate::real::Real;
+use crate::store::TrackLabel;
 use nalgebra::SVector;
 pub use tracklets::{MAX_LINKED_FRAMES, TRACKLET_FRAMES, TRACKLET_POINTS, TrackletBirths, TrackletBuffer};
 pub use waiting::{Linking, WaitingCell, WaitingCells};
@@ -117,6 +118,10 @@ pub struct PoolCell<T: Real, const S: usize> {
     /// tracklet's) mixture share it and age as one Bernoulli (docs/maths.md §5.8).
     #[cfg_attr(feature = "serde", serde(default))]
     pub group: u32,
+    /// The label the candidate's first birth was given (docs/maths.md §5.8, "One label per candidate"): a
+    /// later birth from its cells, in a hypothesis that does not hold it, takes it too. `None` until then.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub label: Option<TrackLabel>,
 }
 
 /// What one pool update did.
@@ -160,6 +165,10 @@ pub struct ScanUse<'a, T, const D: usize> {
     /// Per pool cell (same order), the scan sensor's p_D when the cell was in its field of view, else 0
     /// (missing entries count as 0): a cell in view that gave no birth was missed (docs/maths.md §5.8).
     pub detection: &'a [T],
+    /// Per measurement, the label of the object born from it in the best kept child that gave it one
+    /// (missing entries: none). A candidate made from the measurement takes it (§5.8, "One label per
+    /// candidate").
+    pub labels: &'a [Option<TrackLabel>],
 }
 
 /// Where a scan's new cells go: the scan's time, the pool's capacity, whether unkept cells wait.
@@ -168,6 +177,8 @@ struct Place {
     time: f64,
     capacity: usize,
     link_waiting: bool,
+    /// The label of the object born from the measurement in other hypotheses, if any.
+    label: Option<TrackLabel>,
 }
 
 /// At most `B` birth cells made from measurements (docs/maths.md §5.8).
@@ -241,6 +252,17 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         })
     }
 
+    /// Gives each candidate (group) of `labels` the label its first birth was given, unless it holds one
+    /// (docs/maths.md §5.8, "One label per candidate"): its cells in the pool and those waiting. O(B²).
+    pub fn adopt_labels(&mut self, labels: &[(u32, TrackLabel)]) {
+        for &(group, label) in labels {
+            for cell in self.cells.iter_mut().filter(|cell| cell.group == group && cell.label.is_none()) {
+                cell.label = Some(label);
+            }
+            self.waiting.label_group(group, label);
+        }
+    }
+
     /// Updates the pool after `scan`: each cell's α times 1 − `born[l]` (the posterior probability that
     /// cell l gave birth in the scan; missing entries count as 0) and (1 − p_D) / (1 − α p_D) with p_D =
     /// `detection[l]` (docs/maths.md §5.8), cells past their lifetime removed, then
@@ -256,7 +278,7 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         linking: &Linking<'_, T, M>,
         scan: &ScanUse<'_, T, D>,
     ) -> PoolUpdate {
-        let ScanUse { time, sensor, measurements, unexplained, born, detection } = *scan;
+        let ScanUse { time, sensor, measurements, unexplained, born, detection, labels } = *scan;
         let capacity = capacity.min(B);
         let mut update = PoolUpdate::default();
         // Age the old cells, each group as one Bernoulli (docs/maths.md §5.8).
@@ -293,13 +315,14 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             self.record_frame(settings, sensor, model, scan);
             return update;
         }
-        for (z, &r_u) in measurements.iter().zip(unexplained) {
+        for (row, (z, &r_u)) in measurements.iter().zip(unexplained).enumerate() {
             if !(r_u >= minimum && r_u > T::zero()) {
                 continue;
             }
+            let label = labels.get(row).copied().flatten();
             let share = settings.expected_births * r_u / total;
             let alpha = if share < settings.max_probability { share } else { settings.max_probability };
-            let place = Place { time, capacity, link_waiting: settings.link_waiting };
+            let place = Place { time, capacity, link_waiting: settings.link_waiting, label };
             if settings.link_waiting
                 && let Some(link) = self.waiting.best_link(model, linking, time, z)
                 && self.add_linked(link, model, linking.weights, z, &place, &mut update)
@@ -357,12 +380,14 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
             return false;
         }
         self.waiting.mark_linked(link.group);
+        // The linked cells are the same candidate's: they keep its label (else the measurement's).
+        let label = self.waiting.label_of(link.group).or(place.label);
         let group = self.next_group;
         self.next_group = self.next_group.wrapping_add(1);
         for index in 0..self.waiting.cells().len() {
             if let Some((state, evidence)) = self.waiting.linked_cell(index, link, model, weights, z) {
-                let cell =
-                    PoolCell { state, time: place.time, probability: link.probability * evidence / total, group };
+                let probability = link.probability * evidence / total;
+                let cell = PoolCell { state, time: place.time, probability, group, label };
                 self.put(cell, place, update);
             }
         }
@@ -402,8 +427,8 @@ impl<T: Real, const S: usize, const B: usize> BirthPool<T, S, B> {
         let group = self.next_group;
         self.next_group = self.next_group.wrapping_add(1);
         for component in components.iter().take(count) {
-            let cell =
-                PoolCell { state: component.state, time: place.time, probability: alpha * component.weight, group };
+            let probability = alpha * component.weight;
+            let cell = PoolCell { state: component.state, time: place.time, probability, group, label: place.label };
             self.put(cell, place, update);
         }
     }
@@ -561,7 +586,7 @@ mod tests {
     }
 
     fn scan<'a>(time: f64, zs: &'a [SVector<f64, 2>], r_u: &'a [f64], born: &'a [f64]) -> ScanUse<'a, f64, 2> {
-        ScanUse { time, sensor: 0, measurements: zs, unexplained: r_u, born, detection: &[] }
+        ScanUse { time, sensor: 0, measurements: zs, unexplained: r_u, born, detection: &[], labels: &[] }
     }
 
     #[test]
@@ -598,6 +623,7 @@ mod tests {
             unexplained: &[],
             born: &[0.0, 0.2],
             detection: &[0.8, 0.0],
+            labels: &[],
         };
         pool.update(&settings, 4, &model, &linking(), &in_view);
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();
@@ -615,7 +641,7 @@ mod tests {
         let settings = MeasuredBirths { max_probability: 0.9, ..settings() };
         // Two groups: cells 0 and 1 one candidate (α 0.2 + 0.3), cell 2 another (α 0.4).
         for (probability, group) in [(0.2, 7), (0.3, 7), (0.4, 8)] {
-            let cell = PoolCell { state: Gaussian::default(), time: 0.0, probability, group };
+            let cell = PoolCell { state: Gaussian::default(), time: 0.0, probability, group, label: None };
             assert!(pool.cells.push(cell).is_ok());
         }
         // Cell 0 gave birth with probability 0.5: its sibling gave none in that child, but the candidate is
@@ -627,6 +653,7 @@ mod tests {
             unexplained: &[],
             born: &[0.5, 0.0, 0.0],
             detection: &[0.0, 0.0, 0.5],
+            labels: &[],
         };
         pool.update(&settings, 4, &model, &linking(), &ageing);
         let alphas: std::vec::Vec<f64> = pool.cells().iter().map(|c| c.probability).collect();

@@ -268,7 +268,15 @@ mod tests {
         for (t, q, zs) in scans {
             let model = OpticalRaDec { observer: *q, sigma: [SIGMA; 2] };
             let r_u = std::vec![1.0; zs.len()];
-            let scan = ScanUse { time: *t, sensor: 0, measurements: zs, unexplained: &r_u, born: &[], detection: &[] };
+            let scan = ScanUse {
+                time: *t,
+                sensor: 0,
+                measurements: zs,
+                unexplained: &r_u,
+                born: &[],
+                detection: &[],
+                labels: &[],
+            };
             let motion =
                 crate::model::TwoBodyJ2::<f64>::earth(crate::model::ProcessNoise::Isotropic(1e-10), 20.0, 2000);
             let sensor = crate::Sensor {

@@ -208,6 +208,20 @@ impl<T: Real, const S: usize, const B: usize> WaitingCells<T, S, B> {
         Some((state, waiting.cell.probability * crate::real::exp(log_ratio)))
     }
 
+    /// The label of waiting candidate `group`, if it gave a birth before it waited.
+    pub(super) fn label_of(&self, group: u32) -> Option<crate::store::TrackLabel> {
+        self.cells.iter().find(|waiting| waiting.cell.group == group).and_then(|waiting| waiting.cell.label)
+    }
+
+    /// Labels the waiting cells of candidate `group` that hold no label.
+    pub(super) fn label_group(&mut self, group: u32, label: crate::store::TrackLabel) {
+        for waiting in
+            self.cells.iter_mut().filter(|waiting| waiting.cell.group == group && waiting.cell.label.is_none())
+        {
+            waiting.cell.label = Some(label);
+        }
+    }
+
     /// Marks candidate `group` linked at this scan: it is removed at the scan's end and no cell of it gives
     /// way to a new one before.
     pub(super) fn mark_linked(&mut self, group: u32) {

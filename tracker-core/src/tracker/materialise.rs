@@ -47,12 +47,22 @@ pub(super) struct Materialisation<const H: usize, const N: usize, const Z: usize
     /// The measurement each object of the current parent takes, or `NONE`.
     row_of_position: [u16; N],
     child_sources: [(Source, u16); N],
+    /// Whether each born object of the child takes its candidate's label (§5.8, "One label per candidate").
+    child_inherits: [bool; N],
+    /// Whether each new slot made from a birth cell took its candidate's label.
+    new_slot_inherited: [bool; K],
     child_slots: [u16; N],
     hashes: [u64; H],
     /// The label of the object born from each measurement this scan, whatever its birth cell.
     birth_label_of_row: [Option<TrackLabel>; Z],
     /// The label of the undetected object born in each cell this scan.
     birth_label_of_cell: [Option<TrackLabel>; B],
+    /// The label of the object born from each measurement in the best kept child that gave it one
+    /// (its candidate's, or fresh): a candidate the pool makes from the measurement takes it.
+    first_birth_label_of_row: [Option<TrackLabel>; Z],
+    /// The candidates (pool groups) without a label that gave a birth this scan, with the label of the
+    /// first one (best child first): the pool adopts them at the commit.
+    candidate_labels: heapless::Vec<(u32, TrackLabel), B>,
 }
 
 /// What stage 3 reports besides the new buffers.
@@ -100,11 +110,26 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             new_slot_measurement: [NONE; K],
             row_of_position: [NONE; N],
             child_sources: [(Source::Track(0), NONE); N],
+            child_inherits: [false; N],
+            new_slot_inherited: [false; K],
             child_slots: [0; N],
             hashes: [0; H],
             birth_label_of_row: [None; Z],
             birth_label_of_cell: [None; B],
+            first_birth_label_of_row: [None; Z],
+            candidate_labels: heapless::Vec::new(),
         }
+    }
+
+    /// The candidates that gave their first birth in the last scan, each with its label (§5.8).
+    pub(super) fn candidate_labels(&self) -> &[(u32, TrackLabel)] {
+        &self.candidate_labels
+    }
+
+    /// Per measurement of the last scan, the label of the object born from it in the best kept child
+    /// that gave it one.
+    pub(super) fn birth_labels_of_rows(&self) -> &[Option<TrackLabel>; Z] {
+        &self.first_birth_label_of_row
     }
 
     /// Builds the kept children's tracks and hypotheses into `next_store` and `next_set`, best first.
@@ -128,6 +153,8 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         self.birth_head.fill(NONE);
         self.birth_label_of_row.fill(None);
         self.birth_label_of_cell.fill(None);
+        self.candidate_labels.clear();
+        self.first_birth_label_of_row.fill(None);
         let mut outcome = Materialised { kept_total: LogSumExp::new(), next_label, dropped_for_store: 0, merged: 0 };
         let top = &inputs.generation.top;
         let kept = top.best_first(&mut self.order);
@@ -149,6 +176,7 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             };
             let dropped = |slot: u16| inputs.scores.predicted(usize::from(slot)).dropped;
             let count = self.child_sources(candidate, parent, &layout, inputs.measurements.len(), dropped);
+            self.choose_inherited(inputs, parent, count, next_label);
             if !self.has_room(count, next_store) {
                 match inputs.config.store_overflow {
                     StoreOverflow::PruneChildren => {
@@ -160,9 +188,10 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             }
             for index in 0..count {
                 let (source, row) = *self.child_sources.at(index);
-                let slot = match self.lookup(source, row) {
+                let inherits = *self.child_inherits.at(index);
+                let slot = match self.lookup(source, row, inherits) {
                     Some(slot) => slot,
-                    None => self.new_track(inputs, source, row, next_store, &mut outcome.next_label)?,
+                    None => self.new_track(inputs, source, row, inherits, next_store, &mut outcome.next_label)?,
                 };
                 *self.child_slots.at_mut(index) = slot;
             }
@@ -231,22 +260,69 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         count.min(N)
     }
 
+    /// Marks the child's born objects that take their candidate's label (docs/maths.md §5.8, "One label
+    /// per candidate"): a birth from a pool cell whose candidate was born before under label L takes L
+    /// unless the parent holds L or an earlier birth of the child took it. L is below `next_label` (the
+    /// labels given before this scan), so it is distinct from this scan's fresh labels and the child's
+    /// labels stay distinct. O(N²).
+    fn choose_inherited<T: Real, M, G, const S: usize, const D: usize>(
+        &mut self,
+        inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
+        parent: &Hypothesis<T, N>,
+        count: usize,
+        next_label: u32,
+    ) {
+        let tracks = inputs.store.as_slice();
+        let held = |label: TrackLabel| {
+            parent.slots().iter().any(|&slot| tracks.get(usize::from(slot)).is_some_and(|t| t.label == label))
+        };
+        for index in 0..count {
+            let inherited = self.inherited_label(inputs, index);
+            let taken_before = |label: TrackLabel| {
+                (0..index).any(|earlier| {
+                    *self.child_inherits.at(earlier) && self.inherited_label(inputs, earlier) == Some(label)
+                })
+            };
+            *self.child_inherits.at_mut(index) =
+                inherited.is_some_and(|label| label.0 < next_label && !held(label) && !taken_before(label));
+        }
+    }
+
+    /// The label of the candidate of the child's object `index`, when it is born from a labelled one.
+    fn inherited_label<T: Real, M, G, const S: usize, const D: usize>(
+        &self,
+        inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
+        index: usize,
+    ) -> Option<TrackLabel> {
+        match self.child_sources.at(index).0 {
+            Source::Birth(cell) => inputs.birth_cells.candidate.get(usize::from(cell)).copied().flatten()?.1,
+            Source::Track(_) => None,
+        }
+    }
+
     /// Whether the child's new tracks fit the store.
     fn has_room<T: Real, const S: usize>(&self, count: usize, next_store: &TrackStore<T, S, K>) -> bool {
-        let new_tracks =
-            self.child_sources[..count].iter().filter(|&&(source, row)| self.lookup(source, row).is_none()).count();
+        let new_tracks = (0..count)
+            .filter(|&index| {
+                let (source, row) = *self.child_sources.at(index);
+                self.lookup(source, row, *self.child_inherits.at(index)).is_none()
+            })
+            .count();
         next_store.len() + new_tracks <= K
     }
 
-    /// Finds the new slot made from `source` with measurement `row` (or missed), if any.
-    fn lookup(&self, source: Source, row: u16) -> Option<u16> {
+    /// Finds the new slot made from `source` with measurement `row` (or missed), if any; a birth's also
+    /// by whether it took its candidate's label.
+    fn lookup(&self, source: Source, row: u16, inherits: bool) -> Option<u16> {
         let mut slot = match source {
             Source::Track(old) => *self.source_head.at(usize::from(old)),
             Source::Birth(cell) => self.birth_head.get(usize::from(cell)).copied().unwrap_or(NONE),
         };
         // Each source has at most Z + 1 distinct new slots (one per measurement, one missed).
         while slot != NONE {
-            if *self.new_slot_measurement.at(usize::from(slot)) == row {
+            if *self.new_slot_measurement.at(usize::from(slot)) == row
+                && *self.new_slot_inherited.at(usize::from(slot)) == inherits
+            {
                 return Some(slot);
             }
             slot = *self.next_same_source.at(usize::from(slot));
@@ -260,13 +336,14 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
         inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
         source: Source,
         row: u16,
+        inherits: bool,
         next_store: &mut TrackStore<T, S, K>,
         next_label: &mut u32,
     ) -> Result<u16, StepError>
     where
         G: MeasurementModel<T, S, D>,
     {
-        let (label, prior, innovation) = self.source_state(inputs, source, row, next_label)?;
+        let (label, prior, innovation) = self.source_state(inputs, source, row, inherits, next_label)?;
         let unseen_scans = match source {
             Source::Track(old) => inputs.scores.predicted(usize::from(old)).unseen_scans,
             Source::Birth(_) => 0,
@@ -290,17 +367,20 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
             *head = new_slot;
         }
         *self.new_slot_measurement.at_mut(usize::from(new_slot)) = row;
+        *self.new_slot_inherited.at_mut(usize::from(new_slot)) = inherits;
         Ok(new_slot)
     }
 
-    /// The label, predicted Gaussian and innovation of `source`; a birth gets a fresh label unless the
-    /// same measurement (or, undetected, the same cell) already gave one this scan.
+    /// The label, predicted Gaussian and innovation of `source`; a birth takes its candidate's label when
+    /// `inherits`, else a fresh label unless the same measurement (or, undetected, the same cell) already
+    /// gave one this scan.
     #[allow(clippy::type_complexity)]
     fn source_state<T: Real, M, G, const S: usize, const D: usize>(
         &mut self,
         inputs: &Inputs<'_, T, M, G, S, D, H, N, Z, K, B>,
         source: Source,
         row: u16,
+        inherits: bool,
         next_label: &mut u32,
     ) -> Result<(TrackLabel, Gaussian<T, S>, Innovation<T, D>), StepError> {
         match source {
@@ -314,6 +394,11 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
                 let cell = usize::from(cell);
                 let prior = inputs.birth_cells.states.get(cell).copied().unwrap_or(Gaussian::ZERO);
                 let innovation = inputs.birth_cells.innovations.get(cell).copied().unwrap_or(Innovation::EMPTY);
+                let candidate = inputs.birth_cells.candidate.get(cell).copied().flatten();
+                if let Some((_, Some(label))) = candidate.filter(|_| inherits) {
+                    self.note_row_label(row, label);
+                    return Ok((label, prior, innovation));
+                }
                 // One new object per measurement (or per cell when undetected): the same birth explained by
                 // different cells' pdfs is one object with one label.
                 let known = match self.birth_label_of_row.get_mut(usize::from(row)) {
@@ -330,8 +415,23 @@ impl<const H: usize, const N: usize, const Z: usize, const K: usize, const B: us
                         label
                     }
                 };
+                // A candidate's first birth names it; the best child's, as children come best first.
+                if let Some((group, None)) = candidate
+                    && !self.candidate_labels.iter().any(|&(other, _)| other == group)
+                {
+                    // At most one entry per pool cell's group, so at most B: there is room.
+                    let _ = self.candidate_labels.push((group, label));
+                }
+                self.note_row_label(row, label);
                 Ok((label, prior, innovation))
             }
+        }
+    }
+
+    /// Records `label` as the label of the object born from `row`, unless a better child gave one.
+    fn note_row_label(&mut self, row: u16, label: TrackLabel) {
+        if let Some(known @ None) = self.first_birth_label_of_row.get_mut(usize::from(row)) {
+            *known = Some(label);
         }
     }
 

@@ -626,6 +626,7 @@ where
         self.next_label = outcome.next_label;
         let birth_pool = match &self.config.birth.measured {
             Some(measured) => {
+                self.pool.adopt_labels(self.materialisation.candidate_labels());
                 let (unexplained, born) =
                     measurement_use::<T, S, D, H, N, Z, B>(&self.generation, birth_cells, measurements.len());
                 let capacity = B.saturating_sub(self.config.birth.cells.len());
@@ -637,6 +638,7 @@ where
                     unexplained: &unexplained[..rows],
                     born: &born,
                     detection: &pool_detection(birth_cells, placed.detection.detection_probability),
+                    labels: &self.materialisation.birth_labels_of_rows()[..rows],
                 };
                 let linking = Linking {
                     motion: &self.config.motion,

@@ -14,7 +14,7 @@ use crate::real::Real;
 use crate::real::ln;
 use crate::report::NumericalDrops;
 use crate::sensor::Region;
-use crate::store::Track;
+use crate::store::{Track, TrackLabel};
 use nalgebra::SVector;
 
 /// A track after prediction to the current scan.
@@ -42,6 +42,8 @@ pub(super) struct BirthCells<T: Real, const S: usize, const D: usize, const B: u
     pub(super) probabilities: [T; B],
     /// The pool cell each cell was predicted from (`NONE`: a cell of the configuration).
     pub(super) pool_cell: [u16; B],
+    /// Each pool cell's candidate (group) and the label its first birth was given (§5.8).
+    pub(super) candidate: [Option<(u32, Option<TrackLabel>)>; B],
     pub(super) count: usize,
 }
 
@@ -52,6 +54,7 @@ impl<T: Real, const S: usize, const D: usize, const B: usize> BirthCells<T, S, D
         in_field_of_view: [false; B],
         probabilities: [T::ZERO; B],
         pool_cell: [NONE; B],
+        candidate: [None; B],
         count: 0,
     };
 
@@ -243,6 +246,7 @@ where
     cells.in_field_of_view = [false; B];
     cells.probabilities = [T::ZERO; B];
     cells.pool_cell = [NONE; B];
+    cells.candidate = [None; B];
     let fixed =
         config.birth.cells.iter().enumerate().map(|(cell, state)| (NONE, cell, *state, config.birth.probability));
     let from_pool =
@@ -264,6 +268,8 @@ where
             in_field_of_view(&placed.detection.field_of_view, &placed.model, &state, &innovation.predicted);
         *cells.probabilities.at_mut(cell) = alpha;
         *cells.pool_cell.at_mut(cell) = pool_cell;
+        *cells.candidate.at_mut(cell) =
+            pool.cells().get(usize::from(pool_cell)).map(|pooled| (pooled.group, pooled.label));
         cells.count += 1;
         no_birth += ln(T::one() - alpha);
     }

@@ -89,8 +89,9 @@ impl Shares {
     }
 }
 
-/// Where a track comes from: (is a birth, old track index or birth cell, measurement row or [`CLUTTER`]).
-type TrackKey = (bool, u32, u32);
+/// Where a track comes from: (is a birth, old track index or birth cell, measurement row or [`CLUTTER`],
+/// whether a birth takes its candidate's label).
+type TrackKey = (bool, u32, u32, bool);
 
 #[derive(Debug, Clone)]
 struct Track<const S: usize> {
@@ -423,6 +424,7 @@ where
                 unexplained: &posterior.unexplained,
                 born: &posterior.born,
                 detection: &pool_detection(&tables.scan, self.pool.cells().len()),
+                labels: &posterior.row_labels,
             };
             let placed = &tables.scan.placed;
             let linking = Linking {
@@ -431,6 +433,7 @@ where
                 weights: &placed.weights,
                 detection_probability: placed.detection.detection_probability,
             };
+            self.pool.adopt_labels(&posterior.candidate_labels);
             self.pool.update(measured, capacity, model, &linking, &scan);
         }
         self.tracks = posterior.tracks;

@@ -37,7 +37,7 @@ where
             }
             let weight = (head.log_weight - best).exp();
             mass += weight;
-            for &(is_birth, source, row) in &sources {
+            for &(is_birth, source, row, _) in &sources {
                 if row == CLUTTER {
                     continue;
                 }
@@ -71,20 +71,38 @@ where
                 CLUTTER
             };
             if head.event != (Event::Death { object: position as u16 }) {
-                sources.push((false, track, row));
+                sources.push((false, track, row, false));
             }
         }
         // Independent births, in the order of the rows they take (as the core makes their labels).
         let first_birth = sources.len();
         for (&cell, &row) in tables.birth_columns.iter().zip(&row_of[column..]) {
             if row != CLUTTER {
-                sources.push((true, cell as u32, row));
+                sources.push((true, cell as u32, row, false));
             }
         }
-        sources[first_birth..].sort_unstable_by_key(|&(_, _, row)| row);
+        sources[first_birth..].sort_unstable_by_key(|&(_, _, row, _)| row);
         if let Event::Birth { cell } = head.event {
             let row = if tables.scan.births[cell as usize].1 { row_of[column] } else { CLUTTER };
-            sources.push((true, u32::from(cell), row));
+            sources.push((true, u32::from(cell), row, false));
+        }
+        // A birth takes its candidate's label L (docs/maths.md §5.8, "One label per candidate") unless the
+        // parent holds L or an earlier birth of the child took it; L is a label given before this scan.
+        let parent_labels: Vec<u32> = self
+            .members(&self.hypotheses[head.parent as usize])
+            .iter()
+            .map(|&t| self.tracks[t as usize].label)
+            .collect();
+        let mut taken: Vec<u32> = vec![];
+        for key in &mut sources[first_birth..] {
+            if let Some(label) = candidate(&self.pool, tables, key.1).and_then(|(_, label)| label)
+                && label < self.next_label
+                && !parent_labels.contains(&label)
+                && !taken.contains(&label)
+            {
+                taken.push(label);
+                key.3 = true;
+            }
         }
     }
 
@@ -97,6 +115,16 @@ where
         };
         self.hypotheses.iter().map(|h| (h.log_weight, self.members(h).iter().map(track).collect())).collect()
     }
+}
+
+/// The candidate (pool group) of birth cell `cell` and the label of its first birth, for a pool cell.
+fn candidate<G, const S: usize, const D: usize, const B: usize>(
+    pool: &BirthPool<f64, S, B>,
+    tables: &Tables<G, S, D>,
+    cell: u32,
+) -> Option<(u32, Option<u32>)> {
+    let pooled = &pool.cells()[tables.scan.cells[cell as usize].2?];
+    Some((pooled.group, pooled.label.map(|label| label.0)))
 }
 
 /// The events of a parent with `in_view` objects in view, each with its child's objects in view.
@@ -144,6 +172,10 @@ pub(super) struct Posterior<const S: usize> {
     pub(super) unexplained: Vec<f64>,
     /// Per pool cell, the kept children's weight in which it gives birth.
     pub(super) born: Vec<f64>,
+    /// The candidates without a label that gave a birth, with the label of the first (best child first).
+    pub(super) candidate_labels: Vec<(u32, TrackLabel)>,
+    /// Per measurement, the label of the object born from it in the best kept child that gave it one.
+    pub(super) row_labels: Vec<Option<TrackLabel>>,
 }
 
 impl<const S: usize> Posterior<S> {
@@ -163,6 +195,8 @@ impl<const S: usize> Posterior<S> {
             log_mass: f64::NEG_INFINITY,
             unexplained: vec![],
             born: vec![],
+            candidate_labels: vec![],
+            row_labels: vec![],
         }
     }
 
@@ -220,14 +254,30 @@ impl<const S: usize> Posterior<S> {
         measurements: &[SVector<f64, D>],
         key: TrackKey,
     ) -> Result<u32, ReferenceError> {
-        let (is_birth, source, row) = key;
+        let (is_birth, source, row, inherits) = key;
         let (label, prior, innovation, unseen) = if is_birth {
+            let candidate = candidate(&tracker.pool, tables, source);
             let birth_key = if row == CLUTTER { (false, source) } else { (true, row) };
             let next_label = &mut self.next_label;
-            let label = *self.birth_labels.entry(birth_key).or_insert_with(|| {
-                *next_label += 1;
-                *next_label - 1
-            });
+            let label = match candidate {
+                Some((_, Some(label))) if inherits => label,
+                _ => *self.birth_labels.entry(birth_key).or_insert_with(|| {
+                    *next_label += 1;
+                    *next_label - 1
+                }),
+            };
+            if let Some((group, None)) = candidate
+                && !self.candidate_labels.iter().any(|&(other, _)| other == group)
+            {
+                self.candidate_labels.push((group, TrackLabel(label)));
+            }
+            if row != CLUTTER {
+                let row = row as usize;
+                if self.row_labels.len() <= row {
+                    self.row_labels.resize(row + 1, None);
+                }
+                self.row_labels[row].get_or_insert(TrackLabel(label));
+            }
             (label, tables.scan.cells[source as usize].0, tables.scan.births[source as usize].0, 0)
         } else {
             let p = &tables.predicted[tables.slot[source as usize] as usize];
