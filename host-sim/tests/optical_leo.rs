@@ -85,3 +85,20 @@ fn partitioned_check() {
     }
     assert!(formed >= 3, "tracklets formed by the birth cluster: {formed}");
 }
+
+/// Tracklet cells beyond the profile's free birth cells: `run` says so before it starts, with a shape that
+/// fits, and writes nothing (the core would refuse the pool: no tracklet of it could give a birth).
+#[test]
+fn tracklet_cells_beyond_the_profiles_pool_are_refused_before_the_run_with_a_shape_that_fits() {
+    let scenario = small(3);
+    let dir = common::TempDir::new("optical-leo-refused");
+    let out = dir.0.join("run");
+    let refused = host_sim::pipeline::orbital::run(&scenario, TrackerKind::Rfisst, Some(Profile::Embedded), true, &out);
+    let message = match refused {
+        Ok(_) => panic!("12 × 4 tracklet cells accepted by the embedded profile's B = 8"),
+        Err(e) => e.to_string(),
+    };
+    assert!(message.contains("tracklets.cells [12, 4]") && message.contains("8 free birth cells"), "{message}");
+    assert!(message.contains("\"cells\": [2, 4]"), "{message}");
+    assert!(!out.exists(), "nothing written");
+}

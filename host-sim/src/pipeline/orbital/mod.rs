@@ -404,9 +404,9 @@ pub fn run(
     quiet: bool,
     out: &Path,
 ) -> Result<(RunSummary, bool), Error> {
-    std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let profile = choose_profile(scenario, profile);
-    warn_of_birth_components(scenario, profile);
+    check_birth_components(scenario, profile)?;
+    std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let mut world = OrbitalWorld::new(scenario, kind, profile, out)?;
     crate::pipeline::replay::run(&mut world, quiet, out)
 }
@@ -423,10 +423,10 @@ pub fn run_streamed(
     quiet: bool,
     out: &Path,
 ) -> Result<(RunSummary, bool, CatalogueDropped), Error> {
-    std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let scenario = stream.scenario().clone();
     let profile = choose_profile(&scenario, profile);
-    warn_of_birth_components(&scenario, profile);
+    check_birth_components(&scenario, profile)?;
+    std::fs::create_dir_all(out).map_err(|e| Error::output(out, e))?;
     let mut world = OrbitalWorld::streamed(&scenario, stream, kind, profile, out)?;
     let (summary, clean) = crate::pipeline::replay::run(&mut world, quiet, out)?;
     let Scans::Streamed { stream, .. } = world.scans else { return Err(Error::internal("streamed world")) };
@@ -434,10 +434,34 @@ pub fn run_streamed(
 }
 
 /// The warning that some measurements of `scenario` give more birth components than `profile`'s free
-/// birth cells.
-fn warn_of_birth_components(scenario: &Scenario3d, profile: Profile) {
+/// birth cells; an error, saying how to size them, when its tracklets' cells do not fit them (the core
+/// refuses such a pool: no tracklet of it could give a birth).
+///
+/// # Errors
+/// Bad input: tracklet cells beyond the profile's free birth cells.
+fn check_birth_components(scenario: &Scenario3d, profile: Profile) -> Result<(), Error> {
     let components = birth_components_per_measurement(scenario);
     let pool = ORBITAL.of(profile).birth_cells.saturating_sub(scenario.birth.cells.len());
+    // A prior beyond the profile's N runs the partitioned tracker, whose birth cluster has a cluster's B.
+    let (cells, holder) = if scenario.max_prior_objects() > ORBITAL.of(profile).objects {
+        (crate::partition::runner::CLUSTER.birth_cells, "a cluster of the partitioned tracker".to_string())
+    } else {
+        (ORBITAL.of(profile).birth_cells, format!("the {} profile", profile.name()))
+    };
+    let free = cells.saturating_sub(scenario.birth.cells.len());
+    if let Some([ranges, rates]) = scenario.birth.measured.and_then(|m| m.tracklets).map(|t| t.cells)
+        && ranges.saturating_mul(rates) > free
+    {
+        // An example that fits: the same range-rate cells (as many as fit), as many ranges as then fit.
+        let fit_rates = rates.min(free).max(1);
+        let fit_ranges = (free / fit_rates).max(1);
+        return Err(Error::input(format!(
+            "birth.measured.tracklets.cells [{ranges}, {rates}] makes {} birth cells a tracklet, more than the {free} \
+             free birth cells of {holder}: give the tracklets at most {free} cells (for example \"cells\": \
+             [{fit_ranges}, {fit_rates}], docs/results.md \"optical-leo\") or run with --profile host",
+            ranges.saturating_mul(rates),
+        )));
+    }
     if components > pool {
         eprintln!(
             "warning: birth.measured gives up to {components} birth components per measurement, more than the \
@@ -445,6 +469,7 @@ fn warn_of_birth_components(scenario: &Scenario3d, profile: Profile) {
             profile.name()
         );
     }
+    Ok(())
 }
 
 #[cfg(test)]
