@@ -194,20 +194,23 @@ fn independent_births_must_be_detected() {
     assert!(matches!(result, Err(tracker_core::ConfigError::IndependentBirthsUndetected)), "{result:?}");
 }
 
+/// Births from the measurements only (docs/maths.md §5.8) in the planar region, with death probability β,
+/// λ_B `expected_births` and α at most `max_probability` per measurement.
+fn measured_births_config(beta: f64, expected_births: f64, max_probability: f64) -> LinearConfig<f64, 3> {
+    use tracker_core::model::AdmissibleRegion;
+    use tracker_core::pool::MeasuredBirths;
+    let mut config = config_with_births(0.0, beta, &[], BirthDetection::AllDetected);
+    config.birth.events = tracker_core::BirthEvents::Independent;
+    config.birth.measured =
+        Some(MeasuredBirths { expected_births, max_probability, ..MeasuredBirths::new(AdmissibleRegion::planar(2.0)) });
+    config
+}
+
 #[test]
 fn measured_births_confirm_new_objects_anywhere_within_three_detections() {
     // docs/maths.md §5.8: no birth cell is given; the tracker makes cells from the measurements no track
     // explains and predicts them to the next scans, where they are independent-birth cells (§5.6).
-    use tracker_core::model::AdmissibleRegion;
-    use tracker_core::pool::MeasuredBirths;
-    let mut config = config_with_births(0.0, 0.01, &[], BirthDetection::AllDetected);
-    config.birth.events = tracker_core::BirthEvents::Independent;
-    config.birth.measured = Some(MeasuredBirths {
-        expected_births: 1.0,
-        max_probability: 0.5,
-        ..MeasuredBirths::new(AdmissibleRegion::planar(2.0))
-    });
-    let mut t = Tracker::with_objects(config, &[], 0.0).unwrap();
+    let mut t = Tracker::with_objects(measured_births_config(0.01, 1.0, 0.5), &[], 0.0).unwrap();
     let truth = |k: f64| [V2::new(-8.0 + 1.5 * k, 3.0), V2::new(6.0, -7.0 + 0.5 * k)];
     // Scan 1 makes two cells (nothing explains either measurement); nothing is born yet.
     let report = t.step(1.0, &truth(1.0)).unwrap();
@@ -232,16 +235,7 @@ fn an_object_born_from_one_candidate_at_different_scans_keeps_one_label() {
     // docs/maths.md §5.8, "One label per candidate": the candidate made from scan 1's measurement gives birth
     // at scan 2 in the hypotheses that take scan 2's measurement, and at scan 3 in those that called it
     // clutter. Both births are one object: one label, however different their states.
-    use tracker_core::model::AdmissibleRegion;
-    use tracker_core::pool::MeasuredBirths;
-    let mut config = config_with_births(0.0, 0.0, &[], BirthDetection::AllDetected);
-    config.birth.events = tracker_core::BirthEvents::Independent;
-    config.birth.measured = Some(MeasuredBirths {
-        expected_births: 0.2,
-        max_probability: 0.2,
-        ..MeasuredBirths::new(AdmissibleRegion::planar(2.0))
-    });
-    let mut t = Tracker::with_objects(config, &[], 0.0).unwrap();
+    let mut t = Tracker::with_objects(measured_births_config(0.0, 0.2, 0.2), &[], 0.0).unwrap();
     let truth = |k: f64| V2::new(-8.0 + 1.5 * k, 3.0);
     for k in 1..=3 {
         t.step(f64::from(k), &[truth(f64::from(k))]).unwrap();
