@@ -88,16 +88,13 @@ where
         }
         // A birth takes its candidate's label L (docs/maths.md §5.8, "One label per candidate") unless the
         // parent holds L or an earlier birth of the child took it; L is a label given before this scan.
-        let parent_labels: Vec<u32> = self
-            .members(&self.hypotheses[head.parent as usize])
-            .iter()
-            .map(|&t| self.tracks[t as usize].label)
-            .collect();
+        let parent = self.members(&self.hypotheses[head.parent as usize]);
+        let held = |label: u32| parent.iter().any(|&t| self.tracks[t as usize].label == label);
         let mut taken: Vec<u32> = vec![];
         for key in &mut sources[first_birth..] {
             if let Some(label) = candidate(&self.pool, tables, key.1).and_then(|(_, label)| label)
                 && label < self.next_label
-                && !parent_labels.contains(&label)
+                && !held(label)
                 && !taken.contains(&label)
             {
                 taken.push(label);

@@ -433,15 +433,15 @@ pub fn run_streamed(
     Ok((summary, clean, stream.dropped().clone()))
 }
 
-/// The warning that some measurements of `scenario` give more birth components than `profile`'s free
-/// birth cells; an error, saying how to size them, when its tracklets' cells do not fit them (the core
+/// The warning that some measurements of `scenario` give more birth components than the free birth cells
+/// of the tracker `run` builds for `profile` (the partitioned tracker's clusters when the prior is beyond
+/// the profile's N); an error, saying how to size them, when its tracklets' cells do not fit them (the core
 /// refuses such a pool: no tracklet of it could give a birth).
 ///
 /// # Errors
 /// Bad input: tracklet cells beyond the profile's free birth cells.
 fn check_birth_components(scenario: &Scenario3d, profile: Profile) -> Result<(), Error> {
     let components = birth_components_per_measurement(scenario);
-    let pool = ORBITAL.of(profile).birth_cells.saturating_sub(scenario.birth.cells.len());
     // A prior beyond the profile's N runs the partitioned tracker, whose birth cluster has a cluster's B.
     let (cells, holder) = if scenario.max_prior_objects() > ORBITAL.of(profile).objects {
         (crate::partition::runner::CLUSTER.birth_cells, "a cluster of the partitioned tracker".to_string())
@@ -462,11 +462,10 @@ fn check_birth_components(scenario: &Scenario3d, profile: Profile) -> Result<(),
             ranges.saturating_mul(rates),
         )));
     }
-    if components > pool {
+    if components > free {
         eprintln!(
             "warning: birth.measured gives up to {components} birth components per measurement, more than the \
-             {pool} free birth cells of the {} profile: measurements that need more give no birth (--profile host)",
-            profile.name()
+             {free} free birth cells of {holder}: measurements that need more give no birth (--profile host)"
         );
     }
     Ok(())
